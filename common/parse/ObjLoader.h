@@ -1,0 +1,15 @@
+// Wavefront OBJ triangle meshes referenced from a scene.
+#pragma once
+
+#include <string>
+
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+// Loads the OBJ file at path into a single world-space mesh (faces triangulated, vertex normals
+// kept when every face has them). referencedFrom is where the scene names the file; errors point
+// there when the file is missing and into the OBJ file otherwise. Throws SceneError.
+MeshDesc loadObjMesh(const std::string& path, const FileLoc& referencedFrom);
+
+}  // namespace prism

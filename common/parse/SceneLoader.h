@@ -1,0 +1,18 @@
+// Entry point for reading a scene file of any supported format.
+#pragma once
+
+#include <string>
+
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+// Reads the file at path, chooses the parser by extension (.yaml/.yml: Prism's YAML format,
+// .nff: Eric Haines' Neutral File Format) and returns a validated description with every
+// referenced mesh and image loaded. Throws SceneError ("file:line:col: message") on bad input.
+SceneDescription loadScene(const std::string& path);
+
+// Reads a whole file as text; throws SceneError naming the file when it cannot be read.
+std::string readTextFile(const std::string& path, const FileLoc& referencedFrom = {});
+
+}  // namespace prism

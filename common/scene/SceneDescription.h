@@ -1,0 +1,147 @@
+// The plain, self-contained description of a scene: what the parsers produce and what the
+// renderer builds from. It holds data only (no pointers, no render structures) so the master can
+// serialise it for the other ranks; meshes and environment images are loaded into it, so a rank
+// that builds a Scene from it never reads a file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image/ImageRgb.h"
+#include "math/Vec.h"
+#include "parse/FileLoc.h"
+
+namespace prism {
+
+enum class Projection { Perspective, Orthographic };
+
+struct CameraDesc {
+  Projection projection = Projection::Perspective;
+  Vec3 position{0.0f, 0.0f, 5.0f};
+  Vec3 lookAt{0.0f, 0.0f, 0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fovDegrees = 45.0f;  // perspective: full vertical field of view
+  float width = 2.0f;        // orthographic: width of the view in world units
+  float nearClip = 0.0f;     // primary rays start this far from the camera (NFF "hither")
+  FileLoc loc;
+};
+
+// Distance falloff 1 / (constant + linear·d + quadratic·d²); (0, 0, 1) is inverse-square.
+struct Attenuation {
+  float constant = 0.0f;
+  float linear = 0.0f;
+  float quadratic = 1.0f;
+};
+
+struct PointLightDesc {
+  Vec3 position{0.0f};
+  Color intensity{1.0f};  // radiant intensity, W/sr per channel
+  Attenuation attenuation;
+  FileLoc loc;
+};
+
+// A solid (3D) checkerboard that replaces a material's diffuse colour.
+struct CheckerDesc {
+  Color colorA{0.9f};
+  Color colorB{0.1f};
+  float scale = 1.0f;  // edge length of one cell, world units
+};
+
+struct MaterialDesc {
+  std::string name;
+  Color ambient{0.0f};      // fraction of the scene's ambient radiance reflected
+  Color diffuse{0.8f};      // Lambertian albedo (reflected radiance = albedo/π · irradiance)
+  Color specular{0.0f};     // Phong highlight coefficient
+  float shininess = 32.0f;  // Phong exponent
+  Color reflectance{0.0f};  // mirror reflection weight
+  Color transmittance{0.0f};
+  float ior = 1.5f;
+  bool fresnel = true;  // split transmittance into reflection and refraction by Fresnel
+  std::optional<CheckerDesc> checker;
+  FileLoc loc;
+};
+
+using MaterialId = uint32_t;
+
+struct SphereDesc {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+  MaterialId material = 0;
+  FileLoc loc;
+};
+
+struct PlaneDesc {
+  Vec3 point{0.0f};
+  Vec3 normal{0.0f, 1.0f, 0.0f};  // unit length after parsing
+  MaterialId material = 0;
+  FileLoc loc;
+};
+
+// An open (uncapped) truncated cone between two circles; a cylinder when the radii are equal.
+struct ConeDesc {
+  Vec3 base{0.0f};
+  float baseRadius = 1.0f;
+  Vec3 apex{0.0f, 1.0f, 0.0f};
+  float apexRadius = 0.0f;
+  MaterialId material = 0;
+  FileLoc loc;
+};
+
+// A triangle mesh in world space. normals is empty (flat shading) or parallel to positions
+// (smooth shading, interpolated barycentrically).
+struct MeshDesc {
+  std::string source;  // file it came from, or a description such as "triangle"
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<uint32_t> indices;  // three per triangle
+  MaterialId material = 0;
+  FileLoc loc;
+
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Six faces in the OpenGL cube-map order +X, -X, +Y, -Y, +Z, -Z.
+struct CubeMapDesc {
+  std::array<ImageRgb, 6> faces;
+  std::array<std::string, 6> paths;
+  float scale = 1.0f;  // multiplies the stored radiance
+};
+
+enum class TriangleTest { MollerTrumbore, PlaneThenInside };
+
+struct RenderSettings {
+  int width = 640;
+  int height = 360;
+  int samplesPerPixel = 1;
+  int maxDepth = 5;                // primary ray is depth 0
+  float minContribution = 1e-3f;   // secondary rays whose weight falls below this are skipped
+  uint64_t seed = 0;
+  float exposure = 1.0f;           // PNG/viewer only: radiance multiplied before tone mapping
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+};
+
+struct SceneDescription {
+  std::string sourcePath;
+  CameraDesc camera;
+  RenderSettings render;
+  Color background{0.0f};      // radiance of rays that escape, when there is no cube map
+  Color ambientLight{0.0f};    // ambient radiance, scaled by each material's ambient colour
+  std::optional<CubeMapDesc> environment;
+  std::vector<MaterialDesc> materials;
+  std::vector<PointLightDesc> lights;
+  std::vector<SphereDesc> spheres;
+  std::vector<PlaneDesc> planes;
+  std::vector<ConeDesc> cones;
+  std::vector<MeshDesc> meshes;
+
+  size_t triangleCount() const {
+    size_t n = 0;
+    for (const auto& m : meshes) n += m.triangleCount();
+    return n;
+  }
+};
+
+}  // namespace prism
