@@ -1,0 +1,108 @@
+// Bounding volume hierarchy over any set of bounded primitives, built with the surface-area
+// heuristic (binned, after Wald, "On fast Construction of SAH-based Bounding Volume
+// Hierarchies", 2007). The BVH knows only boxes; the caller intersects primitives in leaves.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "math/Aabb.h"
+
+namespace prism {
+
+// 32 bytes, so two nodes share a cache line. Children of an interior node: the next node in
+// the array, and secondChild.
+struct BvhNode {
+  Aabb bounds;
+  uint32_t offset = 0;      // leaf: first entry in primitiveOrder; interior: second child index
+  uint16_t count = 0;       // leaf: primitive count; interior: 0
+  uint8_t splitAxis = 0;    // interior: axis the children were split along
+  uint8_t padding = 0;
+  bool isLeaf() const { return count > 0; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+struct BvhBuildStats {
+  double seconds = 0.0;
+  size_t nodeCount = 0;
+  size_t leafCount = 0;
+  size_t maxDepth = 0;
+  size_t memoryBytes = 0;  // nodes plus the primitive order
+};
+
+class Bvh {
+ public:
+  // SAH splits stop at this depth (bigger sets are still halved); the traversal stack is sized
+  // for it with room for the rare halving below.
+  static constexpr int kMaxDepth = 64;
+
+  // Builds over the given boxes; empty input gives an empty BVH that nothing hits.
+  void build(const std::vector<Aabb>& primitiveBounds);
+
+  // Leaf entries refer to primitiveOrder()[i]: the caller reorders its primitives to match.
+  const std::vector<uint32_t>& primitiveOrder() const { return order_; }
+  const std::vector<BvhNode>& nodes() const { return nodes_; }
+  const BvhBuildStats& stats() const { return stats_; }
+  Aabb bounds() const { return nodes_.empty() ? Aabb{} : nodes_[0].bounds; }
+
+  // Visits the leaves the ray may hit, nearest child first. leafVisitor(first, count, tMax)
+  // tests primitives first..first+count-1, shrinks tMax on a hit and returns true if it hit.
+  // With anyHit the walk stops at the first leaf that reports a hit (shadow rays).
+  template <class LeafVisitor>
+  bool traverse(const Ray& ray, float& tMax, bool anyHit, LeafVisitor&& leafVisitor) const;
+
+ private:
+  std::vector<BvhNode> nodes_;
+  std::vector<uint32_t> order_;
+  BvhBuildStats stats_;
+};
+
+// Slab test; invDir may hold ±inf for axis-parallel rays.
+inline bool rayHitsBox(const Aabb& box, const Vec3& origin, const Vec3& invDir, float tMin,
+                       float tMax) {
+  const Vec3 t0 = (box.lower - origin) * invDir;
+  const Vec3 t1 = (box.upper - origin) * invDir;
+  const Vec3 tNear = glm::min(t0, t1);
+  const Vec3 tFar = glm::max(t0, t1);
+  const float enter = std::max(std::max(tNear.x, tNear.y), std::max(tNear.z, tMin));
+  const float leave = std::min(std::min(tFar.x, tFar.y), std::min(tFar.z, tMax));
+  return enter <= leave;
+}
+
+template <class LeafVisitor>
+bool Bvh::traverse(const Ray& ray, float& tMax, bool anyHit, LeafVisitor&& leafVisitor) const {
+  if (nodes_.empty()) return false;
+  const Vec3 invDir = 1.0f / ray.direction;
+  const bool directionNegative[3] = {invDir.x < 0.0f, invDir.y < 0.0f, invDir.z < 0.0f};
+  uint32_t stack[2 * kMaxDepth];
+  int stackSize = 0;
+  uint32_t current = 0;
+  bool hitAnything = false;
+  for (;;) {
+    const BvhNode& node = nodes_[current];
+    if (rayHitsBox(node.bounds, ray.origin, invDir, ray.tMin, tMax)) {
+      if (node.isLeaf()) {
+        if (leafVisitor(node.offset, node.count, tMax)) {
+          hitAnything = true;
+          if (anyHit) return true;
+        }
+      } else {
+        // Descend into the child on the ray's near side first; the far one waits on the stack.
+        if (directionNegative[node.splitAxis]) {
+          stack[stackSize++] = current + 1;
+          current = node.offset;
+        } else {
+          stack[stackSize++] = node.offset;
+          current = current + 1;
+        }
+        continue;
+      }
+    }
+    if (stackSize == 0) break;
+    current = stack[--stackSize];
+  }
+  return hitAnything;
+}
+
+}  // namespace prism

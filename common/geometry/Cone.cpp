@@ -1,0 +1,81 @@
+#include "geometry/Cone.h"
+
+namespace prism {
+
+Cone::Cone(const ConeDesc& desc)
+    : base_(desc.base),
+      baseRadius_(desc.baseRadius),
+      apexRadius_(desc.apexRadius),
+      material_(desc.material) {
+  const Vec3 along = desc.apex - desc.base;
+  height_ = glm::length(along);
+  axis_ = along / height_;
+  orthonormalBasis(axis_, side1_, side2_);
+  slope_ = (apexRadius_ - baseRadius_) / height_;
+}
+
+Aabb Cone::bounds() const {
+  // Each end circle is bounded per axis by radius·sqrt(1 - axis_i²).
+  const Vec3 spread = glm::sqrt(glm::max(Vec3(0.0f), Vec3(1.0f) - axis_ * axis_));
+  Aabb box;
+  const Vec3 apex = base_ + height_ * axis_;
+  box.extend(base_ - baseRadius_ * spread);
+  box.extend(base_ + baseRadius_ * spread);
+  box.extend(apex - apexRadius_ * spread);
+  box.extend(apex + apexRadius_ * spread);
+  return box;
+}
+
+bool Cone::intersect(const Ray& ray, float tMax, float& tHit) const {
+  // In the cone's frame (x, y across the axis, z along it from the base) the surface is
+  // x² + y² = (r0 + k·z)² for 0 ≤ z ≤ h.
+  const Vec3 rel = ray.origin - base_;
+  const Vec3 o(glm::dot(rel, side1_), glm::dot(rel, side2_), glm::dot(rel, axis_));
+  const Vec3 d(glm::dot(ray.direction, side1_), glm::dot(ray.direction, side2_),
+               glm::dot(ray.direction, axis_));
+  const float radiusAtOrigin = baseRadius_ + slope_ * o.z;
+  const float a = d.x * d.x + d.y * d.y - slope_ * slope_ * d.z * d.z;
+  const float halfB = o.x * d.x + o.y * d.y - slope_ * radiusAtOrigin * d.z;
+  const float c = o.x * o.x + o.y * o.y - radiusAtOrigin * radiusAtOrigin;
+
+  float roots[2];
+  int rootCount = 0;
+  if (std::fabs(a) < 1e-12f) {
+    // The ray runs parallel to a generating line: one crossing at most.
+    if (halfB == 0.0f) return false;
+    roots[rootCount++] = -c / (2.0f * halfB);
+  } else {
+    const float discriminant = halfB * halfB - a * c;
+    if (discriminant < 0.0f) return false;
+    const float q = -halfB - std::copysign(std::sqrt(discriminant), halfB);
+    const float t0 = q / a;
+    const float t1 = q != 0.0f ? c / q : t0;
+    roots[0] = std::min(t0, t1);
+    roots[1] = std::max(t0, t1);
+    rootCount = 2;
+  }
+  for (int i = 0; i < rootCount; ++i) {
+    const float t = roots[i];
+    if (!(t > ray.tMin && t < tMax)) continue;
+    const float z = o.z + t * d.z;
+    // The quadric also holds the mirrored nappe beyond the tip, where the radius is negative.
+    if (z < 0.0f || z > height_ || baseRadius_ + slope_ * z < 0.0f) continue;
+    tHit = t;
+    return true;
+  }
+  return false;
+}
+
+Vec3 Cone::normalAt(const Vec3& p) const {
+  const Vec3 rel = p - base_;
+  const float z = glm::dot(rel, axis_);
+  const Vec3 radial = rel - z * axis_;
+  const float radius = baseRadius_ + slope_ * z;
+  // Gradient of x² + y² − (r0 + k·z)²: the radial direction tilted by the slope.
+  Vec3 n = radial - slope_ * radius * axis_;
+  const float len = glm::length(n);
+  if (len == 0.0f) return -axis_;  // exactly at a pointed tip
+  return n / len;
+}
+
+}  // namespace prism

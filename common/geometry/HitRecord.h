@@ -1,0 +1,27 @@
+// What traversal records about the closest hit so far, and the full surface description computed
+// once for the final hit only (normals and materials are not needed for rejected candidates).
+#pragma once
+
+#include <cstdint>
+
+#include "math/Vec.h"
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+struct HitRecord {
+  float t = 0.0f;
+  uint32_t primitive = 0;  // a PrimitiveRef (see scene/PrimitiveRef.h)
+  float u = 0.0f;          // barycentric coordinates for triangles
+  float v = 0.0f;
+};
+
+struct SurfaceHit {
+  Vec3 position{0.0f};
+  Vec3 geometricNormal{0.0f};  // unit, facing the incoming ray
+  Vec3 shadingNormal{0.0f};    // unit, interpolated for smooth meshes, same side as geometricNormal
+  bool frontFace = true;       // the ray arrived from the side the surface normal points to
+  MaterialId material = 0;
+};
+
+}  // namespace prism

@@ -1,0 +1,28 @@
+// Stratified supersampling positions within a pixel. spp samples cover an nx × ny grid of
+// strata (nx·ny = spp, as square as spp's factors allow), one jittered sample per stratum; one
+// sample per pixel goes through the pixel centre, as in classic ray tracers.
+#pragma once
+
+#include "math/Random.h"
+#include "math/Vec.h"
+
+namespace prism {
+
+class PixelSampler {
+ public:
+  explicit PixelSampler(int samplesPerPixel);
+
+  int count() const { return count_; }
+  int columns() const { return columns_; }
+  int rows() const { return rows_; }
+
+  // Offset in [0, 1)² of sample i; rng is the pixel's own stream, drawn in sample order.
+  Vec2 offset(int i, Pcg32& rng) const;
+
+ private:
+  int count_;
+  int columns_;
+  int rows_;
+};
+
+}  // namespace prism

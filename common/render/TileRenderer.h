@@ -1,0 +1,26 @@
+// Renders one tile of the image on the calling thread. Each pixel draws from its own random
+// stream keyed by (seed, x, y), so a pixel's value does not depend on the tile it belongs to,
+// the thread that renders it or the order of tiles: images are bit-identical for any schedule.
+#pragma once
+
+#include "render/PixelSampler.h"
+#include "render/Tile.h"
+#include "render/WhittedIntegrator.h"
+
+namespace prism {
+
+class TileRenderer {
+ public:
+  explicit TileRenderer(const Scene& scene);
+
+  TileResult render(uint32_t tileIndex, const TileRect& rect) const;
+
+ private:
+  Color renderPixel(int x, int y, RayCounters& rays) const;
+
+  const Scene& scene_;
+  WhittedIntegrator integrator_;
+  PixelSampler sampler_;
+};
+
+}  // namespace prism

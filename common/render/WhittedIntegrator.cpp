@@ -1,0 +1,108 @@
+#include "render/WhittedIntegrator.h"
+
+#include "render/MaterialEval.h"
+#include "render/Optics.h"
+
+namespace prism {
+namespace {
+
+float attenuationFactor(const Attenuation& a, float distance) {
+  return 1.0f / (a.constant + a.linear * distance + a.quadratic * distance * distance);
+}
+
+bool isBlack(const Color& c) { return c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f; }
+
+}  // namespace
+
+Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc& m,
+                                        const Color& albedo, const Vec3& toViewer,
+                                        RayCounters& counters) const {
+  Color result(0.0f);
+  const bool hasSpecular = !isBlack(m.specular);
+  for (const PointLightDesc& light : scene_.lights()) {
+    const Vec3 toLight = light.position - s.position;
+    const float distance = glm::length(toLight);
+    if (!(distance > 0.0f)) continue;
+    const Vec3 l = toLight / distance;
+    // A light below the geometric surface cannot reach it, whatever the shading normal says.
+    if (glm::dot(s.geometricNormal, l) <= 0.0f) continue;
+    const float cosTheta = glm::dot(s.shadingNormal, l);
+    if (cosTheta <= 0.0f) continue;
+
+    Ray shadow;
+    shadow.origin = offsetRayOrigin(s.position, s.geometricNormal, l);
+    shadow.direction = l;
+    shadow.tMax = glm::length(light.position - shadow.origin) * (1.0f - 1e-5f);
+    ++counters.shadow;
+    if (scene_.occluded(shadow)) continue;
+
+    // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
+    const Color lightAtSurface = light.intensity * attenuationFactor(light.attenuation, distance);
+    Color reflected = albedo * (kInvPi * cosTheta);
+    if (hasSpecular) {
+      const float rv = glm::dot(reflect(-l, s.shadingNormal), toViewer);
+      if (rv > 0.0f) reflected += m.specular * std::pow(rv, m.shininess);
+    }
+    result += lightAtSurface * reflected;
+  }
+  return result;
+}
+
+Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
+                                  RayCounters& counters) const {
+  HitRecord hit;
+  if (!scene_.intersect(ray, hit)) return scene_.escapedRadiance(ray.direction);
+
+  const SurfaceHit s = scene_.surface(ray, hit);
+  const MaterialDesc& m = scene_.materials()[s.material];
+  const Color albedo = diffuseAlbedo(m, s.position);
+  const Vec3 toViewer = -ray.direction;
+
+  Color result = m.ambient * scene_.ambientLight();
+  if (!isBlack(albedo) || !isBlack(m.specular)) {
+    result += directLighting(s, m, albedo, toViewer, counters);
+  }
+
+  const RenderSettings& settings = scene_.settings();
+  if (depth >= settings.maxDepth) return result;
+
+  // Split the specular weights: Fresnel moves part of the transmittance into reflection, and
+  // total internal reflection moves all of it.
+  Color reflectWeight = m.reflectance;
+  Color transmitWeight = m.transmittance;
+  std::optional<Vec3> refracted;
+  if (!isBlack(transmitWeight)) {
+    const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
+    refracted = refract(ray.direction, s.shadingNormal, eta);
+    if (!refracted) {
+      reflectWeight += transmitWeight;
+      transmitWeight = Color(0.0f);
+    } else if (m.fresnel) {
+      const float f = fresnelDielectric(glm::dot(toViewer, s.shadingNormal), eta);
+      reflectWeight += f * transmitWeight;
+      transmitWeight *= 1.0f - f;
+    }
+  }
+
+  const Color reflectContribution = weight * reflectWeight;
+  if (maxComponent(reflectContribution) > settings.minContribution) {
+    Vec3 direction = reflect(ray.direction, s.shadingNormal);
+    // A smooth normal can reflect below the true surface; mirror about the geometry instead.
+    if (glm::dot(direction, s.geometricNormal) <= 0.0f) {
+      direction = reflect(ray.direction, s.geometricNormal);
+    }
+    Ray reflected{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};
+    ++counters.secondary;
+    result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters);
+  }
+
+  const Color transmitContribution = weight * transmitWeight;
+  if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
+    Ray transmitted{offsetRayOrigin(s.position, s.geometricNormal, *refracted), *refracted};
+    ++counters.secondary;
+    result += transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters);
+  }
+  return result;
+}
+
+}  // namespace prism

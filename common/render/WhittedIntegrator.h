@@ -1,0 +1,26 @@
+// Whitted-style recursive ray tracing with Phong shading: ambient, Lambert diffuse, Phong
+// highlights and hard shadows from point lights, plus mirror reflection and refraction with
+// Fresnel and total internal reflection, to render.max_depth bounces.
+#pragma once
+
+#include "render/RayCounters.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+class WhittedIntegrator {
+ public:
+  explicit WhittedIntegrator(const Scene& scene) : scene_(scene) {}
+
+  // Radiance arriving along ray (unit direction). depth counts bounces so far; weight is the
+  // product of reflection/transmission weights that scales this ray's contribution to the pixel.
+  Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters) const;
+
+ private:
+  Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,
+                       const Vec3& toViewer, RayCounters& counters) const;
+
+  const Scene& scene_;
+};
+
+}  // namespace prism

@@ -1,0 +1,51 @@
+#include "scene/CubeMap.h"
+
+#include <algorithm>
+
+namespace prism {
+
+CubeMap::CubeMap(const CubeMapDesc& desc) : faces_(desc.faces), scale_(desc.scale) {}
+
+Color CubeMap::texel(int face, int x, int y) const {
+  const ImageRgb& image = faces_[face];
+  x = std::clamp(x, 0, image.width - 1);
+  y = std::clamp(y, 0, image.height - 1);
+  return image.at(x, y);
+}
+
+Color CubeMap::lookup(const Vec3& d) const {
+  // OpenGL cube-map selection (OpenGL 4.6 spec, table 8.19): the major axis picks the face,
+  // (sc, tc) / |ma| give the face coordinates in [-1, 1], t growing downwards in the image.
+  const Vec3 a = glm::abs(d);
+  int face;
+  float sc, tc, ma;
+  if (a.x >= a.y && a.x >= a.z) {
+    face = d.x > 0.0f ? 0 : 1;
+    ma = a.x;
+    sc = d.x > 0.0f ? -d.z : d.z;
+    tc = -d.y;
+  } else if (a.y >= a.z) {
+    face = d.y > 0.0f ? 2 : 3;
+    ma = a.y;
+    sc = d.x;
+    tc = d.y > 0.0f ? d.z : -d.z;
+  } else {
+    face = d.z > 0.0f ? 4 : 5;
+    ma = a.z;
+    sc = d.z > 0.0f ? d.x : -d.x;
+    tc = -d.y;
+  }
+  if (!(ma > 0.0f)) return Color(0.0f);
+  const ImageRgb& image = faces_[face];
+  const float s = 0.5f * (sc / ma + 1.0f) * static_cast<float>(image.width) - 0.5f;
+  const float t = 0.5f * (tc / ma + 1.0f) * static_cast<float>(image.height) - 0.5f;
+  const int x0 = static_cast<int>(std::floor(s));
+  const int y0 = static_cast<int>(std::floor(t));
+  const float fx = s - static_cast<float>(x0);
+  const float fy = t - static_cast<float>(y0);
+  const Color top = glm::mix(texel(face, x0, y0), texel(face, x0 + 1, y0), fx);
+  const Color bottom = glm::mix(texel(face, x0, y0 + 1), texel(face, x0 + 1, y0 + 1), fx);
+  return scale_ * glm::mix(top, bottom, fy);
+}
+
+}  // namespace prism

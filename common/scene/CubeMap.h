@@ -1,0 +1,24 @@
+// Environment cube map: six square images around the scene, looked up by direction for
+// escaping rays (background, reflections, refractions). Face order and orientation follow the
+// OpenGL convention (+X, -X, +Y, -Y, +Z, -Z), so maps made for OpenGL load unchanged.
+#pragma once
+
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+class CubeMap {
+ public:
+  explicit CubeMap(const CubeMapDesc& desc);
+
+  // Bilinearly filtered radiance seen along direction (need not be unit length).
+  Color lookup(const Vec3& direction) const;
+
+ private:
+  Color texel(int face, int x, int y) const;
+
+  std::array<ImageRgb, 6> faces_;
+  float scale_;
+};
+
+}  // namespace prism

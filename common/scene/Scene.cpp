@@ -1,0 +1,201 @@
+#include "scene/Scene.h"
+
+#include "geometry/TriangleMollerTrumbore.h"
+#include "geometry/TrianglePlaneInside.h"
+#include "scene/PrimitiveRef.h"
+
+namespace prism {
+
+Scene::Scene(const SceneDescription& d)
+    : settings_(d.render),
+      camera_(d.camera, d.render.width, d.render.height),
+      background_(d.background),
+      ambientLight_(d.ambientLight),
+      materials_(d.materials),
+      lights_(d.lights) {
+  if (d.environment) environment_.emplace(*d.environment);
+  if (materials_.empty()) materials_.emplace_back();  // primitives default to material 0
+
+  // Gather every bounded primitive in description order, then reorder by BVH leaf order so a
+  // leaf's primitives sit together in memory.
+  std::vector<Triangle> triangles;
+  std::vector<Sphere> spheres;
+  std::vector<Cone> cones;
+  std::vector<Aabb> bounds;
+  std::vector<uint32_t> refs;
+  for (const SphereDesc& s : d.spheres) {
+    refs.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, spheres.size()));
+    spheres.push_back({s.center, s.radius, s.material});
+    bounds.push_back(spheres.back().bounds());
+  }
+  for (const ConeDesc& c : d.cones) {
+    refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
+    cones.emplace_back(c);
+    bounds.push_back(cones.back().bounds());
+  }
+  for (uint32_t m = 0; m < d.meshes.size(); ++m) {
+    const MeshDesc& mesh = d.meshes[m];
+    meshes_.push_back({mesh.normals, mesh.indices, mesh.material});
+    for (uint32_t f = 0; f < mesh.triangleCount(); ++f) {
+      const Vec3& a = mesh.positions[mesh.indices[3 * f]];
+      const Vec3& b = mesh.positions[mesh.indices[3 * f + 1]];
+      const Vec3& c = mesh.positions[mesh.indices[3 * f + 2]];
+      refs.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles.size()));
+      triangles.push_back({a, b - a, c - a, m, f});
+      bounds.push_back(triangles.back().bounds());
+    }
+  }
+  for (const PlaneDesc& p : d.planes) {
+    const Vec3 n = glm::normalize(p.normal);
+    planes_.push_back({n, glm::dot(n, p.point), p.material});
+  }
+
+  bvh_.build(bounds);
+  leafRefs_.reserve(refs.size());
+  for (uint32_t original : bvh_.primitiveOrder()) {
+    const uint32_t ref = refs[original];
+    const uint32_t index = PrimitiveRef::index(ref);
+    switch (PrimitiveRef::kind(ref)) {
+      case PrimitiveKind::Triangle:
+        leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles_.size()));
+        triangles_.push_back(triangles[index]);
+        break;
+      case PrimitiveKind::Sphere:
+        leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, spheres_.size()));
+        spheres_.push_back(spheres[index]);
+        break;
+      case PrimitiveKind::Cone:
+        leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones_.size()));
+        cones_.push_back(cones[index]);
+        break;
+      case PrimitiveKind::Plane:
+        break;  // planes are unbounded and never enter the BVH
+    }
+  }
+
+  stats_.spheres = spheres_.size();
+  stats_.planes = planes_.size();
+  stats_.cones = cones_.size();
+  stats_.triangles = triangles_.size();
+  stats_.bvh = bvh_.stats();
+  stats_.geometryBytes = triangles_.size() * sizeof(Triangle) + spheres_.size() * sizeof(Sphere) +
+                         cones_.size() * sizeof(Cone) + planes_.size() * sizeof(Plane) +
+                         leafRefs_.size() * sizeof(uint32_t);
+  for (const MeshShading& m : meshes_) {
+    stats_.geometryBytes += m.normals.size() * sizeof(Vec3) + m.indices.size() * sizeof(uint32_t);
+  }
+}
+
+template <bool kAnyHit>
+bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
+  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
+  return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
+    bool found = false;
+    for (uint32_t i = first; i < first + count; ++i) {
+      const uint32_t ref = leafRefs_[i];
+      const uint32_t index = PrimitiveRef::index(ref);
+      float t, u = 0.0f, v = 0.0f;
+      bool hitThis = false;
+      switch (PrimitiveRef::kind(ref)) {
+        case PrimitiveKind::Triangle: {
+          const Triangle& tri = triangles_[index];
+          hitThis = classicTriangleTest
+                        ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v)
+                        : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v);
+          break;
+        }
+        case PrimitiveKind::Sphere:
+          hitThis = spheres_[index].intersect(ray, leafTMax, t);
+          break;
+        case PrimitiveKind::Cone:
+          hitThis = cones_[index].intersect(ray, leafTMax, t);
+          break;
+        case PrimitiveKind::Plane:
+          break;
+      }
+      if (hitThis) {
+        leafTMax = t;
+        hit = {t, ref, u, v};
+        found = true;
+        if constexpr (kAnyHit) return true;
+      }
+    }
+    return found;
+  });
+}
+
+bool Scene::intersect(const Ray& ray, HitRecord& hit) const {
+  float tMax = ray.tMax;
+  bool found = intersectBounded<false>(ray, tMax, hit);
+  for (uint32_t i = 0; i < planes_.size(); ++i) {
+    float t;
+    if (planes_[i].intersect(ray, tMax, t)) {
+      tMax = t;
+      hit = {t, PrimitiveRef::make(PrimitiveKind::Plane, i), 0.0f, 0.0f};
+      found = true;
+    }
+  }
+  return found;
+}
+
+bool Scene::occluded(const Ray& ray) const {
+  float tMax = ray.tMax;
+  float t;
+  for (const Plane& plane : planes_) {
+    if (plane.intersect(ray, tMax, t)) return true;
+  }
+  HitRecord ignored;
+  return intersectBounded<true>(ray, tMax, ignored);
+}
+
+SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
+  SurfaceHit s;
+  s.position = ray.at(hit.t);
+  const uint32_t index = PrimitiveRef::index(hit.primitive);
+  Vec3 geometric, shading;
+  switch (PrimitiveRef::kind(hit.primitive)) {
+    case PrimitiveKind::Triangle: {
+      const Triangle& tri = triangles_[index];
+      const MeshShading& mesh = meshes_[tri.mesh];
+      geometric = glm::normalize(glm::cross(tri.e1, tri.e2));
+      shading = geometric;
+      if (!mesh.normals.empty()) {
+        const uint32_t* corner = &mesh.indices[3 * tri.face];
+        const Vec3 interpolated = (1.0f - hit.u - hit.v) * mesh.normals[corner[0]] +
+                                  hit.u * mesh.normals[corner[1]] + hit.v * mesh.normals[corner[2]];
+        const float length = glm::length(interpolated);
+        if (length > 0.0f) shading = interpolated / length;
+        // Authored normals define outside; the winding order may disagree with them.
+        if (glm::dot(geometric, shading) < 0.0f) geometric = -geometric;
+      }
+      s.material = mesh.material;
+      break;
+    }
+    case PrimitiveKind::Sphere:
+      geometric = shading = spheres_[index].normalAt(s.position);
+      s.material = spheres_[index].material;
+      break;
+    case PrimitiveKind::Cone:
+      geometric = shading = cones_[index].normalAt(s.position);
+      s.material = cones_[index].material();
+      break;
+    case PrimitiveKind::Plane:
+      geometric = shading = planes_[index].normal;
+      s.material = planes_[index].material;
+      break;
+  }
+  // Orient both normals towards the incoming ray; remember which side was hit for refraction.
+  s.frontFace = glm::dot(ray.direction, geometric) < 0.0f;
+  if (!s.frontFace) {
+    geometric = -geometric;
+    shading = -shading;
+  }
+  // Interpolated normals can lean past the geometric horizon at silhouettes; keep them on the
+  // ray's side so shading and secondary rays stay consistent.
+  if (glm::dot(shading, geometric) < 0.0f) shading = geometric;
+  s.geometricNormal = geometric;
+  s.shadingNormal = shading;
+  return s;
+}
+
+}  // namespace prism

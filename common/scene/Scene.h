@@ -1,0 +1,76 @@
+// The render-ready scene a rank builds from a SceneDescription: primitives in BVH order,
+// materials, lights, camera and environment. Immutable once built and shared by all threads.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "accel/Bvh.h"
+#include "geometry/Cone.h"
+#include "geometry/HitRecord.h"
+#include "geometry/Plane.h"
+#include "geometry/Sphere.h"
+#include "geometry/Triangle.h"
+#include "scene/Camera.h"
+#include "scene/CubeMap.h"
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+struct SceneBuildStats {
+  size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
+  BvhBuildStats bvh;
+  size_t geometryBytes = 0;  // primitive arrays and mesh shading data, excluding the BVH
+};
+
+class Scene {
+ public:
+  explicit Scene(const SceneDescription& description);
+
+  // Closest hit in (ray.tMin, ray.tMax); the ray direction must be unit length.
+  bool intersect(const Ray& ray, HitRecord& hit) const;
+  // Whether anything lies on the ray within (ray.tMin, ray.tMax): for shadow rays.
+  bool occluded(const Ray& ray) const;
+  // Position, oriented normals and material of a hit found by intersect().
+  SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+
+  Color escapedRadiance(const Vec3& direction) const {
+    return environment_ ? environment_->lookup(direction) : background_;
+  }
+
+  const Camera& camera() const { return camera_; }
+  const RenderSettings& settings() const { return settings_; }
+  const std::vector<MaterialDesc>& materials() const { return materials_; }
+  const std::vector<PointLightDesc>& lights() const { return lights_; }
+  const Color& ambientLight() const { return ambientLight_; }
+  const SceneBuildStats& buildStats() const { return stats_; }
+
+ private:
+  struct MeshShading {
+    std::vector<Vec3> normals;  // empty: flat shading
+    std::vector<uint32_t> indices;
+    MaterialId material;
+  };
+
+  template <bool kAnyHit>
+  bool intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const;
+
+  RenderSettings settings_;
+  Camera camera_;
+  Color background_;
+  Color ambientLight_;
+  std::optional<CubeMap> environment_;
+  std::vector<MaterialDesc> materials_;
+  std::vector<PointLightDesc> lights_;
+  std::vector<Triangle> triangles_;
+  std::vector<Sphere> spheres_;
+  std::vector<Cone> cones_;
+  std::vector<Plane> planes_;
+  std::vector<MeshShading> meshes_;
+  std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry
+  Bvh bvh_;
+  SceneBuildStats stats_;
+};
+
+}  // namespace prism

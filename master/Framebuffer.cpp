@@ -1,0 +1,25 @@
+#include "master/Framebuffer.h"
+
+#include <algorithm>
+
+namespace prism {
+
+Framebuffer::Framebuffer(int width, int height, size_t tileCount)
+    : image_(width, height), received_(tileCount, false) {}
+
+bool Framebuffer::insert(const TileResult& tile) {
+  const TileRect& r = tile.rect;
+  const bool fits = r.x >= 0 && r.y >= 0 && r.width > 0 && r.height > 0 &&
+                    r.x + r.width <= image_.width && r.y + r.height <= image_.height &&
+                    tile.pixels.size() == static_cast<size_t>(r.pixelCount());
+  if (!fits || tile.tileIndex >= received_.size() || received_[tile.tileIndex]) return false;
+  received_[tile.tileIndex] = true;
+  ++tilesDone_;
+  for (int row = 0; row < r.height; ++row) {
+    const Color* source = tile.pixels.data() + static_cast<size_t>(row) * r.width;
+    std::copy(source, source + r.width, &image_.at(r.x, r.y + row));
+  }
+  return true;
+}
+
+}  // namespace prism

@@ -1,0 +1,36 @@
+// A one-line progress bar on stderr, redrawn in place, for terminals only: when stderr is not
+// a terminal (logs, CI) it stays silent so output files are not filled with redraws.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace prism {
+
+class ProgressBar {
+ public:
+  ProgressBar(std::string label, size_t total, std::string unit, bool enabled);
+  ~ProgressBar();
+
+  void update(size_t done);
+  // Draws the final state and ends the line.
+  void finish();
+
+  // The text of the bar for the given state, for a terminal `columns` wide (tested directly).
+  static std::string format(const std::string& label, size_t done, size_t total,
+                            const std::string& unit, double elapsedSeconds, int columns);
+
+ private:
+  std::string label_;
+  size_t total_;
+  std::string unit_;
+  bool enabled_;
+  bool finished_ = false;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Whether stderr is an interactive terminal.
+bool stderrIsTerminal();
+
+}  // namespace prism

@@ -1,0 +1,35 @@
+// `prism render`: load a scene, apply command-line overrides, render, write the image, and
+// print a summary.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+struct RenderOptions {
+  std::string scenePath;
+  std::string outputPath;  // empty: <scene name>.png in the current folder
+  int threads = 0;         // 0: every available core
+  int tileSize = 0;        // 0: automatic
+  std::optional<int> width, height, samples, maxDepth;
+  std::optional<uint64_t> seed;
+  std::optional<float> exposure;
+  std::optional<TriangleTest> triangleTest;
+  bool quiet = false;  // no progress bar and no summary
+};
+
+// Applies the overrides the user gave to the scene's own settings.
+void applyOverrides(const RenderOptions& options, RenderSettings& settings);
+
+// The output path used when none is given: the scene's file name with a .png extension.
+std::string defaultOutputPath(const std::string& scenePath);
+
+// Runs the command; returns the process exit code. Errors go to err as "prism: error: ...".
+int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace prism

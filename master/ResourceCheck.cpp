@@ -1,0 +1,47 @@
+#include "master/ResourceCheck.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace prism {
+
+uint64_t frameMemoryBytes(const RenderSettings& s) {
+  const double pixels = static_cast<double>(s.width) * static_cast<double>(s.height);
+  const double bytes = 2.0 * pixels * sizeof(Color);  // frame buffer + tiles in flight
+  return bytes >= 1.8e19 ? UINT64_MAX : static_cast<uint64_t>(bytes);
+}
+
+uint64_t physicalMemoryBytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long pageSize = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || pageSize <= 0) return UINT64_MAX;
+  return static_cast<uint64_t>(pages) * static_cast<uint64_t>(pageSize);
+}
+
+std::string formatBytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int unit = 0;
+  while (bytes >= 1024.0 && unit < 6) {
+    bytes /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
+  return text;
+}
+
+void checkRenderFits(const RenderSettings& s, uint64_t availableBytes) {
+  const uint64_t needed = frameMemoryBytes(s);
+  // Leave room for the scene, the BVH and the rest of the system.
+  if (needed > availableBytes / 2) {
+    throw std::runtime_error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                             " image needs " + formatBytes(static_cast<double>(needed)) +
+                             " for its frame buffer; this machine has " +
+                             formatBytes(static_cast<double>(availableBytes)) +
+                             " of memory (reduce --width/--height)");
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,56 @@
+#include "master/RunSummary.h"
+
+#include <cstdio>
+#include <ostream>
+
+#include "master/ResourceCheck.h"
+
+namespace prism {
+namespace {
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+std::string milliseconds(double seconds) { return fixed(seconds * 1000.0, 1) + " ms"; }
+
+}  // namespace
+
+std::string formatCount(double count) {
+  if (count >= 1e9) return fixed(count / 1e9, 2) + " G";
+  if (count >= 1e6) return fixed(count / 1e6, 2) + " M";
+  if (count >= 1e4) return fixed(count / 1e3, 1) + " k";
+  return fixed(count, 0);
+}
+
+void printRunSummary(const RunSummary& s, std::ostream& out) {
+  const FrameResult& f = *s.frame;
+  const SceneBuildStats& g = s.sceneStats;
+  const RenderSettings& r = s.settings;
+  const double mrays = f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
+  out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
+      << "geometry  " << g.spheres << " spheres, " << g.cones << " cones, " << g.triangles
+      << " triangles, " << g.planes << " planes, " << s.lightCount << " lights\n"
+      << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
+      << formatBytes(static_cast<double>(g.bvh.memoryBytes)) << " (+"
+      << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "
+      << milliseconds(g.bvh.seconds) << " (scene build " << milliseconds(s.buildSeconds) << ")\n"
+      << "image     " << r.width << "x" << r.height << ", " << r.samplesPerPixel
+      << " spp, max depth " << r.maxDepth << ", " << f.tileCount << " tiles of " << f.tileSize
+      << " px\n"
+      << "threads   " << f.threads << " (busy " << fixed(f.busyThreadSeconds, 2)
+      << " thread-s)\n"
+      << "rays      " << formatCount(static_cast<double>(f.rays.total())) << " total: "
+      << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
+      << formatCount(static_cast<double>(f.rays.shadow)) << " shadow, "
+      << formatCount(static_cast<double>(f.rays.secondary)) << " reflected/refracted\n"
+      << "time      render " << fixed(f.seconds, 3) << " s, write "
+      << milliseconds(s.writeSeconds) << ", total " << fixed(s.totalSeconds, 3) << " s\n"
+      << "speed     " << fixed(mrays, 2) << " Mrays/s ("
+      << fixed(mrays / std::max(1, f.threads), 2) << " per thread)\n"
+      << "written   " << s.outputPath << "\n";
+}
+
+}  // namespace prism

@@ -1,0 +1,31 @@
+// The closing summary of a render: what was rendered, how long each stage took, rays traced
+// and throughput, and where the image went.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "master/FrameRenderer.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+struct RunSummary {
+  std::string scenePath;
+  std::string outputPath;
+  RenderSettings settings;
+  SceneBuildStats sceneStats;
+  size_t lightCount = 0;
+  const FrameResult* frame = nullptr;
+  double parseSeconds = 0.0;
+  double buildSeconds = 0.0;
+  double writeSeconds = 0.0;
+  double totalSeconds = 0.0;
+};
+
+void printRunSummary(const RunSummary& summary, std::ostream& out);
+
+// "12.3 M", "456 k", "789": counts for humans.
+std::string formatCount(double count);
+
+}  // namespace prism
