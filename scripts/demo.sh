@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# One command from a fresh clone: install what is missing, build, render the default scene.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/setup.sh
+./build/prism render scenes/default.yaml -o default.png
+echo "demo: open default.png"

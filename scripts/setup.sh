@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Prism needs (only those missing), then configures and builds
+# Prism in Release mode into ./build. Safe to run again: it only does what is left to do.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config   # toolchain
+  libglm-dev libyaml-cpp-dev libopenimageio-dev   # renderer core: math, scenes, images
+  libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
+  libgtest-dev                                    # tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  if [[ $(id -u) -eq 0 ]]; then
+    apt_get=(apt-get)
+  elif command -v sudo >/dev/null; then
+    apt_get=(sudo apt-get)
+  else
+    echo "setup: missing packages and no root or sudo: apt-get install ${missing[*]}" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${apt_get[@]}" update -qq
+  "${apt_get[@]}" install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$jobs"
