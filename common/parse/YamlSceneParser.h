@@ -1,7 +1,9 @@
 // Prism's YAML scene format (docs/scene-format.md is its reference).
 #pragma once
 
+#include <map>
 #include <string>
+#include <vector>
 
 #include "scene/SceneDescription.h"
 
@@ -10,5 +12,10 @@ namespace prism {
 // Parses YAML scene text. path names the file in error messages and is the base for relative
 // mesh and image paths. Throws SceneError with file:line:col on any problem.
 SceneDescription parseYamlScene(const std::string& text, const std::string& path);
+
+// Every key the parser accepts, by section ("top level", "camera", "materials", "sphere",
+// "transform", ...): each section is a heading in docs/scene-format.md, and a test checks that
+// every key is documented under it.
+const std::map<std::string, std::vector<std::string>>& yamlSceneKeys();
 
 }  // namespace prism

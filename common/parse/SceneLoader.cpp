@@ -1,0 +1,66 @@
+// Chooses a scene parser by file extension and reads scene files as text.
+#include "parse/SceneLoader.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+#include "parse/NffParser.h"
+#include "parse/YamlSceneParser.h"
+
+namespace prism {
+
+namespace {
+
+std::string lowercase(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// Errors about the file itself point at whoever named it, or at the file when nobody did.
+[[noreturn]] void failToRead(const std::string& path, const FileLoc& referencedFrom,
+                             const std::string& why) {
+  if (referencedFrom.file.empty()) throw SceneError(FileLoc{path}, "cannot read file: " + why);
+  throw SceneError(referencedFrom, "cannot read '" + path + "': " + why);
+}
+
+}  // namespace
+
+std::string readTextFile(const std::string& path, const FileLoc& referencedFrom) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) failToRead(path, referencedFrom, std::strerror(errno));
+  // fopen succeeds on a directory on Linux; say what it is rather than report a read error.
+  struct stat info {};
+  if (fstat(fileno(file.get()), &info) == 0 && S_ISDIR(info.st_mode)) {
+    failToRead(path, referencedFrom, "it is a directory");
+  }
+  std::string text;
+  char buffer[1 << 16];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
+  if (std::ferror(file.get())) failToRead(path, referencedFrom, std::strerror(errno));
+  return text;
+}
+
+SceneDescription loadScene(const std::string& path) {
+  const std::string extension = lowercase(std::filesystem::path(path).extension().string());
+  if (extension == ".yaml" || extension == ".yml") {
+    return parseYamlScene(readTextFile(path), path);
+  }
+  if (extension == ".nff") return parseNff(readTextFile(path), path);
+  if (extension.empty()) {
+    throw SceneError(FileLoc{path}, "scene file has no extension (expected .yaml, .yml or .nff)");
+  }
+  throw SceneError(FileLoc{path},
+                   "unsupported scene format '" + extension + "' (expected .yaml, .yml or .nff)");
+}
+
+}  // namespace prism

@@ -1,0 +1,101 @@
+#include "image/ImageIo.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "image/ToneMap.h"
+
+namespace prism {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ImageIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("prism-imageio-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+ImageRgb gradient() {
+  ImageRgb image(7, 5);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 7; ++x) image.at(x, y) = Color(x * 0.37f, y * 1.91f, 1e-4f * (x + y));
+  return image;
+}
+
+TEST_F(ImageIoTest, ExrKeepsLinearRadianceExactly) {
+  const ImageRgb image = gradient();
+  const std::string path = (dir_ / "frame.exr").string();
+  writeImage(image, path, 123.0f);  // exposure must not touch EXR
+  const ImageRgb back = readImage(path);
+  ASSERT_EQ(back.width, 7);
+  ASSERT_EQ(back.height, 5);
+  for (size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(back.pixels[i], image.pixels[i]);
+}
+
+TEST_F(ImageIoTest, PngIsExposedClampedAndSrgbEncoded) {
+  ImageRgb image(3, 1);
+  image.at(0, 0) = Color(0.5f);
+  image.at(1, 0) = Color(7.0f);
+  image.at(2, 0) = Color(0.0f);
+  const std::string path = (dir_ / "frame.png").string();
+  writeImage(image, path, 0.5f);
+  const ImageRgb back = readImage(path);  // linearised again on read
+  EXPECT_NEAR(back.at(0, 0).x, 0.25f, 0.005f);
+  EXPECT_FLOAT_EQ(back.at(1, 0).x, 1.0f);
+  EXPECT_FLOAT_EQ(back.at(2, 0).x, 0.0f);
+}
+
+TEST_F(ImageIoTest, LeavesNoTemporaryFileBehind) {
+  writeImage(gradient(), (dir_ / "a.png").string());
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "a.png");
+  }
+  EXPECT_EQ(files, 1u);
+}
+
+TEST_F(ImageIoTest, FailedWriteLeavesNothingAndNamesTheFile) {
+  const std::string path = (dir_ / "missing-folder" / "a.png").string();
+  try {
+    writeImage(gradient(), path);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a.png"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(path));
+}
+
+TEST_F(ImageIoTest, UnknownExtensionIsRefusedUpFront) {
+  std::string why;
+  EXPECT_FALSE(isWritableImagePath((dir_ / "a.xyz").string(), &why));
+  EXPECT_NE(why.find(".xyz"), std::string::npos) << why;
+  EXPECT_FALSE(isWritableImagePath((dir_ / "noextension").string(), &why));
+  EXPECT_TRUE(isWritableImagePath((dir_ / "a.exr").string()));
+}
+
+TEST_F(ImageIoTest, ReadingAMissingImageNamesIt) {
+  EXPECT_THROW(readImage((dir_ / "nothing.png").string()), std::runtime_error);
+}
+
+TEST(ToneMap, SrgbCurveRoundTripsAndClamps) {
+  for (float v : {0.0f, 0.001f, 0.0031308f, 0.2f, 0.5f, 1.0f}) {
+    EXPECT_NEAR(srgbToLinear(linearToSrgb(v)), v, 1e-6f);
+  }
+  EXPECT_EQ(toDisplayByte(5.0f, 1.0f), 255);
+  EXPECT_EQ(toDisplayByte(-1.0f, 1.0f), 0);
+  EXPECT_EQ(toDisplayByte(std::nanf(""), 1.0f), 0);
+  EXPECT_EQ(toDisplayByte(0.5f, 2.0f), 255);
+}
+
+}  // namespace
+}  // namespace prism

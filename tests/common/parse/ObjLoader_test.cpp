@@ -1,0 +1,203 @@
+#include "parse/ObjLoader.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+
+namespace prism {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::string_view_literals;
+
+const FileLoc kReferencedFrom{"scene.yaml", 7, 11};
+
+std::string objPath(const std::string& name) {
+  return PRISM_TEST_DATA_DIR "/obj/" + name;
+}
+
+// Writes small OBJ files for one test into a private temporary folder.
+class ObjFiles : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info->name();
+    std::replace(name.begin(), name.end(), '/', '_');  // parameterised tests: "Test/param"
+    dir_ = fs::temp_directory_path() / ("prism_obj_" + std::to_string(::getpid()) + "_" + name);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, std::string_view text) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+Vec3 geometricNormal(const MeshDesc& mesh, size_t t) {
+  const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+  const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+  const Vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+  return glm::cross(b - a, c - a);
+}
+
+float meshArea(const MeshDesc& mesh) {
+  float area = 0.0f;
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    area += 0.5f * glm::length(geometricNormal(mesh, t));
+  }
+  return area;
+}
+
+TEST(ObjLoader, SeparatelyIndexedNormalsBecomeVertexNormals) {
+  const MeshDesc mesh = loadObjMesh(objPath("cube_normals.obj"), kReferencedFrom);
+  EXPECT_EQ(mesh.source, objPath("cube_normals.obj"));
+  EXPECT_EQ(mesh.material, 0u);
+  EXPECT_EQ(mesh.triangleCount(), 12u);   // six quads, two shapes merged
+  EXPECT_EQ(mesh.positions.size(), 24u);  // each corner once per face normal
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3& p = mesh.positions[i];
+    EXPECT_EQ(glm::abs(p), Vec3(1.0f)) << "vertex " << i;
+    // Every corner lies on the face its normal belongs to.
+    EXPECT_FLOAT_EQ(glm::dot(p, mesh.normals[i]), 1.0f) << "vertex " << i;
+  }
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const Vec3 faceNormal = glm::normalize(geometricNormal(mesh, t));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_FLOAT_EQ(glm::dot(faceNormal, mesh.normals[mesh.indices[3 * t + k]]), 1.0f)
+          << "triangle " << t;
+    }
+  }
+  EXPECT_FLOAT_EQ(meshArea(mesh), 24.0f);
+}
+
+TEST(ObjLoader, QuadWithoutNormalsGivesTwoFlatTriangles) {
+  const MeshDesc mesh = loadObjMesh(objPath("quad.obj"), kReferencedFrom);
+  EXPECT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_EQ(mesh.positions.size(), 4u);
+  EXPECT_TRUE(mesh.normals.empty());
+  EXPECT_FLOAT_EQ(meshArea(mesh), 1.0f);
+  for (size_t t = 0; t < 2; ++t) EXPECT_GT(geometricNormal(mesh, t).z, 0.0f);
+  EXPECT_EQ(mesh.loc.file, kReferencedFrom.file);
+  EXPECT_EQ(mesh.loc.line, kReferencedFrom.line);
+}
+
+TEST_F(ObjFiles, OneFaceWithoutNormalsMakesTheMeshFlat) {
+  const std::string path = write("mixed.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\n"
+                                 "f 1//1 2//1 3//1\nf 2 4 3\n");
+  const MeshDesc mesh = loadObjMesh(path, kReferencedFrom);
+  EXPECT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_TRUE(mesh.normals.empty());
+  EXPECT_EQ(mesh.positions.size(), 4u);  // shared corners are shared again once normals go
+}
+
+TEST_F(ObjFiles, ZeroNormalMakesTheMeshFlat) {
+  const std::string path =
+      write("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
+  EXPECT_TRUE(loadObjMesh(path, kReferencedFrom).normals.empty());
+}
+
+TEST_F(ObjFiles, ConcaveFaceIsEarClipped) {
+  // An L-shaped hexagon with texture coordinates and relative (negative) indices.
+  const std::string path = write("l_shape.obj",
+                                 "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\n"
+                                 "vt 0 0\nf -6/1 -5/1 -4/1 -3/1 -2/1 -1/1\n");
+  const MeshDesc mesh = loadObjMesh(path, kReferencedFrom);
+  EXPECT_EQ(mesh.triangleCount(), 4u);
+  EXPECT_FLOAT_EQ(meshArea(mesh), 3.0f);
+  for (size_t t = 0; t < 4; ++t) EXPECT_GT(geometricNormal(mesh, t).z, 0.0f);
+}
+
+TEST(ObjLoader, MissingFileIsReportedWhereTheSceneNamesIt) {
+  try {
+    loadObjMesh("no/such/mesh.obj", kReferencedFrom);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.loc().file, "scene.yaml");
+    EXPECT_EQ(error.loc().line, 7);
+    EXPECT_EQ(error.loc().column, 11);
+    EXPECT_EQ(error.message(),
+              "cannot open mesh file 'no/such/mesh.obj': No such file or directory");
+  }
+}
+
+TEST_F(ObjFiles, DirectoryIsNotAMeshFile) {
+  try {
+    loadObjMesh(dir_.string(), kReferencedFrom);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.loc().file, "scene.yaml");
+    EXPECT_NE(error.message().find("Is a directory"), std::string::npos) << error.what();
+  }
+}
+
+struct BadObj {
+  const char* name;
+  std::string_view text;
+  int line;  // 0: the error names the file only
+  int column;
+  const char* message;
+};
+
+const BadObj kBadObj[] = {
+    {"empty", "# nothing here\n", 0, 0, "mesh file has no triangles"},
+    {"no_faces", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", 0, 0, "mesh file has no triangles"},
+    {"binary",
+     "\x7f"
+     "ELF\x02\x01\x01\x00\x00\x00\xff\xfe\n\x00\x13\x37"sv,
+     0, 0, "mesh file has no triangles"},
+    {"vertex_index_out_of_range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n", 5, 1,
+     "face refers to vertex 9 but the file has 3"},
+    {"relative_index_out_of_range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", 4, 1,
+     "face refers to vertex 0 but the file has 3"},
+    {"big_face_index_out_of_range",
+     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 2 0\nf 1 2 3 4 5 999999\n", 6, 1,
+     "face refers to vertex 999999"},
+    {"normal_index_out_of_range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", 5, 1,
+     "face refers to normal 2 but the file has 1"},
+    {"zero_index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, 1, "invalid OBJ data"},
+    {"two_vertex_face", "v 0 0 0\nv 1 0 0\nf 1 2\n", 3, 1, "face needs at least 3 vertices"},
+    {"nan_vertex", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", 2, 5, "non-finite coordinate 'nan'"},
+    {"huge_vertex", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n", 2, 3, "non-finite coordinate"},
+    {"letter_vertex", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n", 2, 5,
+     "expected a number but found 'x'"},
+    {"crlf_letter_vertex", "v 0 0 0\r\nv 1 0 0\r\nv 0 x 1\r\nf 1 2 3\r\n", 3, 5,
+     "expected a number but found 'x'"},
+    {"cr_only_index_out_of_range", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 4\r", 4, 1,
+     "face refers to vertex 4"},
+    {"binary_in_vertex", "v 0 0 0\nv 1 \xff\xfe 0\n", 2, 5, "found '\\xff\\xfe'"},
+    {"short_vertex", "v 0 0\nf 1 1 1\n", 1, 1, "vertex needs 3 coordinates"},
+};
+
+class ObjBadInput : public ObjFiles, public testing::WithParamInterface<BadObj> {};
+
+TEST_P(ObjBadInput, FailsInsideTheObjFile) {
+  const BadObj& bad = GetParam();
+  const std::string path = write(std::string(bad.name) + ".obj", bad.text);
+  try {
+    loadObjMesh(path, kReferencedFrom);
+    FAIL() << bad.name << " loaded without error";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.loc().file, path);
+    EXPECT_EQ(error.loc().line, bad.line) << error.what();
+    EXPECT_EQ(error.loc().column, bad.column) << error.what();
+    EXPECT_NE(error.message().find(bad.message), std::string::npos) << error.what();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Obj, ObjBadInput, testing::ValuesIn(kBadObj),
+                         [](const testing::TestParamInfo<BadObj>& info) {
+                           return std::string(info.param.name);
+                         });
+
+}  // namespace
+}  // namespace prism

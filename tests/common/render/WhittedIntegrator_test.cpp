@@ -1,0 +1,171 @@
+#include "render/WhittedIntegrator.h"
+
+#include <gtest/gtest.h>
+
+#include "master/FrameRenderer.h"
+#include "render/Optics.h"
+
+namespace prism {
+namespace {
+
+// An orthographic camera looking straight down at the y = 0 plane.
+SceneDescription topDownScene(int size, float viewWidth) {
+  SceneDescription d;
+  d.camera.projection = Projection::Orthographic;
+  d.camera.position = {0, 5, 0};
+  d.camera.lookAt = {0, 0, 0};
+  d.camera.up = {0, 0, -1};
+  d.camera.width = viewWidth;
+  d.render.width = size;
+  d.render.height = size;
+  d.render.samplesPerPixel = 1;
+  return d;
+}
+
+MaterialDesc lambert(Color albedo) {
+  MaterialDesc m;
+  m.diffuse = albedo;
+  return m;
+}
+
+TEST(WhittedIntegrator, LambertianPlaneUnderPointLightMatchesTheClosedForm) {
+  SceneDescription d = topDownScene(33, 6.0f);
+  const Color albedo(0.6f, 0.5f, 0.25f);
+  d.materials.push_back(lambert(albedo));
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  PointLightDesc light;
+  light.position = {0.3f, 2.0f, -0.4f};
+  light.intensity = {10.0f, 5.0f, 2.0f};  // W/sr, inverse-square
+  d.lights.push_back(light);
+
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  for (int y = 0; y < d.render.height; ++y) {
+    for (int x = 0; x < d.render.width; ++x) {
+      const Ray ray = scene.camera().generateRay(x + 0.5f, y + 0.5f);
+      const Vec3 p = ray.at(ray.origin.y / -ray.direction.y);
+      const Vec3 toLight = light.position - p;
+      const float distance = glm::length(toLight);
+      const float cosTheta = toLight.y / distance;
+      // L = albedo/π · I · cosθ / d²
+      const Color expected = albedo / kPi * light.intensity * cosTheta / (distance * distance);
+      const Color actual = frame.image.at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_NEAR(actual[c], expected[c], 1e-5f * expected[c]) << x << "," << y << " ch " << c;
+      }
+    }
+  }
+}
+
+TEST(WhittedIntegrator, AttenuationCoefficientsFollowTheFormula) {
+  SceneDescription d = topDownScene(9, 2.0f);
+  d.materials.push_back(lambert(Color(1.0f)));
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  PointLightDesc light;
+  light.position = {0, 3, 0};
+  light.intensity = Color(4.0f);
+  light.attenuation = {1.0f, 0.5f, 0.25f};
+  d.lights.push_back(light);
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  // Centre pixel: straight below the light, d = 3, cosθ = 1.
+  const float expected = 1.0f / kPi * 4.0f / (1.0f + 0.5f * 3.0f + 0.25f * 9.0f);
+  EXPECT_NEAR(frame.image.at(4, 4).x, expected, 1e-6f);
+}
+
+TEST(WhittedIntegrator, OccluderCastsAHardShadowAndAmbientRemains) {
+  SceneDescription d = topDownScene(21, 4.0f);
+  MaterialDesc floor = lambert(Color(0.5f));
+  floor.ambient = Color(0.2f);
+  d.materials.push_back(floor);
+  d.ambientLight = Color(0.1f);
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  PointLightDesc light;
+  light.position = {0, 10, 0};
+  light.intensity = Color(100.0f);
+  d.lights.push_back(light);
+  // A sphere above the camera (so unseen) shades a disc centred where the line from the light
+  // through its centre meets the floor: (0.5·10/4, 0, 0) = (1.25, 0, 0), radius about 1.25.
+  d.spheres.push_back({{0.5f, 6.0f, 0.0f}, 0.5f, 0, {}});
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  const int shadowPixel = static_cast<int>((1.25f + 2.0f) / 4.0f * 21.0f);
+  EXPECT_NEAR(frame.image.at(shadowPixel, 10).x, 0.2f * 0.1f, 1e-7f);  // ambient term only
+  // Pixel (0, 10) is lit, far from the disc: ambient plus the Lambert term.
+  const Ray litRay = scene.camera().generateRay(0.5f, 10.5f);
+  const Vec3 p = litRay.at(litRay.origin.y / -litRay.direction.y);
+  const float distance = glm::length(light.position - p);
+  const float lit = 0.2f * 0.1f + 0.5f / kPi * 100.0f * (10.0f / distance) / (distance * distance);
+  EXPECT_NEAR(frame.image.at(0, 10).x, lit, 1e-5f);
+}
+
+TEST(WhittedIntegrator, GlassSlabTransmitsTheFresnelSeriesAtNormalIncidence) {
+  // Camera above a slab bounded by y = 1 and y = 0, looking at a floor that shows exactly its
+  // ambient radiance A. Every bounce inside is lossless, so L = A·(1−F)²·Σ F^(2k) = A(1−F)/(1+F).
+  SceneDescription d = topDownScene(5, 1.0f);
+  d.camera.position = {0, 3, 0};
+  d.render.maxDepth = 40;
+  d.render.minContribution = 1e-9f;
+  MaterialDesc glass;
+  glass.diffuse = Color(0.0f);
+  glass.transmittance = Color(1.0f);
+  glass.ior = 1.5f;
+  MaterialDesc floor;
+  floor.diffuse = Color(0.0f);
+  floor.ambient = Color(1.0f);
+  d.materials = {glass, floor};
+  d.ambientLight = Color(0.7f);
+  d.planes.push_back({{0, 1, 0}, {0, 1, 0}, 0, {}});
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  d.planes.push_back({{0, -1, 0}, {0, 1, 0}, 1, {}});
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  const float f = fresnelDielectric(1.0f, 1.0f / 1.5f);
+  EXPECT_NEAR(frame.image.at(2, 2).x, 0.7f * (1.0f - f) / (1.0f + f), 1e-5f);
+}
+
+TEST(WhittedIntegrator, LosslessGlassUnderUniformSkyConservesRadiance) {
+  // A dielectric only redirects light: under a uniform background every pixel sees it exactly.
+  SceneDescription d;
+  d.camera.position = {0, 0, 4};
+  d.render.width = 24;
+  d.render.height = 24;
+  d.render.maxDepth = 60;
+  d.render.minContribution = 1e-7f;
+  d.background = Color(0.3f, 0.6f, 0.9f);
+  MaterialDesc glass;
+  glass.diffuse = Color(0.0f);
+  glass.transmittance = Color(1.0f);
+  glass.ior = 1.5f;
+  d.materials.push_back(glass);
+  d.spheres.push_back({{0, 0, 0}, 1.0f, 0, {}});
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  for (const Color& c : frame.image.pixels) {
+    EXPECT_NEAR(c.x, 0.3f, 2e-4f);
+    EXPECT_NEAR(c.z, 0.9f, 6e-4f);
+  }
+}
+
+TEST(WhittedIntegrator, DepthLimitStopsRecursionBetweenFacingMirrors) {
+  SceneDescription d = topDownScene(3, 1.0f);
+  d.camera.position = {0, 0.5f, 0};
+  d.background = Color(1.0f);
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.0f);
+  mirror.reflectance = Color(0.5f);
+  d.materials.push_back(mirror);
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  d.planes.push_back({{0, 1, 0}, {0, -1, 0}, 0, {}});
+  d.render.maxDepth = 6;
+  d.render.minContribution = 0.0f;
+  const Scene scene(d);
+  RayCounters rays;
+  const WhittedIntegrator integrator(scene);
+  const Color c = integrator.radiance(scene.camera().generateRay(1.5f, 1.5f), 0, Color(1.0f), rays);
+  EXPECT_EQ(rays.secondary, 6u);
+  EXPECT_FLOAT_EQ(c.x, 0.0f);  // every path ends on a black mirror, never escapes
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,61 @@
+#include "scene/Camera.h"
+
+#include <gtest/gtest.h>
+
+namespace prism {
+namespace {
+
+TEST(Camera, CentreRayLooksAtTheTarget) {
+  CameraDesc d;
+  d.position = {1, 2, 3};
+  d.lookAt = {4, 2, -1};
+  const Camera camera(d, 100, 50);
+  const Ray r = camera.generateRay(50.0f, 25.0f);
+  const Vec3 expected = glm::normalize(d.lookAt - d.position);
+  EXPECT_NEAR(glm::dot(r.direction, expected), 1.0f, 1e-6f);
+  EXPECT_EQ(r.origin, d.position);
+}
+
+TEST(Camera, VerticalFieldOfViewSpansTheImageHeight) {
+  CameraDesc d;
+  d.position = {0, 0, 0};
+  d.lookAt = {0, 0, -1};
+  d.fovDegrees = 60.0f;
+  const Camera camera(d, 200, 100);
+  const Ray top = camera.generateRay(100.0f, 0.0f);
+  const Ray bottom = camera.generateRay(100.0f, 100.0f);
+  EXPECT_NEAR(glm::degrees(std::acos(glm::dot(top.direction, bottom.direction))), 60.0f, 1e-3f);
+  EXPECT_GT(top.direction.y, 0.0f);  // image row 0 is at the top
+  const Ray right = camera.generateRay(200.0f, 50.0f);
+  EXPECT_GT(right.direction.x, 0.0f);  // image x grows to the right
+  // Square pixels: the horizontal half-angle is atan(aspect · tan 30°).
+  EXPECT_NEAR(std::atan2(right.direction.x, -right.direction.z),
+              std::atan(2.0f * std::tan(glm::radians(30.0f))), 1e-5f);
+}
+
+TEST(Camera, OrthographicRaysAreParallelAndSpanTheWidth) {
+  CameraDesc d;
+  d.projection = Projection::Orthographic;
+  d.position = {0, 0, 5};
+  d.lookAt = {0, 0, 0};
+  d.width = 4.0f;
+  const Camera camera(d, 40, 20);
+  const Ray left = camera.generateRay(0.0f, 10.0f);
+  const Ray right = camera.generateRay(40.0f, 10.0f);
+  EXPECT_EQ(left.direction, right.direction);
+  EXPECT_NEAR(right.origin.x - left.origin.x, 4.0f, 1e-5f);
+  EXPECT_NEAR(camera.generateRay(20.0f, 0.0f).origin.y, 1.0f, 1e-5f);  // height = width / aspect
+}
+
+TEST(Camera, NearClipIsMeasuredAlongTheViewAxis) {
+  CameraDesc d;
+  d.position = {0, 0, 0};
+  d.lookAt = {0, 0, -1};
+  d.nearClip = 2.0f;
+  const Camera camera(d, 10, 10);
+  const Ray corner = camera.generateRay(0.0f, 0.0f);
+  EXPECT_NEAR(-corner.at(corner.tMin).z, 2.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace prism
