@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "math/Aabb.h"
@@ -58,51 +59,74 @@ class Bvh {
   BvhBuildStats stats_;
 };
 
-// Slab test; invDir may hold ±inf for axis-parallel rays.
-inline bool rayHitsBox(const Aabb& box, const Vec3& origin, const Vec3& invDir, float tMin,
-                       float tMax) {
+// Slab test returning the entry distance, or +inf when the ray misses the box within
+// [tMin, tMax]. invDir may hold ±inf for axis-parallel rays.
+inline float rayBoxEntry(const Aabb& box, const Vec3& origin, const Vec3& invDir, float tMin,
+                         float tMax) {
   const Vec3 t0 = (box.lower - origin) * invDir;
   const Vec3 t1 = (box.upper - origin) * invDir;
   const Vec3 tNear = glm::min(t0, t1);
   const Vec3 tFar = glm::max(t0, t1);
   const float enter = std::max(std::max(tNear.x, tNear.y), std::max(tNear.z, tMin));
   const float leave = std::min(std::min(tFar.x, tFar.y), std::min(tFar.z, tMax));
-  return enter <= leave;
+  return enter <= leave ? enter : std::numeric_limits<float>::infinity();
 }
 
 template <class LeafVisitor>
 bool Bvh::traverse(const Ray& ray, float& tMax, bool anyHit, LeafVisitor&& leafVisitor) const {
   if (nodes_.empty()) return false;
   const Vec3 invDir = 1.0f / ray.direction;
-  const bool directionNegative[3] = {invDir.x < 0.0f, invDir.y < 0.0f, invDir.z < 0.0f};
-  uint32_t stack[2 * kMaxDepth];
+  constexpr float kMiss = std::numeric_limits<float>::infinity();
+  if (rayBoxEntry(nodes_[0].bounds, ray.origin, invDir, ray.tMin, tMax) == kMiss) return false;
+  // Each stack entry is a node whose box the ray enters, with its entry distance, so a node
+  // that lies beyond a hit found meanwhile is skipped without testing its box again.
+  struct Pending {
+    uint32_t node;
+    float entry;
+  };
+  Pending stack[2 * kMaxDepth];
   int stackSize = 0;
   uint32_t current = 0;
   bool hitAnything = false;
   for (;;) {
     const BvhNode& node = nodes_[current];
-    if (rayHitsBox(node.bounds, ray.origin, invDir, ray.tMin, tMax)) {
-      if (node.isLeaf()) {
-        if (leafVisitor(node.offset, node.count, tMax)) {
-          hitAnything = true;
-          if (anyHit) return true;
-        }
-      } else {
-        // Descend into the child on the ray's near side first; the far one waits on the stack.
-        if (directionNegative[node.splitAxis]) {
-          stack[stackSize++] = current + 1;
-          current = node.offset;
+    if (node.isLeaf()) {
+      if (leafVisitor(node.offset, node.count, tMax)) {
+        hitAnything = true;
+        if (anyHit) return true;
+      }
+    } else {
+      // Test both children here; descend into the nearer, keep the farther for later.
+      const uint32_t left = current + 1;
+      const uint32_t right = node.offset;
+      const float tLeft = rayBoxEntry(nodes_[left].bounds, ray.origin, invDir, ray.tMin, tMax);
+      const float tRight = rayBoxEntry(nodes_[right].bounds, ray.origin, invDir, ray.tMin, tMax);
+      if (tLeft != kMiss && tRight != kMiss) {
+        if (tLeft <= tRight) {
+          stack[stackSize++] = {right, tRight};
+          current = left;
         } else {
-          stack[stackSize++] = node.offset;
-          current = current + 1;
+          stack[stackSize++] = {left, tLeft};
+          current = right;
         }
         continue;
       }
+      if (tLeft != kMiss) {
+        current = left;
+        continue;
+      }
+      if (tRight != kMiss) {
+        current = right;
+        continue;
+      }
     }
-    if (stackSize == 0) break;
-    current = stack[--stackSize];
+    // Pop the next pending node that still starts before the closest hit.
+    do {
+      if (stackSize == 0) return hitAnything;
+      --stackSize;
+    } while (stack[stackSize].entry > tMax);
+    current = stack[stackSize].node;
   }
-  return hitAnything;
 }
 
 }  // namespace prism

@@ -28,39 +28,42 @@ Aabb Cone::bounds() const {
 
 bool Cone::intersect(const Ray& ray, float tMax, float& tHit) const {
   // In the cone's frame (x, y across the axis, z along it from the base) the surface is
-  // x² + y² = (r0 + k·z)² for 0 ≤ z ≤ h.
+  // x² + y² = (r0 + k·z)² for 0 ≤ z ≤ h. The quadratic is solved in double precision: its
+  // discriminant is a small difference of large terms for distant or axis-parallel rays, and in
+  // float the lost digits put hit points inside thin cones (black shadow-acne speckles).
   const Vec3 rel = ray.origin - base_;
-  const Vec3 o(glm::dot(rel, side1_), glm::dot(rel, side2_), glm::dot(rel, axis_));
-  const Vec3 d(glm::dot(ray.direction, side1_), glm::dot(ray.direction, side2_),
-               glm::dot(ray.direction, axis_));
-  const float radiusAtOrigin = baseRadius_ + slope_ * o.z;
-  const float a = d.x * d.x + d.y * d.y - slope_ * slope_ * d.z * d.z;
-  const float halfB = o.x * d.x + o.y * d.y - slope_ * radiusAtOrigin * d.z;
-  const float c = o.x * o.x + o.y * o.y - radiusAtOrigin * radiusAtOrigin;
+  const double ox = glm::dot(rel, side1_), oy = glm::dot(rel, side2_), oz = glm::dot(rel, axis_);
+  const double dx = glm::dot(ray.direction, side1_), dy = glm::dot(ray.direction, side2_),
+               dz = glm::dot(ray.direction, axis_);
+  const double slope = slope_;
+  const double radiusAtOrigin = baseRadius_ + slope * oz;
+  const double a = dx * dx + dy * dy - slope * slope * dz * dz;
+  const double halfB = ox * dx + oy * dy - slope * radiusAtOrigin * dz;
+  const double c = ox * ox + oy * oy - radiusAtOrigin * radiusAtOrigin;
 
-  float roots[2];
+  double roots[2];
   int rootCount = 0;
-  if (std::fabs(a) < 1e-12f) {
+  if (std::fabs(a) < 1e-12) {
     // The ray runs parallel to a generating line: one crossing at most.
-    if (halfB == 0.0f) return false;
-    roots[rootCount++] = -c / (2.0f * halfB);
+    if (halfB == 0.0) return false;
+    roots[rootCount++] = -c / (2.0 * halfB);
   } else {
-    const float discriminant = halfB * halfB - a * c;
-    if (discriminant < 0.0f) return false;
-    const float q = -halfB - std::copysign(std::sqrt(discriminant), halfB);
-    const float t0 = q / a;
-    const float t1 = q != 0.0f ? c / q : t0;
+    const double discriminant = halfB * halfB - a * c;
+    if (discriminant < 0.0) return false;
+    const double q = -halfB - std::copysign(std::sqrt(discriminant), halfB);
+    const double t0 = q / a;
+    const double t1 = q != 0.0 ? c / q : t0;
     roots[0] = std::min(t0, t1);
     roots[1] = std::max(t0, t1);
     rootCount = 2;
   }
   for (int i = 0; i < rootCount; ++i) {
-    const float t = roots[i];
+    const double t = roots[i];
     if (!(t > ray.tMin && t < tMax)) continue;
-    const float z = o.z + t * d.z;
-    // The quadric also holds the mirrored nappe beyond the tip, where the radius is negative.
-    if (z < 0.0f || z > height_ || baseRadius_ + slope_ * z < 0.0f) continue;
-    tHit = t;
+    const double z = oz + t * dz;
+    // The quadratic also holds the mirrored nappe beyond the tip, where the radius is negative.
+    if (z < 0.0 || z > height_ || baseRadius_ + slope * z < 0.0) continue;
+    tHit = static_cast<float>(t);
     return true;
   }
   return false;

@@ -50,6 +50,8 @@ void writeImage(const ImageRgb& image, const std::string& path, float exposure) 
                        asFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", asFloat ? "Linear" : "sRGB");
   spec.attribute("Software", "Prism");
+  // zlib level 3 writes a 512² PNG about 3x faster than the default 6 for files ~10 % larger.
+  spec.attribute("png:compressionLevel", 3);
   if (!out->open(temporary.string(), spec)) {
     throw std::runtime_error("cannot write '" + path + "': " + out->geterror());
   }
