@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """SPD-style NFF scene generators for benchmarks at sizes larger than the
-small reference files in /work/shared/scenes/spd/.
+small reference files in tests/data/nff/.
 
 Written from the published descriptions of Eric Haines' Standard Procedural
 Databases (SPD) and from the structure of the real SPD output files kept in
-/work/shared/scenes/spd/ (balls-s2.nff, tetra-s4.nff, rings-s3.nff); no SPD
+tests/data/nff/ (balls-s2.nff, tetra-s4.nff, rings-s3.nff); no SPD
 source code was used.  At the reference sizes the output matches those files
 number for number (to the 6 significant digits NFF files carry); larger sizes
 follow the same recursive / repetitive construction.

@@ -3,7 +3,7 @@
 
 For every scene the NFF file is converted once to Tachyon's own scene language
 with nff2tachyon.py (Tachyon's built-in NFF reader gets the field of view,
-lights, highlights and depth wrong; see /work/shared/notes/peers.md).  Then
+lights, highlights and depth wrong; see docs/performance.md).  Then
 one untimed warm-up run of each renderer writes a PNG into --images, and N
 timed runs of each follow, alternating between the two renderers (the one
 that goes first swaps every round).  Both render the same resolution, 1
@@ -15,8 +15,9 @@ yardstick because the machine is shared; the table shows medians with the
 min..max spread, the ratio Prism/Tachyon of the medians and the geometric
 mean of the ratios.  The project's target is a ratio <= 0.5.  The fixed CPU
 cost of merely starting each program ('prism --version', 'tachyon -help') is
-measured too, and a second ratio with Prism's start-up cost taken out is
-shown for information (the whole-process ratio is the one that counts).
+measured too, once per round, and a second ratio with Prism's median start-up
+cost taken out is shown for information (the whole-process ratio is the one
+that counts).
 
 Tachyon is run with its threaded library (libtachyon-mt-thr) picked through a
 private folder holding a libtachyon.so.0 symlink and LD_LIBRARY_PATH, never by
@@ -56,8 +57,8 @@ DEFAULT_SCENES = ["balls-s2", "rings-s3", "teapot-s3", "tetra-s4", "tree-s7",
 DEFAULT_PRISM = os.path.join(REPO, "build", "prism")
 DEFAULT_TACHYON = "/usr/bin/tachyon-nox"
 DEFAULT_TACHYON_LIB = "/usr/lib/x86_64-linux-gnu/libtachyon-mt-thr.so.0"
-DEFAULT_SPD_DIR = "/work/shared/scenes/spd"
-DEFAULT_NFF2TACHYON = "/work/shared/tools/nff2tachyon.py"
+DEFAULT_SPD_DIR = os.path.join(REPO, "tests", "data", "nff")
+DEFAULT_NFF2TACHYON = os.path.join(HERE, "nff2tachyon.py")
 TARGET_RATIO = 0.5
 
 
@@ -205,15 +206,11 @@ def tachyon_trace_time(log_path):
         return None
 
 
-def measure_startup(cmd, env, workdir, runs, timeout):
-    """Median CPU seconds of a command that starts the program and exits at
-    once (e.g. 'prism --version'): the fixed cost every timed run includes."""
-    log = os.path.join(workdir, "startup.log")
-    cpus = []
-    for _ in range(runs):
-        user, sys_, _, _, _ = run_timed(cmd, env, log, timeout)
-        cpus.append(user + sys_)
-    return statistics.median(cpus)
+def startup_cpu(cmd, env, workdir, timeout):
+    """CPU seconds of a command that starts the program and exits at once
+    (e.g. 'prism --version'): the fixed cost every timed run includes."""
+    user, sys_, _, _, _ = run_timed(cmd, env, os.path.join(workdir, "startup.log"), timeout)
+    return user + sys_
 
 
 def check_rc(what, rc, log_path, timeout):
@@ -255,6 +252,58 @@ def print_table(rows, runs, p_start):
                                        runs))
 
 
+def bench_scene(args, name, workdir, penv, tenv, writer):
+    """Convert, warm up (writing the images), then time both renderers
+    alternately on one scene; return the table row."""
+    label, nff, origin = resolve_scene(name, args.spd_dir, workdir)
+    prims, _ = count_primitives(nff)
+    dat = os.path.join(workdir, label + ".dat")
+    convert_to_tachyon(args.nff2tachyon, nff, dat)
+    print("%-12s %7d primitives (%s) ..." % (label, prims, origin), end="", flush=True)
+
+    # warm-up runs, also the images a person can compare
+    p_png = os.path.join(args.images, label + "-prism.png")
+    t_png = os.path.join(args.images, label + "-tachyon.png")
+    log = os.path.join(workdir, label + "-prism-warmup.log")
+    check_rc("prism on " + label, run_timed(prism_cmd(args, nff, p_png, quiet=False), penv, log,
+                                            args.timeout)[3], log, args.timeout)
+    shutil.copy(log, os.path.join(args.images, label + "-prism.txt"))
+    log = os.path.join(workdir, label + "-tachyon-warmup.log")
+    check_rc("tachyon on " + label, run_timed(tachyon_cmd(args, dat, t_png), tenv, log,
+                                              args.timeout)[3], log, args.timeout)
+
+    res = {"prism": [], "tachyon": []}
+    p_start, t_start = [], []
+    for i in range(args.runs):
+        p_start.append(startup_cpu([args.prism, "--version"], penv, workdir, args.timeout))
+        t_start.append(startup_cpu([args.tachyon, "-help"], tenv, workdir, args.timeout))
+        if writer:
+            writer.writerow([label, "prism-startup", i + 1, "", "", "%.4f" % p_start[-1], "", "", 0])
+            writer.writerow([label, "tachyon-startup", i + 1, "", "", "%.4f" % t_start[-1], "", "", 0])
+        order = ("prism", "tachyon") if i % 2 == 0 else ("tachyon", "prism")
+        for who in order:
+            log = os.path.join(workdir, "%s-%s-%d.log" % (label, who, i))
+            png = os.path.join(workdir, "%s-%s.png" % (label, who))
+            if who == "prism":
+                cmd, env = prism_cmd(args, nff, png), penv
+            else:
+                cmd, env = tachyon_cmd(args, dat, png), tenv
+            user, sys_, wall, rc, _ = run_timed(cmd, env, log, args.timeout)
+            check_rc("%s on %s (run %d)" % (who, label, i + 1), rc, log, args.timeout)
+            trace = tachyon_trace_time(log) if who == "tachyon" else None
+            res[who].append((user + sys_, wall))
+            if writer:
+                writer.writerow([label, who, i + 1, "%.4f" % user, "%.4f" % sys_, "%.4f" % (user + sys_),
+                                 "%.4f" % wall, "" if trace is None else "%.4f" % trace, rc])
+    row = {"scene": label, "prims": prims, "p_start": p_start, "t_start": t_start,
+           "p_cpu": [c for c, _ in res["prism"]], "p_wall": [w for _, w in res["prism"]],
+           "t_cpu": [c for c, _ in res["tachyon"]], "t_wall": [w for _, w in res["tachyon"]]}
+    row["p_med"] = statistics.median(row["p_cpu"])
+    row["t_med"] = statistics.median(row["t_cpu"])
+    row["ratio"] = row["p_med"] / row["t_med"] if row["t_med"] > 0 else float("inf")
+    return row
+
+
 # -------------------------------------------------------------------- main
 
 def parse_args(argv):
@@ -276,7 +325,7 @@ def parse_args(argv):
     ap.add_argument("--depth", type=int, default=5, help="maximum ray depth (default: %(default)s, SPD's rule)")
     ap.add_argument("--timeout", type=float, default=300.0, help="seconds before a run is killed "
                     "(default: %(default)s)")
-    ap.add_argument("--images", default="tachyon-compare-images",
+    ap.add_argument("--images", default=os.path.join(REPO, "out", "tachyon-compare"),
                     help="folder for one PNG per renderer and scene (default: %(default)s)")
     ap.add_argument("--csv", help="save every timed run to this CSV file")
     ap.add_argument("--keep-temp", action="store_true", help="keep the temp folder (converted scenes, logs)")
@@ -315,57 +364,18 @@ def main(argv=None):
         print("tachyon   %s with %s (threaded flavour, checked with ldd), -numthreads 1" % (args.tachyon, tlib))
         print("settings  %dx%d, 1 spp, depth %d, one thread each, %d timed runs each, alternating"
               % (args.width, args.height, args.depth, args.runs))
-        p_start = measure_startup([args.prism, "--version"], penv, workdir, args.runs, args.timeout)
-        t_start = measure_startup([args.tachyon, "-help"], tenv, workdir, args.runs, args.timeout)
-        print("start-up  median CPU s of a run that only starts and exits: prism --version %.3f, "
-              "tachyon -help %.3f" % (p_start, t_start))
         rows = []
         for name in args.scenes:
-            label, nff, origin = resolve_scene(name, args.spd_dir, workdir)
-            prims, kinds = count_primitives(nff)
-            dat = os.path.join(workdir, label + ".dat")
-            convert_to_tachyon(args.nff2tachyon, nff, dat)
-            print("%-12s %7d primitives (%s) ..." % (label, prims, origin), end="", flush=True)
-
-            # warm-up runs, also the images a person can compare
-            p_png = os.path.join(args.images, label + "-prism.png")
-            t_png = os.path.join(args.images, label + "-tachyon.png")
-            log = os.path.join(workdir, label + "-prism-warmup.log")
-            check_rc("prism on " + label, run_timed(prism_cmd(args, nff, p_png, quiet=False), penv, log,
-                                                    args.timeout)[3], log, args.timeout)
-            shutil.copy(log, os.path.join(args.images, label + "-prism.txt"))
-            log = os.path.join(workdir, label + "-tachyon-warmup.log")
-            check_rc("tachyon on " + label, run_timed(tachyon_cmd(args, dat, t_png), tenv, log,
-                                                      args.timeout)[3], log, args.timeout)
-
-            res = {"prism": [], "tachyon": []}
-            for i in range(args.runs):
-                order = ("prism", "tachyon") if i % 2 == 0 else ("tachyon", "prism")
-                for who in order:
-                    log = os.path.join(workdir, "%s-%s-%d.log" % (label, who, i))
-                    png = os.path.join(workdir, "%s-%s.png" % (label, who))
-                    if who == "prism":
-                        cmd, env = prism_cmd(args, nff, png), penv
-                    else:
-                        cmd, env = tachyon_cmd(args, dat, png), tenv
-                    user, sys_, wall, rc, _ = run_timed(cmd, env, log, args.timeout)
-                    check_rc("%s on %s (run %d)" % (who, label, i + 1), rc, log, args.timeout)
-                    trace = tachyon_trace_time(log) if who == "tachyon" else None
-                    res[who].append((user + sys_, wall))
-                    if writer:
-                        writer.writerow([label, who, i + 1, "%.4f" % user, "%.4f" % sys_, "%.4f" % (user + sys_),
-                                         "%.4f" % wall, "" if trace is None else "%.4f" % trace, rc])
+            row = bench_scene(args, name, workdir, penv, tenv, writer)
             if csv_file:
                 csv_file.flush()
-            row = {"scene": label, "prims": prims,
-                   "p_cpu": [c for c, _ in res["prism"]], "p_wall": [w for _, w in res["prism"]],
-                   "t_cpu": [c for c, _ in res["tachyon"]], "t_wall": [w for _, w in res["tachyon"]]}
-            row["p_med"] = statistics.median(row["p_cpu"])
-            row["t_med"] = statistics.median(row["t_cpu"])
-            row["ratio"] = row["p_med"] / row["t_med"] if row["t_med"] > 0 else float("inf")
             rows.append(row)
             print(" prism %.3f s, tachyon %.3f s, ratio %.2f" % (row["p_med"], row["t_med"], row["ratio"]))
         print("load average at the end %.2f %.2f %.2f" % os.getloadavg())
+        p_start = statistics.median(s for r in rows for s in r["p_start"])
+        t_start = statistics.median(s for r in rows for s in r["t_start"])
+        print("start-up: median CPU s of a run that only starts and exits (one per round, interleaved): "
+              "prism --version %.3f, tachyon -help %.3f" % (p_start, t_start))
         print_table(rows, args.runs, p_start)
         print("\nimages in %s/ (Tachyon's are mirrored left-right: its camera is left-handed)" % args.images)
     finally:
