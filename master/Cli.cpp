@@ -14,9 +14,10 @@ constexpr const char* kVersion = "0.1.0";
 void addRenderCommand(CLI::App& app, RenderOptions& o, int& width, int& height, int& samples,
                       int& maxDepth, uint64_t& seed, float& exposure, TriangleTest& test) {
   CLI::App* render = app.add_subcommand(
-      "render", "Render a scene to an image file.\n"
-                "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
-                "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
+      "render",
+      "Render a scene to an image file.\n"
+      "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
+      "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
   render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");

@@ -23,7 +23,7 @@ struct FrameResult {
   size_t tileCount = 0;
   int tileSize = 0;
   int threads = 0;
-  double seconds = 0.0;          // wall time
+  double seconds = 0.0;            // wall time
   double busyThreadSeconds = 0.0;  // summed over tiles
 };
 

@@ -28,7 +28,9 @@ std::string formatSeconds(double s) {
 
 }  // namespace
 
-bool stderrIsTerminal() { return ::isatty(STDERR_FILENO) == 1; }
+bool stderrIsTerminal() {
+  return ::isatty(STDERR_FILENO) == 1;
+}
 
 ProgressBar::ProgressBar(std::string label, size_t total, std::string unit, bool enabled)
     : label_(std::move(label)),

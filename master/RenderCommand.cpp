@@ -59,7 +59,8 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     frameOptions.tileSize = options.tileSize;
     std::unique_ptr<ProgressBar> progress;
     frameOptions.progress = [&](size_t done, size_t total) {
-      if (!progress) progress = std::make_unique<ProgressBar>("render", total, "tiles", !options.quiet);
+      if (!progress)
+        progress = std::make_unique<ProgressBar>("render", total, "tiles", !options.quiet);
       progress->update(done);
     };
     const FrameResult frame = renderFrame(scene, frameOptions);

@@ -36,11 +36,10 @@ void checkRenderFits(const RenderSettings& s, uint64_t availableBytes) {
   const uint64_t needed = frameMemoryBytes(s);
   // Leave room for the scene, the BVH and the rest of the system.
   if (needed > availableBytes / 2) {
-    throw std::runtime_error("a " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                             " image needs " + formatBytes(static_cast<double>(needed)) +
-                             " for its frame buffer; this machine has " +
-                             formatBytes(static_cast<double>(availableBytes)) +
-                             " of memory (reduce --width/--height)");
+    throw std::runtime_error(
+        "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
+        formatBytes(static_cast<double>(needed)) + " for its frame buffer; this machine has " +
+        formatBytes(static_cast<double>(availableBytes)) + " of memory (reduce --width/--height)");
   }
 }
 

@@ -14,7 +14,9 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
-std::string milliseconds(double seconds) { return fixed(seconds * 1000.0, 1) + " ms"; }
+std::string milliseconds(double seconds) {
+  return fixed(seconds * 1000.0, 1) + " ms";
+}
 
 }  // namespace
 
@@ -29,7 +31,8 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
   const FrameResult& f = *s.frame;
   const SceneBuildStats& g = s.sceneStats;
   const RenderSettings& r = s.settings;
-  const double mrays = f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
+  const double mrays =
+      f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
       << "geometry  " << g.spheres << " spheres, " << g.cones << " cones, " << g.triangles
       << " triangles, " << g.planes << " planes, " << s.lightCount << " lights\n"
@@ -40,16 +43,15 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       << "image     " << r.width << "x" << r.height << ", " << r.samplesPerPixel
       << " spp, max depth " << r.maxDepth << ", " << f.tileCount << " tiles of " << f.tileSize
       << " px\n"
-      << "threads   " << f.threads << " (busy " << fixed(f.busyThreadSeconds, 2)
-      << " thread-s)\n"
-      << "rays      " << formatCount(static_cast<double>(f.rays.total())) << " total: "
-      << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
+      << "threads   " << f.threads << " (busy " << fixed(f.busyThreadSeconds, 2) << " thread-s)\n"
+      << "rays      " << formatCount(static_cast<double>(f.rays.total()))
+      << " total: " << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
       << formatCount(static_cast<double>(f.rays.shadow)) << " shadow, "
       << formatCount(static_cast<double>(f.rays.secondary)) << " reflected/refracted\n"
-      << "time      render " << fixed(f.seconds, 3) << " s, write "
-      << milliseconds(s.writeSeconds) << ", total " << fixed(s.totalSeconds, 3) << " s\n"
-      << "speed     " << fixed(mrays, 2) << " Mrays/s ("
-      << fixed(mrays / std::max(1, f.threads), 2) << " per thread)\n"
+      << "time      render " << fixed(f.seconds, 3) << " s, write " << milliseconds(s.writeSeconds)
+      << ", total " << fixed(s.totalSeconds, 3) << " s\n"
+      << "speed     " << fixed(mrays, 2) << " Mrays/s (" << fixed(mrays / std::max(1, f.threads), 2)
+      << " per thread)\n"
       << "written   " << s.outputPath << "\n";
 }
 

@@ -9,7 +9,8 @@ std::vector<TileRect> planTiles(int imageWidth, int imageHeight, int tileSize) {
   std::vector<TileRect> tiles;
   for (int y = 0; y < imageHeight; y += tileSize) {
     for (int x = 0; x < imageWidth; x += tileSize) {
-      tiles.push_back({x, y, std::min(tileSize, imageWidth - x), std::min(tileSize, imageHeight - y)});
+      tiles.push_back(
+          {x, y, std::min(tileSize, imageWidth - x), std::min(tileSize, imageHeight - y)});
     }
   }
   return tiles;
@@ -17,8 +18,8 @@ std::vector<TileRect> planTiles(int imageWidth, int imageHeight, int tileSize) {
 
 int automaticTileSize(int imageWidth, int imageHeight, int workerThreads) {
   constexpr double kTilesPerWorker = 16.0;
-  const double pixelsPerTile =
-      static_cast<double>(imageWidth) * imageHeight / (kTilesPerWorker * std::max(1, workerThreads));
+  const double pixelsPerTile = static_cast<double>(imageWidth) * imageHeight /
+                               (kTilesPerWorker * std::max(1, workerThreads));
   const int edge = static_cast<int>(std::sqrt(pixelsPerTile) / 8.0) * 8;
   return std::clamp(edge, 8, 64);
 }

@@ -34,7 +34,8 @@ struct Builder {
 
     int axis = -1;
     uint32_t middle = begin;
-    if (count > 1 && (depth < Bvh::kMaxDepth || count > kMaxLeafSize)) chooseSplit(begin, end, box, centerBox, axis, middle);
+    if (count > 1 && (depth < Bvh::kMaxDepth || count > kMaxLeafSize))
+      chooseSplit(begin, end, box, centerBox, axis, middle);
     if (axis < 0) {
       makeLeaf(nodeIndex, begin, count);
       return nodeIndex;
@@ -53,8 +54,8 @@ struct Builder {
   }
 
   // Picks the binned-SAH split, or axis = -1 when a leaf is cheaper (and allowed).
-  void chooseSplit(uint32_t begin, uint32_t end, const Aabb& box, const Aabb& centerBox,
-                   int& axis, uint32_t& middle) {
+  void chooseSplit(uint32_t begin, uint32_t end, const Aabb& box, const Aabb& centerBox, int& axis,
+                   uint32_t& middle) {
     const uint32_t count = end - begin;
     const float leafCost = kIntersectionCost * static_cast<float>(count);
     float bestCost = std::numeric_limits<float>::infinity();
@@ -142,8 +143,7 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds) {
   }
   stats_.nodeCount = nodes_.size();
   stats_.memoryBytes = nodes_.size() * sizeof(BvhNode) + order_.size() * sizeof(uint32_t);
-  stats_.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace prism

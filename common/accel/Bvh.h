@@ -16,9 +16,9 @@ namespace prism {
 // the array, and secondChild.
 struct BvhNode {
   Aabb bounds;
-  uint32_t offset = 0;      // leaf: first entry in primitiveOrder; interior: second child index
-  uint16_t count = 0;       // leaf: primitive count; interior: 0
-  uint8_t splitAxis = 0;    // interior: axis the children were split along
+  uint32_t offset = 0;    // leaf: first entry in primitiveOrder; interior: second child index
+  uint16_t count = 0;     // leaf: primitive count; interior: 0
+  uint8_t splitAxis = 0;  // interior: axis the children were split along
   uint8_t padding = 0;
   bool isLeaf() const { return count > 0; }
 };

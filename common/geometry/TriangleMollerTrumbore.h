@@ -16,9 +16,8 @@
 
 namespace prism {
 
-inline bool intersectMollerTrumbore(const Ray& ray, const Vec3& v0, const Vec3& e1,
-                                    const Vec3& e2, float tMax, float& tHit, float& uHit,
-                                    float& vHit) {
+inline bool intersectMollerTrumbore(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2,
+                                    float tMax, float& tHit, float& uHit, float& vHit) {
   const Vec3 p = glm::cross(ray.direction, e2);
   const float det = glm::dot(e1, p);
   if (det == 0.0f) return false;

@@ -10,9 +10,8 @@
 
 namespace prism {
 
-inline bool intersectPlaneThenInside(const Ray& ray, const Vec3& v0, const Vec3& e1,
-                                     const Vec3& e2, float tMax, float& tHit, float& uHit,
-                                     float& vHit) {
+inline bool intersectPlaneThenInside(const Ray& ray, const Vec3& v0, const Vec3& e1, const Vec3& e2,
+                                     float tMax, float& tHit, float& uHit, float& vHit) {
   const Vec3 n = glm::cross(e1, e2);
   const float denominator = glm::dot(n, ray.direction);
   if (denominator == 0.0f) return false;

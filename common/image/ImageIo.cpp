@@ -39,9 +39,9 @@ bool isWritableImagePath(const std::string& path, std::string* why) {
 void writeImage(const ImageRgb& image, const std::string& path, float exposure) {
   const fs::path target(path);
   // Keep the extension on the temporary name: OpenImageIO picks the format from it.
-  const fs::path temporary = target.parent_path() / ("." + target.stem().string() + ".tmp-" +
-                                                    std::to_string(::getpid()) +
-                                                    target.extension().string());
+  const fs::path temporary =
+      target.parent_path() / ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
+                              target.extension().string());
   auto out = OIIO::ImageOutput::create(temporary.string());
   if (!out) throw std::runtime_error("cannot write '" + path + "': " + OIIO::geterror());
 

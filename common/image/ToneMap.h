@@ -11,13 +11,11 @@ namespace prism {
 inline float linearToSrgb(float linear) {
   if (!(linear > 0.0f)) return 0.0f;  // also maps NaN to black
   if (linear >= 1.0f) return 1.0f;
-  return linear <= 0.0031308f ? 12.92f * linear
-                              : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
 
 inline float srgbToLinear(float encoded) {
-  return encoded <= 0.04045f ? encoded / 12.92f
-                             : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
 inline uint8_t toDisplayByte(float radiance, float exposure) {

@@ -15,9 +15,15 @@ using Color = glm::vec3;  // linear RGB radiance or reflectance
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 1.0f / kPi;
 
-inline float maxComponent(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
-inline float minComponent(const Vec3& v) { return std::min(v.x, std::min(v.y, v.z)); }
-inline float maxAbsComponent(const Vec3& v) { return maxComponent(glm::abs(v)); }
+inline float maxComponent(const Vec3& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
+inline float minComponent(const Vec3& v) {
+  return std::min(v.x, std::min(v.y, v.z));
+}
+inline float maxAbsComponent(const Vec3& v) {
+  return maxComponent(glm::abs(v));
+}
 inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

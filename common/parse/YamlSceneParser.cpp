@@ -6,6 +6,7 @@
 // yaml-cpp's as<T>() conversions: their errors do not say which key was wrong.
 #include "parse/YamlSceneParser.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <array>
@@ -16,11 +17,13 @@
 #include <limits>
 #include <map>
 #include <span>
+#include <sstream>
 #include <string_view>
 #include <utility>
 
 #include "image/ImageIo.h"
 #include "parse/ObjLoader.h"
+#include "parse/PrintableText.h"
 
 namespace prism {
 namespace {
@@ -71,28 +74,9 @@ std::string joined(KeyTable keys, std::string_view separator = ", ") {
   return out;
 }
 
-// Text from the file made safe for a message: control and non-ASCII bytes become \xNN, so
-// binary garbage cannot garble a terminal.
-std::string printable(std::string_view text, size_t maxShown = 200) {
-  std::string out;
-  for (size_t i = 0; i < text.size() && i < maxShown; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[c >> 4];
-      out += kHex[c & 15];
-    }
-  }
-  if (text.size() > maxShown) out += "...";
-  return out;
-}
-
 // A scalar as it appears in an error message: quoted, printable, and short.
 std::string shown(std::string_view text) {
-  return "'" + printable(text, 40) + "'";
+  return "'" + printableExcerpt(text, 40) + "'";
 }
 
 // What a node holds, for "found ..." in messages. Never walks into the node: aliases can make
@@ -170,26 +154,39 @@ struct Mapping {
   }
 };
 
+// Sees where each YAML document starts, and nothing else.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
 class YamlSceneReader {
  public:
   explicit YamlSceneReader(const std::string& path)
       : path_(path), baseDir_(std::filesystem::path(path).parent_path()) {}
 
   SceneDescription read(const std::string& text) {
-    std::vector<YAML::Node> documents;
+    YAML::Node root;
     try {
-      documents = YAML::LoadAll(text);
+      checkSingleDocument(text);
+      root = YAML::Load(text);
     } catch (const YAML::Exception& e) {
-      throw SceneError(loc(e.mark), "invalid YAML: " + printable(e.msg));
+      throw SceneError(loc(e.mark), "invalid YAML: " + printableExcerpt(e.msg, 200));
     }
-    if (documents.empty() || documents.front().IsNull()) {
-      throw SceneError(FileLoc{path_}, "scene is empty");
-    }
-    if (documents.size() > 1) {
-      throw SceneError(loc(documents[1].Mark()),
-                       "expected one YAML document, found " + std::to_string(documents.size()));
-    }
-    const YAML::Node& root = documents.front();
+    if (root.IsNull()) throw SceneError(FileLoc{path_}, "scene is empty");
     if (!root.IsMap()) {
       throw SceneError(loc(root.Mark()), "expected a mapping of scene sections (" +
                                              joined(kTopLevelKeys) + ") at the top level, found " +
@@ -199,7 +196,7 @@ class YamlSceneReader {
       return readScene(root);
     } catch (const YAML::Exception& e) {
       // Nothing below should throw these, but none may escape without a position.
-      throw SceneError(loc(e.mark), "invalid YAML: " + printable(e.msg));
+      throw SceneError(loc(e.mark), "invalid YAML: " + printableExcerpt(e.msg, 200));
     }
   }
 
@@ -209,6 +206,29 @@ class YamlSceneReader {
   SceneDescription scene_;
   std::map<std::string, MaterialId, std::less<>> materialIds_;
   std::optional<MaterialId> defaultMaterial_;
+
+  // A scene is one YAML document. This also guards against a yaml-cpp 0.7 bug: on some
+  // malformed input (a lone ',', jbeder/yaml-cpp#1040) its parser reports an empty document
+  // again and again without consuming anything, and YAML::LoadAll allocates until memory runs
+  // out. So documents are counted here, two at most, and one that makes no progress is a
+  // syntax error at the token that stopped it.
+  void checkSingleDocument(const std::string& text) const {
+    std::istringstream stream(text);
+    YAML::Parser parser(stream);
+    DocumentStarts documents;
+    if (!parser.HandleNextDocument(documents) || !parser.HandleNextDocument(documents)) return;
+    if (documents.starts.size() != 2) {
+      throw SceneError(FileLoc{path_}, "expected one YAML document, found more");
+    }
+    const YAML::Mark& first = documents.starts.front();
+    const YAML::Mark& second = documents.starts.back();
+    if (second.pos == first.pos) {
+      const size_t pos = std::min(static_cast<size_t>(std::max(second.pos, 0)), text.size());
+      throw SceneError(loc(second),
+                       "invalid YAML: unexpected " + shown(std::string_view(text).substr(pos, 1)));
+    }
+    throw SceneError(loc(second), "expected one YAML document, found more (a second starts here)");
+  }
 
   // ---- positions and messages ------------------------------------------------------------
 

@@ -13,8 +13,8 @@ inline Color diffuseAlbedo(const MaterialDesc& m, const Vec3& p) {
   if (!m.checker) return m.diffuse;
   constexpr float kBoundaryShift = 1e-3f;
   const Vec3 cell = glm::floor(p / m.checker->scale + kBoundaryShift);
-  const long parity = static_cast<long>(cell.x) + static_cast<long>(cell.y) +
-                      static_cast<long>(cell.z);
+  const long parity =
+      static_cast<long>(cell.x) + static_cast<long>(cell.y) + static_cast<long>(cell.z);
   return (parity & 1) ? m.checker->colorB : m.checker->colorA;
 }
 

@@ -8,7 +8,9 @@
 namespace prism {
 
 // Reflects incident direction d about unit normal n.
-inline Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2.0f * glm::dot(d, n) * n; }
+inline Vec3 reflect(const Vec3& d, const Vec3& n) {
+  return d - 2.0f * glm::dot(d, n) * n;
+}
 
 // Refracts unit direction d at a surface with unit normal n facing against d, going from index
 // n1 to n2 (eta = n1 / n2). Returns nothing on total internal reflection.

@@ -8,8 +8,8 @@ TileRenderer::TileRenderer(const Scene& scene)
     : scene_(scene), integrator_(scene), sampler_(scene.settings().samplesPerPixel) {}
 
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
-  Pcg32 rng = Pcg32::forKey(scene_.settings().seed, static_cast<uint64_t>(x),
-                            static_cast<uint64_t>(y));
+  Pcg32 rng =
+      Pcg32::forKey(scene_.settings().seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
   Color sum(0.0f);
   for (int i = 0; i < sampler_.count(); ++i) {
     const Vec2 offset = sampler_.offset(i, rng);

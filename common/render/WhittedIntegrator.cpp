@@ -10,7 +10,9 @@ float attenuationFactor(const Attenuation& a, float distance) {
   return 1.0f / (a.constant + a.linear * distance + a.quadratic * distance * distance);
 }
 
-bool isBlack(const Color& c) { return c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f; }
+bool isBlack(const Color& c) {
+  return c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f;
+}
 
 }  // namespace
 

@@ -18,7 +18,7 @@ class Camera {
   Projection projection_;
   Vec3 position_;
   Vec3 forward_, right_, up_;
-  float halfWidth_;   // perspective: tan of the half angle × aspect; orthographic: world units
+  float halfWidth_;  // perspective: tan of the half angle × aspect; orthographic: world units
   float halfHeight_;
   float invWidth_, invHeight_;
   float nearClip_;

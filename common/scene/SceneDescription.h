@@ -116,10 +116,10 @@ struct RenderSettings {
   int width = 640;
   int height = 360;
   int samplesPerPixel = 1;
-  int maxDepth = 5;                // primary ray is depth 0
-  float minContribution = 1e-3f;   // secondary rays whose weight falls below this are skipped
+  int maxDepth = 5;               // primary ray is depth 0
+  float minContribution = 1e-3f;  // secondary rays whose weight falls below this are skipped
   uint64_t seed = 0;
-  float exposure = 1.0f;           // PNG/viewer only: radiance multiplied before tone mapping
+  float exposure = 1.0f;  // PNG/viewer only: radiance multiplied before tone mapping
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
@@ -127,8 +127,8 @@ struct SceneDescription {
   std::string sourcePath;
   CameraDesc camera;
   RenderSettings render;
-  Color background{0.0f};      // radiance of rays that escape, when there is no cube map
-  Color ambientLight{0.0f};    // ambient radiance, scaled by each material's ambient colour
+  Color background{0.0f};    // radiance of rays that escape, when there is no cube map
+  Color ambientLight{0.0f};  // ambient radiance, scaled by each material's ambient colour
   std::optional<CubeMapDesc> environment;
   std::vector<MaterialDesc> materials;
   std::vector<PointLightDesc> lights;

@@ -29,7 +29,8 @@ ProcessRun runPrism(const std::string& arguments) {
   if (!pipe) return run;
   std::array<char, 4096> buffer;
   size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    run.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
@@ -39,8 +40,8 @@ class RenderCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("prism-cli-" + std::string(
-                               ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("prism-cli-" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -78,9 +79,9 @@ TEST_F(RenderCommandTest, ClosedFormSceneGivesTheExactRadianceInTheExr) {
 }
 
 TEST_F(RenderCommandTest, OverridesAndNffInput) {
-  const ProcessRun run = runPrism("render " + std::string(PRISM_TEST_DATA_DIR) +
-                           "/nff/balls-s2.nff -o " + path("balls.png") +
-                           " -W 48 -H 32 --spp 2 --max-depth 2 -t 1");
+  const ProcessRun run =
+      runPrism("render " + std::string(PRISM_TEST_DATA_DIR) + "/nff/balls-s2.nff -o " +
+               path("balls.png") + " -W 48 -H 32 --spp 2 --max-depth 2 -t 1");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("48x32, 2 spp, max depth 2"), std::string::npos) << run.output;
   const ImageRgb image = readImage(path("balls.png"));
@@ -108,7 +109,8 @@ TEST_F(RenderCommandTest, MissingSceneFileIsNamed) {
 }
 
 TEST_F(RenderCommandTest, UnsupportedOutputFormatIsRefusedBeforeRendering) {
-  const ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("out.xyz"));
+  const ProcessRun run =
+      runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("out.xyz"));
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_NE(run.output.find("xyz"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("Mrays/s"), std::string::npos) << run.output;
@@ -116,7 +118,7 @@ TEST_F(RenderCommandTest, UnsupportedOutputFormatIsRefusedBeforeRendering) {
 
 TEST_F(RenderCommandTest, AbsurdImageSizeIsRefusedWithTheMemoryItNeeds) {
   const ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("o.png") +
-                           " --width 1000000 --height 1000000");
+                                  " --width 1000000 --height 1000000");
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_NE(run.output.find("TiB"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(path("o.png")));
@@ -125,8 +127,8 @@ TEST_F(RenderCommandTest, AbsurdImageSizeIsRefusedWithTheMemoryItNeeds) {
 TEST_F(RenderCommandTest, HelpDescribesTheOptions) {
   const ProcessRun run = runPrism("render --help");
   EXPECT_EQ(run.exitCode, 0);
-  for (const char* option : {"--output", "--threads", "--width", "--height", "--spp",
-                             "--max-depth", "--tile-size", "--triangle-test", "--quiet"}) {
+  for (const char* option : {"--output", "--threads", "--width", "--height", "--spp", "--max-depth",
+                             "--tile-size", "--triangle-test", "--quiet"}) {
     EXPECT_NE(run.output.find(option), std::string::npos) << option;
   }
 }

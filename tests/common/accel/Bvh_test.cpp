@@ -53,7 +53,8 @@ TEST(Bvh, ChildBoxesLieInsideTheirParents) {
       continue;
     }
     for (uint32_t child : {i + 1, nodes[i].offset}) {
-      EXPECT_TRUE(glm::all(glm::greaterThanEqual(nodes[child].bounds.lower, nodes[i].bounds.lower)));
+      EXPECT_TRUE(
+          glm::all(glm::greaterThanEqual(nodes[child].bounds.lower, nodes[i].bounds.lower)));
       EXPECT_TRUE(glm::all(glm::lessThanEqual(nodes[child].bounds.upper, nodes[i].bounds.upper)));
     }
   }

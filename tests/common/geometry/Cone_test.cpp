@@ -105,8 +105,8 @@ TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
     if (glm::dot(n, primary.direction) > 0.0f) continue;
     ++hits;
     // A light on the viewer's side of the surface, in a random direction.
-    Vec3 l = glm::normalize(Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f,
-                                 rng.nextFloat() - 0.5f));
+    Vec3 l = glm::normalize(
+        Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
     if (glm::dot(l, n) < 0.0f) l = -l;
     const Ray shadow{offsetRayOrigin(p, n, l), l, 0.0f, 100.0f};
     if (cone.intersect(shadow, shadow.tMax, t)) ++selfShadowed;

@@ -5,7 +5,9 @@
 namespace prism {
 namespace {
 
-Ray rayFrom(Vec3 origin, Vec3 direction) { return Ray{origin, glm::normalize(direction)}; }
+Ray rayFrom(Vec3 origin, Vec3 direction) {
+  return Ray{origin, glm::normalize(direction)};
+}
 
 TEST(Sphere, HitsNearSideFromOutside) {
   const Sphere s{{0, 0, 0}, 1.0f, 0};

@@ -22,10 +22,9 @@ inline TestMesh icosphere(int levels, Vec3 centre, float radius) {
                             {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
                             {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (Vec3& v : unit) v = glm::normalize(v);
-  std::vector<uint32_t> faces = {0, 11, 5, 0, 5,  1,  0,  1, 7, 0,  7,  10, 0, 10, 11,
-                                 1, 5,  9, 5, 11, 4,  11, 10, 2, 10, 7,  6,  7, 1,  8,
-                                 3, 9,  4, 3, 4,  2,  3,  2, 6, 3,  6,  8,  3, 8,  9,
-                                 4, 9,  5, 2, 4,  11, 6,  2, 10, 8, 6,  7,  9, 8,  1};
+  std::vector<uint32_t> faces = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                                 6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
     auto midpoint = [&](uint32_t a, uint32_t b) {

@@ -27,17 +27,20 @@ TEST(MollerTrumbore, HitsTriangleWithExpectedDistanceAndBarycentrics) {
 TEST(MollerTrumbore, TwoSidedAndRejectsParallelAndOutside) {
   const Vec3 v0(0, 0, 0), e1(1, 0, 0), e2(0, 1, 0);
   float t, u, v;
-  EXPECT_TRUE(intersectMollerTrumbore(Ray{{0.2f, 0.2f, -1}, {0, 0, 1}}, v0, e1, e2, 1e30f, t, u, v));
-  EXPECT_FALSE(intersectMollerTrumbore(Ray{{0.2f, 0.2f, 1}, {1, 0, 0}}, v0, e1, e2, 1e30f, t, u, v));
-  EXPECT_FALSE(intersectMollerTrumbore(Ray{{0.8f, 0.8f, 1}, {0, 0, -1}}, v0, e1, e2, 1e30f, t, u, v));
+  EXPECT_TRUE(
+      intersectMollerTrumbore(Ray{{0.2f, 0.2f, -1}, {0, 0, 1}}, v0, e1, e2, 1e30f, t, u, v));
+  EXPECT_FALSE(
+      intersectMollerTrumbore(Ray{{0.2f, 0.2f, 1}, {1, 0, 0}}, v0, e1, e2, 1e30f, t, u, v));
+  EXPECT_FALSE(
+      intersectMollerTrumbore(Ray{{0.8f, 0.8f, 1}, {0, 0, -1}}, v0, e1, e2, 1e30f, t, u, v));
 }
 
 TEST(MollerTrumbore, SmallTrianglesAreNotRejectedByAnAbsoluteEpsilon) {
   // det = 1e-12 here: the paper's |det| < 1e-6 test would miss this triangle.
   const Vec3 v0(0, 0, 0), e1(1e-4f, 0, 0), e2(0, 1e-4f, 0);
   float t, u, v;
-  EXPECT_TRUE(intersectMollerTrumbore(Ray{{2e-5f, 2e-5f, 1e-4f}, {0, 0, -1}}, v0, e1, e2, 1e30f, t,
-                                      u, v));
+  EXPECT_TRUE(
+      intersectMollerTrumbore(Ray{{2e-5f, 2e-5f, 1e-4f}, {0, 0, -1}}, v0, e1, e2, 1e30f, t, u, v));
 }
 
 TEST(TriangleIntersectors, AgreeAwayFromEdges) {
@@ -96,7 +99,7 @@ double crackRate(Intersector intersect, int* raysOut) {
     for (int k = 0; k < 3; ++k) {
       const Vec3& a = mesh.positions[mesh.indices[f + k]];
       const Vec3& b = mesh.positions[mesh.indices[f + (k + 1) % 3]];
-      shoot(a);  // vertex
+      shoot(a);                                                            // vertex
       for (int s = 0; s < 8; ++s) shoot(glm::mix(a, b, rng.nextFloat()));  // edge
     }
   }
@@ -108,9 +111,10 @@ TEST(TriangleIntersectors, CrackRateOnSharedEdgesIsMeasuredAndSmall) {
   int rays = 0;
   const double mt = crackRate(intersectMollerTrumbore, &rays);
   const double classic = crackRate(intersectPlaneThenInside, &rays);
-  std::printf("[ crack rate ] %d rays at shared edges/vertices of a closed icosphere: "
-              "Moller-Trumbore %.4f %%, plane-then-inside %.4f %%\n",
-              rays, 100.0 * mt, 100.0 * classic);
+  std::printf(
+      "[ crack rate ] %d rays at shared edges/vertices of a closed icosphere: "
+      "Moller-Trumbore %.4f %%, plane-then-inside %.4f %%\n",
+      rays, 100.0 * mt, 100.0 * classic);
   RecordProperty("rays", rays);
   RecordProperty("moller_trumbore_crack_percent", std::to_string(100.0 * mt));
   RecordProperty("plane_inside_crack_percent", std::to_string(100.0 * classic));
@@ -127,8 +131,8 @@ TEST(TriangleIntersectors, RaysAwayFromEdgesNeverCrack) {
   const test::TestMesh mesh = test::icosphere(3, Vec3(0.0f), 1.0f);
   Pcg32 rng(5, 9);
   for (int i = 0; i < 2000; ++i) {
-    const Vec3 d = glm::normalize(Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f,
-                                       rng.nextFloat() - 0.5f));
+    const Vec3 d = glm::normalize(
+        Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
     const Ray ray{Vec3(0.01f, 0.02f, -0.03f), d};
     int hits = 0;
     for (size_t f = 0; f < mesh.indices.size(); f += 3) {
