@@ -14,6 +14,8 @@ class ProgressBar {
   ~ProgressBar();
 
   void update(size_t done);
+  // For work whose size is known only once it starts; elapsed time still counts from creation.
+  void setTotal(size_t total) { total_ = total; }
   // Draws the final state and ends the line.
   void finish();
 

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <memory>
 #include <ostream>
 
 #include "image/ImageIo.h"
@@ -57,14 +56,13 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     FrameOptions frameOptions;
     frameOptions.threads = options.threads;
     frameOptions.tileSize = options.tileSize;
-    std::unique_ptr<ProgressBar> progress;
+    ProgressBar progress("render", 0, "tiles", !options.quiet);
     frameOptions.progress = [&](size_t done, size_t total) {
-      if (!progress)
-        progress = std::make_unique<ProgressBar>("render", total, "tiles", !options.quiet);
-      progress->update(done);
+      progress.setTotal(total);
+      progress.update(done);
     };
     const FrameResult frame = renderFrame(scene, frameOptions);
-    if (progress) progress->finish();
+    progress.finish();
 
     const auto writeStart = std::chrono::steady_clock::now();
     writeImage(frame.image, output, description.render.exposure);
