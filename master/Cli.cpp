@@ -11,8 +11,15 @@ namespace {
 
 constexpr const char* kVersion = "0.1.0";
 
-void addRenderCommand(CLI::App& app, RenderOptions& o, int& width, int& height, int& samples,
-                      int& maxDepth, uint64_t& seed, float& exposure, TriangleTest& test) {
+// Raw values of the options that override scene settings; only those the user gave are applied.
+struct RenderOverrideValues {
+  int width = 0, height = 0, samples = 0, maxDepth = 0;
+  uint64_t seed = 0;
+  float exposure = 1.0f;
+  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+};
+
+void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
   CLI::App* render = app.add_subcommand(
       "render",
       "Render a scene to an image file.\n"
@@ -23,24 +30,25 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, int& width, int& height, 
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_option("-t,--threads", o.threads, "Worker threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
-  render->add_option("-W,--width", width, "Image width in pixels (overrides the scene)")
+  render->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
       ->check(CLI::Range(1, 1 << 20));
-  render->add_option("-H,--height", height, "Image height in pixels (overrides the scene)")
+  render->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
       ->check(CLI::Range(1, 1 << 20));
-  render->add_option("-s,--spp", samples, "Samples per pixel, stratified (overrides the scene)")
+  render->add_option("-s,--spp", v.samples, "Samples per pixel, stratified (overrides the scene)")
       ->check(CLI::Range(1, 1 << 16));
-  render->add_option("-d,--max-depth", maxDepth, "Maximum reflection/refraction depth")
+  render->add_option("-d,--max-depth", v.maxDepth, "Maximum reflection/refraction depth")
       ->check(CLI::Range(0, 64));
-  render->add_option("--seed", seed, "Seed of the per-pixel random streams");
-  render->add_option("--exposure", exposure, "Radiance multiplier before PNG tone mapping")
+  render->add_option("--seed", v.seed, "Seed of the per-pixel random streams");
+  render->add_option("--exposure", v.exposure, "Radiance multiplier before PNG tone mapping")
       ->check(CLI::PositiveNumber);
   render
-      ->add_option("--triangle-test", test,
+      ->add_option("--triangle-test", v.triangleTest,
                    "Ray/triangle intersector: moller-trumbore (default) or plane-inside")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, TriangleTest>{{"moller-trumbore", TriangleTest::MollerTrumbore},
                                               {"plane-inside", TriangleTest::PlaneThenInside}},
-          CLI::ignore_case));
+          CLI::ignore_case))
+      ->option_text("moller-trumbore|plane-inside");
   render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
@@ -55,12 +63,8 @@ int runCli(int argc, char** argv) {
   app.footer("Run 'prism <command> --help' for a command's options.");
 
   RenderOptions renderOptions;
-  int width = 0, height = 0, samples = 0, maxDepth = 0;
-  uint64_t seed = 0;
-  float exposure = 1.0f;
-  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
-  addRenderCommand(app, renderOptions, width, height, samples, maxDepth, seed, exposure,
-                   triangleTest);
+  RenderOverrideValues overrides;
+  addRenderCommand(app, renderOptions, overrides);
 
   try {
     app.parse(argc, argv);
@@ -71,13 +75,13 @@ int runCli(int argc, char** argv) {
   CLI::App* render = app.get_subcommand("render");
   if (render->parsed()) {
     auto given = [&](const char* name) { return render->get_option(name)->count() > 0; };
-    if (given("--width")) renderOptions.width = width;
-    if (given("--height")) renderOptions.height = height;
-    if (given("--spp")) renderOptions.samples = samples;
-    if (given("--max-depth")) renderOptions.maxDepth = maxDepth;
-    if (given("--seed")) renderOptions.seed = seed;
-    if (given("--exposure")) renderOptions.exposure = exposure;
-    if (given("--triangle-test")) renderOptions.triangleTest = triangleTest;
+    if (given("--width")) renderOptions.width = overrides.width;
+    if (given("--height")) renderOptions.height = overrides.height;
+    if (given("--spp")) renderOptions.samples = overrides.samples;
+    if (given("--max-depth")) renderOptions.maxDepth = overrides.maxDepth;
+    if (given("--seed")) renderOptions.seed = overrides.seed;
+    if (given("--exposure")) renderOptions.exposure = overrides.exposure;
+    if (given("--triangle-test")) renderOptions.triangleTest = overrides.triangleTest;
     return runRender(renderOptions, std::cout, std::cerr);
   }
   return 1;

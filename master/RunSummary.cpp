@@ -35,7 +35,9 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
       << "geometry  " << g.spheres << " spheres, " << g.cones << " cones, " << g.triangles
-      << " triangles, " << g.planes << " planes, " << s.lightCount << " lights\n"
+      << " triangles ("
+      << (r.triangleTest == TriangleTest::MollerTrumbore ? "Moller-Trumbore" : "plane-then-inside")
+      << "), " << g.planes << " planes, " << s.lightCount << " lights\n"
       << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
       << formatBytes(static_cast<double>(g.bvh.memoryBytes)) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "
