@@ -59,9 +59,10 @@ void writeImage(const ImageRgb& image, const std::string& path, float exposure) 
   if (asFloat) {
     ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   } else {
+    const DisplayEncoder encode(exposure);
     std::vector<uint8_t> bytes(image.pixels.size() * 3);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
-      for (int c = 0; c < 3; ++c) bytes[3 * i + c] = toDisplayByte(image.pixels[i][c], exposure);
+      for (int c = 0; c < 3; ++c) bytes[3 * i + c] = encode(image.pixels[i][c]);
     }
     ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }

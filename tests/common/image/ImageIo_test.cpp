@@ -97,5 +97,27 @@ TEST(ToneMap, SrgbCurveRoundTripsAndClamps) {
   EXPECT_EQ(toDisplayByte(0.5f, 2.0f), 255);
 }
 
+TEST(ToneMap, TableEncoderMatchesTheFormula) {
+  for (float exposure : {1.0f, 0.37f, 4.0f}) {
+    const DisplayEncoder encode(exposure);
+    int mismatches = 0;
+    for (int i = 0; i <= 200000; ++i) {
+      const float radiance = 1.2f * static_cast<float>(i) / 200000.0f;
+      const int exact = toDisplayByte(radiance, exposure);
+      const int fast = encode(radiance);
+      ASSERT_LE(std::abs(exact - fast), 1) << radiance;
+      mismatches += exact != fast;
+    }
+    // Only values within float rounding of a byte boundary may land on the other side.
+    EXPECT_LT(mismatches, 20) << "exposure " << exposure;
+  }
+  const DisplayEncoder encode(1.0f);
+  EXPECT_EQ(encode(-1.0f), 0);
+  EXPECT_EQ(encode(std::nanf("")), 0);
+  EXPECT_EQ(encode(1e30f), 255);
+  EXPECT_EQ(encode(0.0f), 0);
+  EXPECT_EQ(encode(1.0f), 255);
+}
+
 }  // namespace
 }  // namespace prism
