@@ -43,7 +43,10 @@ TEST(Sphere, TangentRayGrazesOrMissesWithoutNaN) {
   const Sphere s{{0, 0, 0}, 1.0f, 0};
   float t = -1.0f;
   const bool hit = s.intersect(rayFrom({1, 0, 5}, {0, 0, -1}), 1e30f, t);
-  if (hit) EXPECT_NEAR(t, 5.0f, 1e-3f);
+  // Either answer is acceptable for an exactly tangent ray; a hit must be at the tangent point.
+  if (hit) {
+    EXPECT_NEAR(t, 5.0f, 1e-3f);
+  }
 }
 
 }  // namespace
