@@ -5,6 +5,7 @@
 #include <map>
 
 #include "master/RenderCommand.h"
+#include "transport/MpiSession.h"
 
 namespace prism {
 namespace {
@@ -52,11 +53,32 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render
+      ->add_option("--schedule", o.schedule,
+                   "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, Schedule>{{"dynamic", Schedule::Dynamic},
+                                                                  {"static", Schedule::Static}},
+                                  CLI::ignore_case))
+      ->option_text("dynamic|static");
+  render
+      ->add_option("--lease-timeout", o.leaseSeconds,
+                   "Seconds a slave may hold tiles without answering before they are re-issued")
+      ->check(CLI::Range(0.1, 86400.0));
+  render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
+      ->check(CLI::Range(1, 64));
+  // Testing only, so not in --help: makes one slave misbehave.
+  render
+      ->add_option_function<std::string>(
+          "--inject-fault", [&o](const std::string& text) { o.fault = parseFaultInjection(text); },
+          "")
+      ->group("");
 }
 
 }  // namespace
 
-int runCli(int argc, char** argv) {
+int runCli(int argc, char** argv, MpiSession* session) {
+  const bool quietRank = session && session->rank() != 0;
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
   app.require_subcommand(1);
@@ -69,7 +91,11 @@ int runCli(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (quietRank) return e.get_exit_code();
     return app.exit(e);
+  } catch (const std::invalid_argument& e) {
+    if (!quietRank) std::cerr << "prism: error: " << e.what() << "\n";
+    return 1;
   }
 
   CLI::App* render = app.get_subcommand("render");
@@ -82,7 +108,7 @@ int runCli(int argc, char** argv) {
     if (given("--seed")) renderOptions.seed = overrides.seed;
     if (given("--exposure")) renderOptions.exposure = overrides.exposure;
     if (given("--triangle-test")) renderOptions.triangleTest = overrides.triangleTest;
-    return runRender(renderOptions, std::cout, std::cerr);
+    return runRender(renderOptions, std::cout, std::cerr, session);
   }
   return 1;
 }

@@ -6,7 +6,10 @@
 
 namespace prism {
 
-// Parses argv and runs the chosen subcommand; returns the process exit code.
-int runCli(int argc, char** argv);
+class MpiSession;
+
+// Parses argv and runs the chosen subcommand; returns the process exit code. In an MPI run
+// every rank parses the same arguments; only rank 0 prints help and usage errors.
+int runCli(int argc, char** argv, MpiSession* session = nullptr);
 
 }  // namespace prism

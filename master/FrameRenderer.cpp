@@ -1,47 +1,219 @@
 #include "master/FrameRenderer.h"
 
-#include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 
 #include "master/Framebuffer.h"
 #include "master/TilePlan.h"
 #include "slave/TileWorkerPool.h"
+#include "transport/MpiSession.h"
+#include "wire/Messages.h"
 
 namespace prism {
+namespace {
 
-FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+using Clock = std::chrono::steady_clock;
+
+constexpr int kLocalWorker = 0;  // rank 0's own render threads
+
+// Everything the render threads and the coordinating thread share, behind one mutex.
+class FrameState {
+ public:
+  FrameState(const std::vector<TileRect>& rects, int workers, const FrameOptions& options,
+             int width, int height)
+      : rects_(rects),
+        scheduler_(rects.size(), workers, options.schedule, options.leaseSeconds),
+        framebuffer_(width, height, rects.size()),
+        stats_(static_cast<size_t>(workers)),
+        start_(Clock::now()) {
+    scheduler_.exemptFromLeases(kLocalWorker);
+    for (int r = 0; r < workers; ++r) stats_[r].rank = r;
+  }
+
+  double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  // Blocks until a tile is available to rank 0's threads, or returns nothing when the frame is
+  // complete or abandoned. Tiles can reappear later (reclaimed leases), hence the wait.
+  std::optional<TileJob> nextLocalJob() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      if (framebuffer_.complete() || abandoned_) return std::nullopt;
+      if (const auto tile = scheduler_.next(kLocalWorker, now()))
+        return TileJob{*tile, rects_[*tile]};
+      changed_.wait_for(lock, std::chrono::milliseconds(50));
+    }
+  }
+
+  std::optional<TileJob> nextJobFor(int rank) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto tile = scheduler_.next(rank, now())) return TileJob{*tile, rects_[*tile]};
+    return std::nullopt;
+  }
+
+  // Accepts a finished tile from a rank; malformed or duplicate results change nothing.
+  void accept(const TileResult& tile, int rank) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const bool planned =
+        tile.tileIndex < rects_.size() && sameRect(tile.rect, rects_[tile.tileIndex]);
+    if (planned && scheduler_.complete(tile.tileIndex, rank, now()) && framebuffer_.insert(tile)) {
+      WorkerStats& s = stats_[rank];
+      ++s.tiles;
+      s.rays += tile.rays;
+      s.busySeconds += tile.seconds;
+    } else {
+      ++stats_[rank].duplicates;
+    }
+    changed_.notify_all();
+  }
+
+  void reclaimExpiredLeases() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (int rank : scheduler_.reclaimExpired(now())) stats_[rank].retired = true;
+    changed_.notify_all();
+  }
+
+  void recordReady(int rank, double buildSeconds, int threads) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stats_[rank].buildSeconds = buildSeconds;
+    stats_[rank].threads = threads;
+  }
+
+  void abandon() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    abandoned_ = true;
+    changed_.notify_all();
+  }
+
+  bool complete() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return framebuffer_.complete();
+  }
+  size_t tilesDone() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return framebuffer_.tilesDone();
+  }
+  size_t outstanding(int rank) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return scheduler_.outstanding(rank);
+  }
+  bool retired(int rank) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return scheduler_.retired(rank);
+  }
+
+  void waitForChange(std::chrono::milliseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait_for(lock, timeout);
+  }
+
+  // Only after every thread has stopped.
+  const ImageRgb& image() const { return framebuffer_.image(); }
+  std::vector<WorkerStats>& stats() { return stats_; }
+  size_t reissued() const { return scheduler_.reissuedCount(); }
+
+ private:
+  static bool sameRect(const TileRect& a, const TileRect& b) {
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+  }
+
+  const std::vector<TileRect>& rects_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  TileScheduler scheduler_;
+  Framebuffer framebuffer_;
+  std::vector<WorkerStats> stats_;
+  bool abandoned_ = false;
+  Clock::time_point start_;
+};
+
+// Keeps every live slave supplied with `prefetch` tiles and takes in what they send.
+void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
+  for (int rank = 1; rank < cluster.size(); ++rank) {
+    if (state.retired(rank)) continue;
+    while (state.outstanding(rank) < static_cast<size_t>(prefetch)) {
+      const std::optional<TileJob> job = state.nextJobFor(rank);
+      if (!job) break;
+      cluster.send(rank, wire::encodeTileJob({0, job->tileIndex, job->rect}));
+    }
+  }
+  const std::optional<IncomingMessage> incoming = cluster.waitForMessage(0.005);
+  if (incoming) {
+    const wire::Message message =
+        wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
+    switch (message.type) {
+      case wire::MessageType::TileResult:
+        state.accept(wire::decodeTileResult(message).result, incoming->source);
+        break;
+      case wire::MessageType::Ready: {
+        const wire::ReadyMessage ready = wire::decodeReady(message);
+        state.recordReady(incoming->source, ready.buildSeconds, ready.threads);
+        break;
+      }
+      case wire::MessageType::Error:
+        throw std::runtime_error("rank " + std::to_string(incoming->source) + ": " +
+                                 wire::decodeError(message).text);
+      default:
+        throw std::runtime_error("rank " + std::to_string(incoming->source) +
+                                 " sent an unexpected " + wire::messageTypeName(message.type) +
+                                 " message");
+    }
+  }
+  state.reclaimExpiredLeases();
+}
+
+}  // namespace
+
+FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSession* cluster) {
+  const auto start = Clock::now();
   const RenderSettings& settings = scene.settings();
-  const TileWorkerPool pool(scene, options.threads);
+  const int ranks = cluster ? cluster->size() : 1;
+  TileWorkerPool pool(scene, options.threads);
 
   FrameResult result;
   result.threads = pool.threadCount();
-  result.tileSize = options.tileSize > 0
-                        ? options.tileSize
-                        : automaticTileSize(settings.width, settings.height, pool.threadCount());
+  result.tileSize = options.tileSize > 0 ? options.tileSize
+                                         : automaticTileSize(settings.width, settings.height,
+                                                             pool.threadCount() * ranks);
   const std::vector<TileRect> rects = planTiles(settings.width, settings.height, result.tileSize);
-  std::vector<TileJob> jobs;
-  jobs.reserve(rects.size());
-  for (uint32_t i = 0; i < rects.size(); ++i) jobs.push_back({i, rects[i]});
-  result.tileCount = jobs.size();
+  result.tileCount = rects.size();
 
-  Framebuffer framebuffer(settings.width, settings.height, jobs.size());
-  std::atomic<size_t> done{0};
-  pool.renderAll(
-      jobs,
-      [&](TileResult&& tile) {
-        result.rays += tile.rays;
-        result.busyThreadSeconds += tile.seconds;
-        framebuffer.insert(tile);
-        ++done;
-      },
-      [&] {
-        if (options.progress) options.progress(done.load(), jobs.size());
-      });
-  if (options.progress) options.progress(jobs.size(), jobs.size());
+  FrameState state(rects, ranks, options, settings.width, settings.height);
+  state.stats()[kLocalWorker].threads = pool.threadCount();
+  pool.start([&] { return state.nextLocalJob(); },
+             [&](TileResult&& tile) { state.accept(tile, kLocalWorker); });
 
-  result.image = framebuffer.image();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  try {
+    auto lastProgress = Clock::now();
+    while (!state.complete()) {
+      if (pool.failed()) break;  // join() below rethrows the thread's exception
+      if (cluster && ranks > 1) {
+        serviceSlaves(*cluster, state, options.prefetch);
+      } else {
+        state.waitForChange(std::chrono::milliseconds(100));
+      }
+      if (options.progress && Clock::now() - lastProgress > std::chrono::milliseconds(100)) {
+        options.progress(state.tilesDone(), rects.size());
+        lastProgress = Clock::now();
+      }
+    }
+  } catch (...) {
+    state.abandon();
+    pool.join();
+    throw;
+  }
+  state.abandon();  // releases threads still waiting after a failure
+  pool.join();
+  if (options.progress) options.progress(rects.size(), rects.size());
+
+  result.image = state.image();
+  result.workers = state.stats();
+  result.reissuedTiles = state.reissued();
+  for (const WorkerStats& w : result.workers) {
+    result.rays += w.rays;
+    result.busyThreadSeconds += w.busySeconds;
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }
 

@@ -11,6 +11,9 @@
 #include "master/RunSummary.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
+#include "slave/SlaveLoop.h"
+#include "transport/MpiSession.h"
+#include "wire/Messages.h"
 
 namespace prism {
 namespace {
@@ -35,50 +38,96 @@ std::string defaultOutputPath(const std::string& scenePath) {
   return std::filesystem::path(scenePath).stem().string() + ".png";
 }
 
-int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err) {
+namespace {
+
+// Tells every slave the frame is over, whatever happened, so no rank waits for work forever.
+class SlaveShutdown {
+ public:
+  explicit SlaveShutdown(MpiSession* session) : session_(session) {}
+  ~SlaveShutdown() {
+    if (!session_) return;
+    for (int rank = 1; rank < session_->size(); ++rank) {
+      session_->send(rank, wire::encodeShutdown());
+    }
+  }
+
+ private:
+  MpiSession* session_;
+};
+
+}  // namespace
+
+int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,
+              MpiSession* session) {
+  if (session && session->rank() != 0) {
+    SlaveOptions slave;
+    slave.threads = options.threads;
+    slave.fault = options.fault;
+    return runSlave(*session, slave);
+  }
+  constexpr double kBroadcastTimeoutSeconds = 600.0;
   const auto start = std::chrono::steady_clock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
+  RunSummary summary;
+  SceneDescription description;
   try {
     std::string why;
     if (!isWritableImagePath(output, &why)) throw std::runtime_error(why);
-
     const auto parseStart = std::chrono::steady_clock::now();
-    SceneDescription description = loadScene(options.scenePath);
-    const double parseSeconds = secondsSince(parseStart);
+    description = loadScene(options.scenePath);
+    summary.parseSeconds = secondsSince(parseStart);
     applyOverrides(options, description.render);
     checkRenderFits(description.render, physicalMemoryBytes());
+  } catch (const std::exception& e) {
+    // The slaves wait for a scene: send them the error instead so they stop at once.
+    if (session) {
+      std::vector<uint8_t> bytes = wire::encodeError({e.what()});
+      session->broadcast(bytes, kBroadcastTimeoutSeconds);
+    }
+    err << "prism: error: " << e.what() << "\n";
+    return 1;
+  }
 
+  const SlaveShutdown shutdown(session);
+  try {
+    if (session) {
+      const auto broadcastStart = std::chrono::steady_clock::now();
+      std::vector<uint8_t> bytes = wire::encodeScene(description);
+      session->broadcast(bytes, kBroadcastTimeoutSeconds);
+      summary.broadcastSeconds = secondsSince(broadcastStart);
+      summary.broadcastBytes = bytes.size();
+    }
     const auto buildStart = std::chrono::steady_clock::now();
     const Scene scene(description);
-    const double buildSeconds = secondsSince(buildStart);
+    summary.buildSeconds = secondsSince(buildStart);
 
     FrameOptions frameOptions;
     frameOptions.threads = options.threads;
     frameOptions.tileSize = options.tileSize;
+    frameOptions.schedule = options.schedule;
+    frameOptions.leaseSeconds = options.leaseSeconds;
+    frameOptions.prefetch = options.prefetch;
     ProgressBar progress("render", 0, "tiles", !options.quiet);
     frameOptions.progress = [&](size_t done, size_t total) {
       progress.setTotal(total);
       progress.update(done);
     };
-    const FrameResult frame = renderFrame(scene, frameOptions);
+    const FrameResult frame = renderFrame(scene, frameOptions, session);
     progress.finish();
 
     const auto writeStart = std::chrono::steady_clock::now();
     writeImage(frame.image, output, description.render.exposure);
-    const double writeSeconds = secondsSince(writeStart);
+    summary.writeSeconds = secondsSince(writeStart);
 
     if (!options.quiet) {
-      RunSummary summary;
       summary.scenePath = options.scenePath;
       summary.outputPath = output;
       summary.settings = description.render;
       summary.sceneStats = scene.buildStats();
       summary.lightCount = description.lights.size();
+      summary.schedule = options.schedule;
       summary.frame = &frame;
-      summary.parseSeconds = parseSeconds;
-      summary.buildSeconds = buildSeconds;
-      summary.writeSeconds = writeSeconds;
       summary.totalSeconds = secondsSince(start);
       printRunSummary(summary, out);
     }

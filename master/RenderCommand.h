@@ -7,7 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "master/TileScheduler.h"
 #include "scene/SceneDescription.h"
+#include "slave/FaultInjection.h"
 
 namespace prism {
 
@@ -21,6 +23,11 @@ struct RenderOptions {
   std::optional<float> exposure;
   std::optional<TriangleTest> triangleTest;
   bool quiet = false;  // no progress bar and no summary
+  // Distribution (MPI runs): how tiles are handed out and when a silent slave is given up on.
+  Schedule schedule = Schedule::Dynamic;
+  double leaseSeconds = 30.0;
+  int prefetch = 2;
+  FaultInjection fault;  // testing only
 };
 
 // Applies the overrides the user gave to the scene's own settings.
@@ -29,7 +36,11 @@ void applyOverrides(const RenderOptions& options, RenderSettings& settings);
 // The output path used when none is given: the scene's file name with a .png extension.
 std::string defaultOutputPath(const std::string& scenePath);
 
+class MpiSession;
+
 // Runs the command; returns the process exit code. Errors go to err as "prism: error: ...".
-int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err);
+// In an MPI run (session given) rank 0 is the master and every other rank a slave.
+int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,
+              MpiSession* session = nullptr);
 
 }  // namespace prism

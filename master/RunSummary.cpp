@@ -18,6 +18,31 @@ std::string milliseconds(double seconds) {
   return fixed(seconds * 1000.0, 1) + " ms";
 }
 
+// Per-rank lines in an MPI run; one line of threads otherwise.
+void printWorkers(const RunSummary& s, std::ostream& out) {
+  const FrameResult& f = *s.frame;
+  if (f.workers.size() <= 1) {
+    out << "threads   " << f.threads << " (busy " << fixed(f.busyThreadSeconds, 2)
+        << " thread-s)\n";
+    return;
+  }
+  out << "ranks     " << f.workers.size() << ", "
+      << (s.schedule == Schedule::Static ? "static" : "dynamic") << " schedule; scene broadcast "
+      << formatBytes(static_cast<double>(s.broadcastBytes)) << " in "
+      << milliseconds(s.broadcastSeconds);
+  if (f.reissuedTiles > 0) out << "; " << f.reissuedTiles << " tiles re-issued";
+  out << "\n";
+  for (const WorkerStats& w : f.workers) {
+    out << "  rank " << w.rank << ": " << w.threads << " threads, " << w.tiles << " tiles, "
+        << formatCount(static_cast<double>(w.rays.total())) << " rays, busy "
+        << fixed(w.busySeconds, 2) << " thread-s";
+    if (w.rank > 0) out << ", scene built in " << milliseconds(w.buildSeconds);
+    if (w.duplicates > 0) out << ", " << w.duplicates << " late duplicates dropped";
+    if (w.retired) out << "; STOPPED ANSWERING, its tiles were re-issued";
+    out << "\n";
+  }
+}
+
 }  // namespace
 
 std::string formatCount(double count) {
@@ -44,9 +69,9 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       << milliseconds(g.bvh.seconds) << " (scene build " << milliseconds(s.buildSeconds) << ")\n"
       << "image     " << r.width << "x" << r.height << ", " << r.samplesPerPixel
       << " spp, max depth " << r.maxDepth << ", " << f.tileCount << " tiles of " << f.tileSize
-      << " px\n"
-      << "threads   " << f.threads << " (busy " << fixed(f.busyThreadSeconds, 2) << " thread-s)\n"
-      << "rays      " << formatCount(static_cast<double>(f.rays.total()))
+      << " px\n";
+  printWorkers(s, out);
+  out << "rays      " << formatCount(static_cast<double>(f.rays.total()))
       << " total: " << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
       << formatCount(static_cast<double>(f.rays.shadow)) << " shadow, "
       << formatCount(static_cast<double>(f.rays.secondary)) << " reflected/refracted\n"

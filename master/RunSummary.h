@@ -17,7 +17,10 @@ struct RunSummary {
   SceneBuildStats sceneStats;
   size_t lightCount = 0;
   const FrameResult* frame = nullptr;
+  Schedule schedule = Schedule::Dynamic;
   double parseSeconds = 0.0;
+  double broadcastSeconds = 0.0;  // MPI runs only
+  size_t broadcastBytes = 0;
   double buildSeconds = 0.0;
   double writeSeconds = 0.0;
   double totalSeconds = 0.0;

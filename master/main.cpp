@@ -1,6 +1,20 @@
-// prism: the one executable. Subcommands are described by `prism --help`.
+// prism: the one executable. Subcommands are described by `prism --help`. Started by an MPI
+// launcher, every rank runs this: rank 0 becomes the master, the others slaves.
+#include <iostream>
+#include <memory>
+
 #include "master/Cli.h"
+#include "transport/MpiSession.h"
 
 int main(int argc, char** argv) {
-  return prism::runCli(argc, argv);
+  std::unique_ptr<prism::MpiSession> session;
+  if (prism::launchedByMpiLauncher()) {
+    try {
+      session = std::make_unique<prism::MpiSession>(&argc, &argv);
+    } catch (const std::exception& e) {
+      std::cerr << "prism: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  return prism::runCli(argc, argv, session.get());
 }

@@ -1,12 +1,15 @@
-// Renders tiles on a fixed number of threads. Threads pull the next tile from a shared counter
-// (a dynamic schedule), so fast and slow tiles balance out; results are handed to the caller as
-// each tile finishes. Used by a rank for the tiles it is given (all of them in a single-process
-// run). Threads are plain std::threads: pulling from an atomic counter is all the scheduling a
-// rank needs, and it keeps the calling thread free to draw progress.
+// Renders tiles on a fixed number of threads. Each thread asks a job source for its next tile
+// (the source blocks until one is available, and returns nothing when the work is over) and
+// hands every finished tile to a result handler. On the master the source is the tile
+// scheduler; on a slave it is the queue of jobs received from the master. Plain std::threads:
+// the scheduling lives in the source, and the calling thread stays free for MPI and progress.
 #pragma once
 
-#include <atomic>
+#include <exception>
 #include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <vector>
 
 #include "render/Tile.h"
@@ -21,21 +24,28 @@ struct TileJob {
 
 class TileWorkerPool {
  public:
+  using JobSource = std::function<std::optional<TileJob>()>;
   using ResultHandler = std::function<void(TileResult&&)>;
 
   TileWorkerPool(const Scene& scene, int threadCount);
+  ~TileWorkerPool();  // joins
 
   int threadCount() const { return threadCount_; }
 
-  // Renders every job and returns when all are done. onResult is called once per tile, from
-  // the worker threads but never concurrently. onIdle, if given, runs on the calling thread
-  // about every pollMilliseconds while the workers run (progress display).
-  void renderAll(const std::vector<TileJob>& jobs, const ResultHandler& onResult,
-                 const std::function<void()>& onIdle = {}, int pollMilliseconds = 100) const;
+  // Starts the threads. The source and handler are called concurrently from them.
+  void start(JobSource source, ResultHandler onResult);
+  // Waits for every thread to finish (each stops when the source returns nothing), then
+  // rethrows the first exception a thread hit, if any.
+  void join();
+  // Whether a thread has stopped on an exception (join() will rethrow it).
+  bool failed();
 
  private:
   const Scene& scene_;
   int threadCount_;
+  std::vector<std::thread> threads_;
+  std::mutex failureMutex_;
+  std::exception_ptr failure_;
 };
 
 // Threads to use when the user asks for 0 ("all"): the cores this process may run on.

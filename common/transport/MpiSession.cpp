@@ -1,0 +1,157 @@
+#include "transport/MpiSession.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <limits>
+#include <thread>
+
+namespace prism {
+namespace {
+
+constexpr int kMessageTag = 7;
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Polls a request until it completes or the time is up. Short sleeps keep a waiting rank from
+// burning the core its render threads need.
+bool waitBounded(MPI_Request& request, double timeoutSeconds) {
+  const auto start = Clock::now();
+  for (;;) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return true;
+    if (secondsSince(start) > timeoutSeconds) return false;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+}  // namespace
+
+bool launchedByMpiLauncher() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"}) {
+    if (std::getenv(variable) != nullptr) return true;
+  }
+  return false;
+}
+
+struct MpiSession::PendingSend {
+  std::vector<uint8_t> bytes;
+  MPI_Request request = MPI_REQUEST_NULL;
+};
+
+MpiSession::MpiSession(int* argc, char*** argv) {
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  if (provided < MPI_THREAD_FUNNELED) {
+    MPI_Finalize();
+    throw TransportError("the MPI library does not allow threads (MPI_THREAD_FUNNELED)");
+  }
+  // Errors come back as codes so they can be reported, not as an immediate abort.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+MpiSession::~MpiSession() {
+  const auto start = Clock::now();
+  while (progressSends() > 0 && secondsSince(start) < 10.0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  // Sends to a rank that stopped answering can never complete; cancel them so MPI can finish.
+  for (auto& pending : pendingSends_) {
+    MPI_Cancel(&pending->request);
+    MPI_Request_free(&pending->request);
+  }
+  pendingSends_.clear();
+  MPI_Finalize();
+}
+
+std::string MpiSession::processorName() const {
+  char name[MPI_MAX_PROCESSOR_NAME];
+  int length = 0;
+  MPI_Get_processor_name(name, &length);
+  return std::string(name, static_cast<size_t>(length));
+}
+
+void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {
+  uint64_t size = bytes.size();
+  MPI_Request request;
+  MPI_Ibcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+  if (!waitBounded(request, timeoutSeconds)) {
+    throw TransportError("no scene from rank 0 within " + std::to_string(timeoutSeconds) + " s");
+  }
+  bytes.resize(size);
+  // MPI counts are ints: send large descriptions in chunks.
+  constexpr uint64_t kChunk = 1u << 30;
+  for (uint64_t offset = 0; offset < size; offset += kChunk) {
+    const int count = static_cast<int>(std::min(kChunk, size - offset));
+    MPI_Ibcast(bytes.data() + offset, count, MPI_BYTE, 0, MPI_COMM_WORLD, &request);
+    if (!waitBounded(request, timeoutSeconds)) {
+      throw TransportError("scene broadcast stalled for " + std::to_string(timeoutSeconds) + " s");
+    }
+  }
+}
+
+void MpiSession::send(int dest, std::vector<uint8_t> bytes) {
+  if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    throw TransportError("message of " + std::to_string(bytes.size()) + " bytes is too large");
+  }
+  auto pending = std::make_unique<PendingSend>();
+  pending->bytes = std::move(bytes);
+  const int error = MPI_Isend(pending->bytes.data(), static_cast<int>(pending->bytes.size()),
+                              MPI_BYTE, dest, kMessageTag, MPI_COMM_WORLD, &pending->request);
+  if (error != MPI_SUCCESS) {
+    throw TransportError("cannot send to rank " + std::to_string(dest));
+  }
+  pendingSends_.push_back(std::move(pending));
+}
+
+size_t MpiSession::progressSends() {
+  for (auto it = pendingSends_.begin(); it != pendingSends_.end();) {
+    int done = 0;
+    MPI_Test(&(*it)->request, &done, MPI_STATUS_IGNORE);
+    it = done ? pendingSends_.erase(it) : std::next(it);
+  }
+  return pendingSends_.size();
+}
+
+std::optional<IncomingMessage> MpiSession::poll() {
+  progressSends();
+  int arrived = 0;
+  MPI_Status status;
+  MPI_Iprobe(MPI_ANY_SOURCE, kMessageTag, MPI_COMM_WORLD, &arrived, &status);
+  if (!arrived) return std::nullopt;
+  int count = 0;
+  MPI_Get_count(&status, MPI_BYTE, &count);
+  IncomingMessage message;
+  message.source = status.MPI_SOURCE;
+  message.bytes.resize(static_cast<size_t>(std::max(count, 0)));
+  if (MPI_Recv(message.bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, kMessageTag,
+               MPI_COMM_WORLD, MPI_STATUS_IGNORE) != MPI_SUCCESS) {
+    throw TransportError("receiving from rank " + std::to_string(status.MPI_SOURCE) + " failed");
+  }
+  return message;
+}
+
+std::optional<IncomingMessage> MpiSession::waitForMessage(double timeoutSeconds) {
+  const auto start = Clock::now();
+  for (;;) {
+    if (auto message = poll()) return message;
+    if (secondsSince(start) >= timeoutSeconds) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+}
+
+void MpiSession::abortJob(int exitCode) {
+  MPI_Abort(MPI_COMM_WORLD, exitCode);
+  std::_Exit(exitCode);  // MPI_Abort does not return; this keeps [[noreturn]] honest
+}
+
+}  // namespace prism

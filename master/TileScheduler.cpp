@@ -1,0 +1,86 @@
+#include "master/TileScheduler.h"
+
+#include <algorithm>
+
+namespace prism {
+
+TileScheduler::TileScheduler(size_t tileCount, int workerCount, Schedule schedule,
+                             double leaseSeconds)
+    : schedule_(schedule),
+      leaseSeconds_(leaseSeconds),
+      workers_(static_cast<size_t>(std::max(workerCount, 1))),
+      done_(tileCount, false),
+      issued_(tileCount, false) {
+  for (uint32_t tile = 0; tile < tileCount; ++tile) {
+    if (schedule_ == Schedule::Static) {
+      workers_[tile % workers_.size()].own.push_back(tile);
+    } else {
+      shared_.push_back(tile);
+    }
+  }
+}
+
+void TileScheduler::exemptFromLeases(int worker) {
+  workers_[worker].exempt = true;
+}
+
+std::optional<uint32_t> TileScheduler::next(int worker, double now) {
+  Worker& w = workers_[worker];
+  if (w.retired) return std::nullopt;
+  // A worker's own tiles first (static), then the shared queue. Skip tiles finished meanwhile
+  // (a reclaimed tile whose late result arrived).
+  for (std::deque<uint32_t>* queue : {&w.own, &shared_}) {
+    while (!queue->empty()) {
+      const uint32_t tile = queue->front();
+      queue->pop_front();
+      if (done_[tile]) continue;
+      if (w.leased.empty()) w.lastHeard = now;  // the silence clock starts with the first lease
+      w.leased.push_back(tile);
+      issued_[tile] = true;
+      return tile;
+    }
+  }
+  return std::nullopt;
+}
+
+bool TileScheduler::complete(uint32_t tile, int worker, double now) {
+  if (tile >= done_.size() || worker < 0 || static_cast<size_t>(worker) >= workers_.size()) {
+    return false;
+  }
+  Worker& w = workers_[worker];
+  w.lastHeard = now;
+  w.leased.erase(std::remove(w.leased.begin(), w.leased.end(), tile), w.leased.end());
+  if (!issued_[tile] || done_[tile]) return false;
+  done_[tile] = true;
+  ++doneCount_;
+  return true;
+}
+
+void TileScheduler::retire(Worker& w) {
+  w.retired = true;
+  // Its tiles go to the front so the frame does not wait for them at the end.
+  for (auto it = w.leased.rbegin(); it != w.leased.rend(); ++it) {
+    if (!done_[*it]) {
+      shared_.push_front(*it);
+      ++reissued_;
+    }
+  }
+  w.leased.clear();
+  for (uint32_t tile : w.own) shared_.push_back(tile);
+  w.own.clear();
+}
+
+std::vector<int> TileScheduler::reclaimExpired(double now) {
+  std::vector<int> expired;
+  for (size_t i = 0; i < workers_.size(); ++i) {
+    Worker& w = workers_[i];
+    if (w.exempt || w.retired || w.leased.empty()) continue;
+    if (now - w.lastHeard > leaseSeconds_) {
+      retire(w);
+      expired.push_back(static_cast<int>(i));
+    }
+  }
+  return expired;
+}
+
+}  // namespace prism

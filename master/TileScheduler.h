@@ -1,0 +1,66 @@
+// Which tile goes to which worker, and what happens when a worker goes quiet. Pure bookkeeping
+// (time is passed in), so it is tested without MPI or threads.
+//
+// Dynamic schedule: one queue in row-major order; every worker takes the next tile.
+// Static schedule: tile i belongs to worker i mod W (interleaved rows of tiles), for honest
+// comparison with the dynamic one.
+// Leases: a tile handed out is leased to its worker. When a worker has been silent (no result)
+// for leaseSeconds while holding leases, it is retired: its tiles go back to the front of the
+// queue for anyone to take, and it gets no more work. A late result from it is still accepted
+// if the tile is not done yet; a second copy of a tile is reported as a duplicate.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+namespace prism {
+
+enum class Schedule { Dynamic, Static };
+
+class TileScheduler {
+ public:
+  TileScheduler(size_t tileCount, int workerCount, Schedule schedule, double leaseSeconds);
+
+  // A worker whose silence never retires it (the master's own threads).
+  void exemptFromLeases(int worker);
+
+  // The next tile for this worker, or nothing if none is available to it now.
+  std::optional<uint32_t> next(int worker, double now);
+
+  // Records a finished tile and that the worker is alive. Returns false for a duplicate, a
+  // tile index out of range or a tile never handed out.
+  bool complete(uint32_t tile, int worker, double now);
+
+  // Retires workers silent past their lease and re-queues their tiles; returns them.
+  std::vector<int> reclaimExpired(double now);
+
+  bool finished() const { return doneCount_ == done_.size(); }
+  size_t doneCount() const { return doneCount_; }
+  size_t outstanding(int worker) const { return workers_[worker].leased.size(); }
+  bool retired(int worker) const { return workers_[worker].retired; }
+  size_t reissuedCount() const { return reissued_; }
+
+ private:
+  struct Worker {
+    std::deque<uint32_t> own;      // static schedule: this worker's tiles
+    std::vector<uint32_t> leased;  // handed out, not finished
+    double lastHeard = 0.0;
+    bool exempt = false;
+    bool retired = false;
+  };
+
+  void retire(Worker& worker);
+
+  Schedule schedule_;
+  double leaseSeconds_;
+  std::deque<uint32_t> shared_;  // dynamic queue, and reclaimed tiles in both schedules
+  std::vector<Worker> workers_;
+  std::vector<bool> done_;
+  std::vector<bool> issued_;
+  size_t doneCount_ = 0;
+  size_t reissued_ = 0;
+};
+
+}  // namespace prism

@@ -1,0 +1,138 @@
+#include "slave/SlaveLoop.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <utility>
+
+#include "scene/Scene.h"
+#include "slave/JobQueue.h"
+#include "slave/TileWorkerPool.h"
+#include "transport/MpiSession.h"
+#include "wire/Messages.h"
+
+namespace prism {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Finished tiles waiting for the main thread, the only one that may call MPI.
+class Outbox {
+ public:
+  void add(TileResult&& tile) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    tiles_.push_back(std::move(tile));
+  }
+  std::vector<TileResult> take() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(tiles_, {});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<TileResult> tiles_;
+};
+
+// After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
+// through rank 0's clear message rather than this rank vanishing.
+void awaitShutdown(MpiSession& session, double timeoutSeconds) {
+  const auto start = Clock::now();
+  while (secondsSince(start) < timeoutSeconds) {
+    const auto incoming = session.waitForMessage(0.1);
+    if (!incoming) continue;
+    try {
+      if (wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size()).type ==
+          wire::MessageType::Shutdown) {
+        return;
+      }
+    } catch (const wire::WireError&) {
+    }
+  }
+}
+
+}  // namespace
+
+int runSlave(MpiSession& session, const SlaveOptions& options) {
+  std::vector<uint8_t> bytes;
+  try {
+    session.broadcast(bytes, options.masterTimeoutSeconds);
+  } catch (const TransportError& e) {
+    std::fprintf(stderr, "prism: rank %d: %s\n", session.rank(), e.what());
+    return 1;
+  }
+
+  std::unique_ptr<Scene> scene;
+  try {
+    const wire::Message message = wire::decodeMessage(bytes.data(), bytes.size());
+    // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
+    if (message.type == wire::MessageType::Error) return 1;
+    const auto buildStart = Clock::now();
+    scene = std::make_unique<Scene>(wire::decodeScene(message));
+    const int threads = options.threads > 0 ? options.threads : availableCores();
+    session.send(0, wire::encodeReady({secondsSince(buildStart), threads}));
+  } catch (const std::exception& e) {
+    session.send(0, wire::encodeError({std::string("cannot build the scene: ") + e.what()}));
+    awaitShutdown(session, options.masterTimeoutSeconds);
+    return 1;
+  }
+
+  JobQueue jobs;
+  Outbox outbox;
+  TileWorkerPool pool(*scene, options.threads);
+  pool.start([&] { return jobs.pop(); }, [&](TileResult&& tile) { outbox.add(std::move(tile)); });
+
+  const bool hang =
+      options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
+  const bool drop = options.fault.appliesTo(session.rank()) &&
+                    options.fault.kind == FaultInjection::Kind::DropTiles;
+  size_t received = 0;
+  auto lastHeard = Clock::now();
+  int exitCode = 0;
+  try {
+    for (;;) {
+      if (pool.failed()) break;
+      for (TileResult& tile : outbox.take()) {
+        session.send(0, wire::encodeTileResult({0, std::move(tile)}));
+      }
+      const auto incoming = session.waitForMessage(0.002);
+      if (!incoming) {
+        if (secondsSince(lastHeard) > options.masterTimeoutSeconds) {
+          std::fprintf(stderr, "prism: rank %d: no word from rank 0 for %.0f s, giving up\n",
+                       session.rank(), options.masterTimeoutSeconds);
+          exitCode = 1;
+          break;
+        }
+        continue;
+      }
+      lastHeard = Clock::now();
+      const wire::Message message =
+          wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
+      if (message.type == wire::MessageType::Shutdown) break;
+      if (message.type != wire::MessageType::TileJob) continue;
+      const wire::TileJobMessage job = wire::decodeTileJob(message);
+      ++received;
+      if (hang || (drop && received % 2 == 0)) continue;
+      jobs.push({job.tileIndex, job.rect});
+    }
+  } catch (const std::exception& e) {
+    session.send(0, wire::encodeError({e.what()}));
+    exitCode = 1;
+  }
+  jobs.clear();
+  jobs.close();
+  try {
+    pool.join();
+  } catch (const std::exception& e) {
+    session.send(0, wire::encodeError({std::string("render thread failed: ") + e.what()}));
+    awaitShutdown(session, options.masterTimeoutSeconds);
+    return 1;
+  }
+  return exitCode;
+}
+
+}  // namespace prism
