@@ -1,0 +1,127 @@
+#include "wire/ByteBuffer.h"
+
+#include <bit>
+
+namespace prism::wire {
+
+void ByteWriter::writeLittleEndian(uint64_t v, int byteCount) {
+  for (int i = 0; i < byteCount; ++i) bytes_.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+
+// Floats travel as their bit patterns, so values (NaN payloads and -0 included) arrive exactly.
+void ByteWriter::writeF32(float v) {
+  writeU32(std::bit_cast<uint32_t>(v));
+}
+
+void ByteWriter::writeF64(double v) {
+  writeU64(std::bit_cast<uint64_t>(v));
+}
+
+void ByteWriter::writeString(const std::string& s) {
+  if (s.size() > UINT32_MAX)
+    throw WireError("string of " + std::to_string(s.size()) +
+                    " bytes is too long for the wire format");
+  writeU32(static_cast<uint32_t>(s.size()));
+  bytes_.insert(bytes_.end(), s.begin(), s.end());
+}
+
+void ByteWriter::writeVec3(const Vec3& v) {
+  writeF32(v.x);
+  writeF32(v.y);
+  writeF32(v.z);
+}
+
+void ByteWriter::writeVec3s(const std::vector<Vec3>& v) {
+  writeCount(v.size());
+  for (const Vec3& e : v) writeVec3(e);
+}
+
+void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
+  writeCount(v.size());
+  for (uint32_t e : v) writeU32(e);
+}
+
+void ByteReader::need(size_t n) const {
+  if (n > remaining()) {
+    throw WireError("truncated message: needed " + std::to_string(n) + " bytes at offset " +
+                    std::to_string(offset_) + ", " + std::to_string(remaining()) + " left");
+  }
+}
+
+uint64_t ByteReader::readLittleEndian(int byteCount) {
+  need(static_cast<size_t>(byteCount));
+  uint64_t v = 0;
+  for (int i = 0; i < byteCount; ++i) v |= static_cast<uint64_t>(data_[offset_ + i]) << (8 * i);
+  offset_ += static_cast<size_t>(byteCount);
+  return v;
+}
+
+float ByteReader::readF32() {
+  return std::bit_cast<float>(readU32());
+}
+
+double ByteReader::readF64() {
+  return std::bit_cast<double>(readU64());
+}
+
+bool ByteReader::readBool() {
+  const size_t at = offset_;
+  const uint8_t v = readU8();
+  if (v > 1) {
+    throw WireError("invalid bool value " + std::to_string(v) + " at offset " + std::to_string(at));
+  }
+  return v == 1;
+}
+
+std::string ByteReader::readString() {
+  const size_t length = readU32();
+  need(length);
+  std::string s(reinterpret_cast<const char*>(data_ + offset_), length);
+  offset_ += length;
+  return s;
+}
+
+Vec3 ByteReader::readVec3() {
+  const float x = readF32();
+  const float y = readF32();
+  const float z = readF32();
+  return Vec3(x, y, z);
+}
+
+size_t ByteReader::readCount(size_t minElementBytes) {
+  const size_t at = offset_;
+  const uint64_t count = readU64();
+  // Divide rather than multiply: count * minElementBytes can overflow.
+  const size_t perElement = minElementBytes > 0 ? minElementBytes : 1;
+  if (count > remaining() / perElement) {
+    throw WireError("corrupt element count " + std::to_string(count) + " at offset " +
+                    std::to_string(at) + ": " + std::to_string(perElement) +
+                    "-byte elements, but only " + std::to_string(remaining()) + " bytes left");
+  }
+  return static_cast<size_t>(count);
+}
+
+std::vector<Vec3> ByteReader::readVec3s() {
+  const size_t count = readCount(12);
+  std::vector<Vec3> v;
+  v.reserve(count);
+  for (size_t i = 0; i < count; ++i) v.push_back(readVec3());
+  return v;
+}
+
+std::vector<uint32_t> ByteReader::readU32s() {
+  const size_t count = readCount(4);
+  std::vector<uint32_t> v;
+  v.reserve(count);
+  for (size_t i = 0; i < count; ++i) v.push_back(readU32());
+  return v;
+}
+
+void ByteReader::expectEnd() const {
+  if (remaining() != 0) {
+    throw WireError("unexpected trailing data: " + std::to_string(remaining()) +
+                    " bytes left after offset " + std::to_string(offset_));
+  }
+}
+
+}  // namespace prism::wire

@@ -1,0 +1,101 @@
+// Byte-level encoding for the wire format: fixed-width little-endian integers, IEEE floats by
+// bit pattern, length-prefixed strings and counted sequences. The byte order is explicit so
+// ranks on hosts of different endianness agree; the reader checks every length against what is
+// left before it reads or allocates, so a corrupted message throws instead of crashing.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "math/Vec.h"
+
+namespace prism::wire {
+
+// Thrown for any malformed, truncated or unexpected message.
+class WireError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class ByteWriter {
+ public:
+  void writeU8(uint8_t v) { bytes_.push_back(v); }
+  void writeU16(uint16_t v) { writeLittleEndian(v, 2); }
+  void writeU32(uint32_t v) { writeLittleEndian(v, 4); }
+  void writeU64(uint64_t v) { writeLittleEndian(v, 8); }
+  void writeI32(int32_t v) { writeU32(static_cast<uint32_t>(v)); }
+  void writeF32(float v);
+  void writeF64(double v);
+  void writeBool(bool v) { writeU8(v ? 1 : 0); }
+  void writeString(const std::string& s);  // u32 length, then the bytes
+  void writeVec3(const Vec3& v);           // also Color, which is the same type
+  void writeCount(size_t n) { writeU64(n); }
+  void writeVec3s(const std::vector<Vec3>& v);
+  void writeU32s(const std::vector<uint32_t>& v);
+
+  // A u64 count, then writeOne(*this, element) for each element.
+  template <typename T, typename WriteOne>
+  void writeSequence(const std::vector<T>& items, WriteOne writeOne) {
+    writeCount(items.size());
+    for (const T& item : items) writeOne(*this, item);
+  }
+
+  const std::vector<uint8_t>& bytes() const { return bytes_; }
+  std::vector<uint8_t> take() { return std::move(bytes_); }
+
+ private:
+  void writeLittleEndian(uint64_t v, int byteCount);
+
+  std::vector<uint8_t> bytes_;
+};
+
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  explicit ByteReader(const std::vector<uint8_t>& bytes) : ByteReader(bytes.data(), bytes.size()) {}
+
+  uint8_t readU8() { return static_cast<uint8_t>(readLittleEndian(1)); }
+  uint16_t readU16() { return static_cast<uint16_t>(readLittleEndian(2)); }
+  uint32_t readU32() { return static_cast<uint32_t>(readLittleEndian(4)); }
+  uint64_t readU64() { return readLittleEndian(8); }
+  int32_t readI32() { return static_cast<int32_t>(readU32()); }
+  float readF32();
+  double readF64();
+  bool readBool();  // only 0 and 1 are valid
+  std::string readString();
+  Vec3 readVec3();
+  // Reads a u64 element count and checks that count elements of at least minElementBytes each
+  // fit in what is left, so a corrupted count is refused before anything is allocated.
+  size_t readCount(size_t minElementBytes);
+  std::vector<Vec3> readVec3s();
+  std::vector<uint32_t> readU32s();
+
+  // Reads what writeSequence wrote. Nothing is reserved up front: the vector grows only as
+  // elements actually decode, so its memory stays proportional to the message.
+  template <typename T, typename ReadOne>
+  std::vector<T> readSequence(ReadOne readOne) {
+    const size_t count = readCount(1);
+    std::vector<T> items;
+    for (size_t i = 0; i < count; ++i) items.push_back(readOne(*this));
+    return items;
+  }
+
+  size_t offset() const { return offset_; }
+  size_t remaining() const { return size_ - offset_; }
+  // Throws unless every byte has been read: trailing bytes mean the two sides disagree.
+  void expectEnd() const;
+
+ private:
+  // Throws WireError unless n more bytes are available.
+  void need(size_t n) const;
+  uint64_t readLittleEndian(int byteCount);
+
+  const uint8_t* data_;
+  size_t size_;
+  size_t offset_ = 0;
+};
+
+}  // namespace prism::wire

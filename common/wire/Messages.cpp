@@ -1,0 +1,260 @@
+#include "wire/Messages.h"
+
+#include <climits>
+#include <cmath>
+#include <cstdio>
+
+#include "wire/SceneCodec.h"
+
+namespace prism::wire {
+namespace {
+
+std::string hex(uint64_t v, int digits) {
+  char buffer[24];
+  std::snprintf(buffer, sizeof buffer, "0x%0*llX", digits, static_cast<unsigned long long>(v));
+  return buffer;
+}
+
+bool isKnownType(uint16_t raw) {
+  return raw >= static_cast<uint16_t>(MessageType::Scene) &&
+         raw <= static_cast<uint16_t>(MessageType::Error);
+}
+
+// Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
+// the message type in front of any error so the log says which message was bad.
+template <typename ReadPayload>
+auto decodePayload(const Message& message, MessageType expected, ReadPayload readPayload) {
+  if (message.type != expected) {
+    throw WireError(std::string("expected a ") + messageTypeName(expected) + " message, got " +
+                    messageTypeName(message.type));
+  }
+  try {
+    ByteReader r(message.payload);
+    auto value = readPayload(r);
+    r.expectEnd();
+    return value;
+  } catch (const WireError& e) {
+    throw WireError(std::string(messageTypeName(expected)) + " message: " + e.what());
+  }
+}
+
+template <typename WritePayload>
+std::vector<uint8_t> encodeWith(MessageType type, WritePayload writePayload) {
+  ByteWriter w;
+  writePayload(w);
+  return encodeMessage(type, w.bytes());
+}
+
+void writeRect(ByteWriter& w, const TileRect& rect) {
+  const auto& [x, y, width, height] = rect;
+  w.writeI32(x);
+  w.writeI32(y);
+  w.writeI32(width);
+  w.writeI32(height);
+}
+
+// A tile must be non-empty, start inside the first quadrant, and have a pixel count and far
+// corner that fit in an int, since TileRect does its arithmetic in int.
+TileRect readRect(ByteReader& r) {
+  TileRect rect;
+  auto& [x, y, width, height] = rect;
+  x = r.readI32();
+  y = r.readI32();
+  width = r.readI32();
+  height = r.readI32();
+  const bool sane = x >= 0 && y >= 0 && width > 0 && height > 0 && int64_t{x} + width <= INT_MAX &&
+                    int64_t{y} + height <= INT_MAX && int64_t{width} * height <= INT_MAX;
+  if (!sane) {
+    throw WireError("invalid tile rectangle at (" + std::to_string(x) + ", " + std::to_string(y) +
+                    ") of size " + std::to_string(width) + "x" + std::to_string(height));
+  }
+  return rect;
+}
+
+void checkSeconds(double seconds, const char* what) {
+  if (!(std::isfinite(seconds) && seconds >= 0.0)) {
+    throw WireError(std::string("invalid ") + what + " " + std::to_string(seconds));
+  }
+}
+
+}  // namespace
+
+const char* messageTypeName(MessageType type) {
+  switch (type) {
+    case MessageType::Scene:
+      return "Scene";
+    case MessageType::Ready:
+      return "Ready";
+    case MessageType::TileJob:
+      return "TileJob";
+    case MessageType::TileResult:
+      return "TileResult";
+    case MessageType::Shutdown:
+      return "Shutdown";
+    case MessageType::Error:
+      return "Error";
+  }
+  return "unknown";
+}
+
+uint64_t fnv1a64(const uint8_t* data, size_t size) {
+  uint64_t hash = 14695981039346656037ull;
+  for (size_t i = 0; i < size; ++i) {
+    hash ^= data[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>& payload) {
+  ByteWriter w;
+  w.writeU32(kMagic);
+  w.writeU16(kVersion);
+  w.writeU16(static_cast<uint16_t>(type));
+  w.writeU64(payload.size());
+  w.writeU64(fnv1a64(payload.data(), payload.size()));
+  std::vector<uint8_t> bytes = w.take();
+  bytes.insert(bytes.end(), payload.begin(), payload.end());
+  return bytes;
+}
+
+Message decodeMessage(const uint8_t* data, size_t size) {
+  if (size < kHeaderSize) {
+    throw WireError("message too short for a header: " + std::to_string(size) +
+                    " bytes, a header needs " + std::to_string(kHeaderSize));
+  }
+  ByteReader r(data, kHeaderSize);
+  const uint32_t magic = r.readU32();
+  if (magic != kMagic) {
+    throw WireError("bad magic " + hex(magic, 8) + ", expected " + hex(kMagic, 8) +
+                    " (\"PRSM\"): not a Prism message");
+  }
+  const uint16_t version = r.readU16();
+  if (version != kVersion) {
+    throw WireError("message version " + std::to_string(version) + ", this build speaks " +
+                    std::to_string(kVersion));
+  }
+  const uint16_t type = r.readU16();
+  if (!isKnownType(type)) throw WireError("unknown message type " + std::to_string(type));
+  const uint64_t declared = r.readU64();
+  const size_t actual = size - kHeaderSize;
+  if (declared != actual) {
+    throw WireError("payload size mismatch: header declares " + std::to_string(declared) +
+                    " bytes, message carries " + std::to_string(actual));
+  }
+  const uint64_t checksum = r.readU64();
+  const uint64_t computed = fnv1a64(data + kHeaderSize, actual);
+  if (checksum != computed) {
+    throw WireError("payload checksum mismatch: header says " + hex(checksum, 16) +
+                    ", payload hashes to " + hex(computed, 16));
+  }
+  return {static_cast<MessageType>(type),
+          std::vector<uint8_t>(data + kHeaderSize, data + kHeaderSize + actual)};
+}
+
+std::vector<uint8_t> encodeScene(const SceneDescription& scene) {
+  return encodeWith(MessageType::Scene, [&](ByteWriter& w) { writeScene(w, scene); });
+}
+
+SceneDescription decodeScene(const Message& message) {
+  return decodePayload(message, MessageType::Scene, readScene);
+}
+
+std::vector<uint8_t> encodeTileJob(const TileJobMessage& job) {
+  return encodeWith(MessageType::TileJob, [&](ByteWriter& w) {
+    const auto& [frame, tileIndex, rect] = job;
+    w.writeU32(frame);
+    w.writeU32(tileIndex);
+    writeRect(w, rect);
+  });
+}
+
+TileJobMessage decodeTileJob(const Message& message) {
+  return decodePayload(message, MessageType::TileJob, [](ByteReader& r) {
+    TileJobMessage job;
+    auto& [frame, tileIndex, rect] = job;
+    frame = r.readU32();
+    tileIndex = r.readU32();
+    rect = readRect(r);
+    return job;
+  });
+}
+
+std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
+  return encodeWith(MessageType::TileResult, [&](ByteWriter& w) {
+    const auto& [frame, result] = message;
+    const auto& [tileIndex, rect, pixels, rays, seconds] = result;
+    const auto& [primary, shadow, secondary] = rays;
+    w.writeU32(frame);
+    w.writeU32(tileIndex);
+    writeRect(w, rect);
+    w.writeVec3s(pixels);
+    w.writeU64(primary);
+    w.writeU64(shadow);
+    w.writeU64(secondary);
+    w.writeF64(seconds);
+  });
+}
+
+TileResultMessage decodeTileResult(const Message& message) {
+  return decodePayload(message, MessageType::TileResult, [](ByteReader& r) {
+    TileResultMessage m;
+    auto& [frame, result] = m;
+    auto& [tileIndex, rect, pixels, rays, seconds] = result;
+    auto& [primary, shadow, secondary] = rays;
+    frame = r.readU32();
+    tileIndex = r.readU32();
+    rect = readRect(r);
+    pixels = r.readVec3s();
+    if (pixels.size() != static_cast<size_t>(rect.pixelCount())) {
+      throw WireError("tile " + std::to_string(tileIndex) + " is " + std::to_string(rect.width) +
+                      "x" + std::to_string(rect.height) + " but carries " +
+                      std::to_string(pixels.size()) + " pixels");
+    }
+    primary = r.readU64();
+    shadow = r.readU64();
+    secondary = r.readU64();
+    seconds = r.readF64();
+    checkSeconds(seconds, "tile render time");
+    return m;
+  });
+}
+
+std::vector<uint8_t> encodeReady(const ReadyMessage& ready) {
+  return encodeWith(MessageType::Ready, [&](ByteWriter& w) {
+    const auto& [buildSeconds, threads] = ready;
+    w.writeF64(buildSeconds);
+    w.writeI32(threads);
+  });
+}
+
+ReadyMessage decodeReady(const Message& message) {
+  return decodePayload(message, MessageType::Ready, [](ByteReader& r) {
+    ReadyMessage ready;
+    auto& [buildSeconds, threads] = ready;
+    buildSeconds = r.readF64();
+    threads = r.readI32();
+    checkSeconds(buildSeconds, "scene build time");
+    if (threads < 0) throw WireError("invalid thread count " + std::to_string(threads));
+    return ready;
+  });
+}
+
+std::vector<uint8_t> encodeError(const ErrorMessage& error) {
+  return encodeWith(MessageType::Error, [&](ByteWriter& w) { w.writeString(error.text); });
+}
+
+ErrorMessage decodeError(const Message& message) {
+  return decodePayload(message, MessageType::Error,
+                       [](ByteReader& r) { return ErrorMessage{r.readString()}; });
+}
+
+std::vector<uint8_t> encodeShutdown() {
+  return encodeMessage(MessageType::Shutdown, {});
+}
+
+void decodeShutdown(const Message& message) {
+  decodePayload(message, MessageType::Shutdown, [](ByteReader&) { return 0; });
+}
+
+}  // namespace prism::wire

@@ -1,0 +1,93 @@
+// The messages the master and the slaves exchange, as bytes. Each message is an envelope
+// (magic, version, type, payload size, payload checksum) around a payload; decoding checks the
+// envelope and then the payload strictly, and throws WireError naming what is wrong. No MPI
+// here: the transport moves the bytes, this file gives them meaning.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/Tile.h"
+#include "scene/SceneDescription.h"
+#include "wire/ByteBuffer.h"
+
+namespace prism::wire {
+
+inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
+inline constexpr uint16_t kVersion = 1;
+// magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
+inline constexpr size_t kHeaderSize = 24;
+
+enum class MessageType : uint16_t {
+  Scene = 1,
+  Ready = 2,
+  TileJob = 3,
+  TileResult = 4,
+  Shutdown = 5,
+  Error = 6
+};
+
+// "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
+const char* messageTypeName(MessageType type);
+
+// FNV-1a, 64 bit: detects every single-byte change, which is what a checksum here is for.
+uint64_t fnv1a64(const uint8_t* data, size_t size);
+
+std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>& payload);
+
+struct Message {
+  MessageType type;
+  std::vector<uint8_t> payload;
+};
+
+// Checks the envelope: long enough for a header, magic, version, known type, declared payload
+// size equal to the bytes present, checksum. Throws WireError.
+Message decodeMessage(const uint8_t* data, size_t size);
+inline Message decodeMessage(const std::vector<uint8_t>& bytes) {
+  return decodeMessage(bytes.data(), bytes.size());
+}
+
+struct TileJobMessage {
+  uint32_t frame = 0;
+  uint32_t tileIndex = 0;
+  TileRect rect;
+};
+
+struct TileResultMessage {
+  uint32_t frame = 0;
+  TileResult result;  // result.pixels.size() == result.rect.pixelCount()
+};
+
+struct ReadyMessage {
+  double buildSeconds = 0;  // time the slave took to build its Scene
+  int32_t threads = 0;      // threads it renders with
+};
+
+struct ErrorMessage {
+  std::string text;
+};
+
+// Each encodeX returns a full message (envelope included); each decodeX checks the message type
+// and the payload (sizes, ranges, nothing left over) and throws WireError.
+std::vector<uint8_t> encodeScene(const SceneDescription& scene);
+SceneDescription decodeScene(const Message& message);
+
+std::vector<uint8_t> encodeTileJob(const TileJobMessage& job);
+TileJobMessage decodeTileJob(const Message& message);
+
+std::vector<uint8_t> encodeTileResult(const TileResultMessage& result);
+TileResultMessage decodeTileResult(const Message& message);
+
+std::vector<uint8_t> encodeReady(const ReadyMessage& ready);
+ReadyMessage decodeReady(const Message& message);
+
+std::vector<uint8_t> encodeError(const ErrorMessage& error);
+ErrorMessage decodeError(const Message& message);
+
+std::vector<uint8_t> encodeShutdown();
+// Checks that message is a Shutdown with an empty payload.
+void decodeShutdown(const Message& message);
+
+}  // namespace prism::wire

@@ -1,0 +1,412 @@
+#include "wire/SceneCodec.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <filesystem>
+
+#include "parse/SceneLoader.h"
+#include "wire/Messages.h"
+
+namespace prism::wire {
+namespace {
+
+// Every field away from its default, so a field the codec forgets cannot pass by luck.
+SceneDescription fullScene() {
+  SceneDescription d;
+  d.sourcePath = "scenes/everything.yaml";
+  d.camera = {
+      Projection::Orthographic, {1, 2, 3}, {-1, 0.5f, -0.0f}, {0, 0, 1}, 60.5f, 4.5f, 0.125f,
+      {"everything.yaml", 2, 3}};
+  d.render = {321, 203, 16, 7, 0.01f, 12345678901234ull, 2.5f, TriangleTest::PlaneThenInside};
+  d.background = {0.1f, 0.2f, 0.3f};
+  d.ambientLight = {0.05f, 0.06f, 1e-40f};
+
+  CubeMapDesc cube;
+  for (int i = 0; i < 6; ++i) {
+    cube.faces[i] = ImageRgb(i % 2 + 1, i % 2 + 1);
+    for (size_t p = 0; p < cube.faces[i].pixels.size(); ++p) {
+      cube.faces[i].pixels[p] = Color(i, p, 0.5f * i + 0.25f * p);
+    }
+    cube.paths[i] = "sky/face" + std::to_string(i) + ".exr";
+  }
+  cube.scale = 3.5f;
+  d.environment = cube;
+
+  MaterialDesc floor{"floor",
+                     {1, 1, 1},
+                     {0.7f, 0.6f, 0.5f},
+                     {0.2f, 0.2f, 0.2f},
+                     64.0f,
+                     {0.1f, 0.2f, 0.3f},
+                     {0.0f, 0.1f, 0.0f},
+                     1.0f,
+                     false,
+                     CheckerDesc{{0.9f, 0.8f, 0.7f}, {0.1f, 0.2f, 0.3f}, 0.5f},
+                     {"everything.yaml", 10, 5}};
+  MaterialDesc glass{"glass",
+                     {0.01f, 0, 0},
+                     {0, 0, 0},
+                     {1, 1, 1},
+                     128.0f,
+                     {0.05f, 0.05f, 0.05f},
+                     {0.9f, 0.9f, 0.9f},
+                     1.5f,
+                     true,
+                     std::nullopt,
+                     {"everything.yaml", 20, 5}};
+  d.materials = {floor, glass};
+
+  d.lights = {{{0, 5, 0}, {100, 90, 80}, {1, 0.5f, 0.25f}, {"everything.yaml", 30, 5}},
+              {{-3, 4, 2}, {1, 2, 3}, {0, 0, 2}, {"everything.yaml", 31, 5}}};
+  d.spheres = {{{0, 1, 0}, 0.75f, 1, {"everything.yaml", 40, 5}},
+               {{2, 1, -1}, 0.25f, 0, {"", 0, 0}}};
+  d.planes = {{{0, -0.5f, 0}, {0, 1, 0.25f}, 1, {"everything.yaml", 41, 5}}};
+  d.cones = {{{2, 0, 0}, 1.0f, {2, 2, 0}, 0.5f, 1, {"everything.yaml", 42, 5}},
+             {{-2, 0, 0}, 0.25f, {-2, 3, 0}, 0.25f, 0, {"everything.yaml", 43, 5}}};
+
+  MeshDesc smooth;
+  smooth.source = "meshes/quad.obj";
+  smooth.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  smooth.normals = {{0, 0, 1}, {0, 0.1f, 1}, {0.1f, 0, 1}, {0, 0, -1}};
+  smooth.indices = {0, 1, 2, 0, 2, 3};
+  smooth.material = 1;
+  smooth.loc = {"everything.yaml", 44, 5};
+  MeshDesc flat;
+  flat.source = "triangle";
+  flat.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  flat.indices = {2, 1, 0};
+  flat.material = 0;
+  flat.loc = {"everything.yaml", 50, 7};
+  d.meshes = {smooth, flat};
+  return d;
+}
+
+SceneDescription roundTrip(const SceneDescription& d) {
+  return decodeScene(decodeMessage(encodeScene(d)));
+}
+
+SceneDescription decodeBytes(const std::vector<uint8_t>& payload) {
+  ByteReader r(payload);
+  SceneDescription d = readScene(r);
+  r.expectEnd();
+  return d;
+}
+
+std::vector<uint8_t> payloadOf(const SceneDescription& d) {
+  ByteWriter w;
+  writeScene(w, d);
+  return w.take();
+}
+
+void expectWireError(const SceneDescription& d, const std::string& fragment) {
+  const std::vector<uint8_t> bytes = payloadOf(d);
+  try {
+    decodeBytes(bytes);
+    ADD_FAILURE() << "no WireError; expected one containing \"" << fragment << "\"";
+  } catch (const WireError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+// Floats compare by bit pattern: -0, denormals and NaNs must arrive exactly as sent.
+#define EXPECT_SAME_FLOAT(a, b) EXPECT_EQ(std::bit_cast<uint32_t>(a), std::bit_cast<uint32_t>(b))
+#define EXPECT_SAME_VEC3(a, b)       \
+  do {                               \
+    EXPECT_SAME_FLOAT((a).x, (b).x); \
+    EXPECT_SAME_FLOAT((a).y, (b).y); \
+    EXPECT_SAME_FLOAT((a).z, (b).z); \
+  } while (false)
+
+void expectSameLoc(const FileLoc& a, const FileLoc& b) {
+  EXPECT_EQ(a.file, b.file);
+  EXPECT_EQ(a.line, b.line);
+  EXPECT_EQ(a.column, b.column);
+}
+
+void expectSameVec3s(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_SAME_VEC3(a[i], b[i]);
+}
+
+void expectSameImage(const ImageRgb& a, const ImageRgb& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  expectSameVec3s(a.pixels, b.pixels);
+}
+
+void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
+  EXPECT_EQ(a.sourcePath, b.sourcePath);
+
+  EXPECT_EQ(a.camera.projection, b.camera.projection);
+  EXPECT_SAME_VEC3(a.camera.position, b.camera.position);
+  EXPECT_SAME_VEC3(a.camera.lookAt, b.camera.lookAt);
+  EXPECT_SAME_VEC3(a.camera.up, b.camera.up);
+  EXPECT_SAME_FLOAT(a.camera.fovDegrees, b.camera.fovDegrees);
+  EXPECT_SAME_FLOAT(a.camera.width, b.camera.width);
+  EXPECT_SAME_FLOAT(a.camera.nearClip, b.camera.nearClip);
+  expectSameLoc(a.camera.loc, b.camera.loc);
+
+  EXPECT_EQ(a.render.width, b.render.width);
+  EXPECT_EQ(a.render.height, b.render.height);
+  EXPECT_EQ(a.render.samplesPerPixel, b.render.samplesPerPixel);
+  EXPECT_EQ(a.render.maxDepth, b.render.maxDepth);
+  EXPECT_SAME_FLOAT(a.render.minContribution, b.render.minContribution);
+  EXPECT_EQ(a.render.seed, b.render.seed);
+  EXPECT_SAME_FLOAT(a.render.exposure, b.render.exposure);
+  EXPECT_EQ(a.render.triangleTest, b.render.triangleTest);
+
+  EXPECT_SAME_VEC3(a.background, b.background);
+  EXPECT_SAME_VEC3(a.ambientLight, b.ambientLight);
+
+  ASSERT_EQ(a.environment.has_value(), b.environment.has_value());
+  if (a.environment) {
+    for (int i = 0; i < 6; ++i) {
+      expectSameImage(a.environment->faces[i], b.environment->faces[i]);
+      EXPECT_EQ(a.environment->paths[i], b.environment->paths[i]);
+    }
+    EXPECT_SAME_FLOAT(a.environment->scale, b.environment->scale);
+  }
+
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    const MaterialDesc& x = a.materials[i];
+    const MaterialDesc& y = b.materials[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_SAME_VEC3(x.ambient, y.ambient);
+    EXPECT_SAME_VEC3(x.diffuse, y.diffuse);
+    EXPECT_SAME_VEC3(x.specular, y.specular);
+    EXPECT_SAME_FLOAT(x.shininess, y.shininess);
+    EXPECT_SAME_VEC3(x.reflectance, y.reflectance);
+    EXPECT_SAME_VEC3(x.transmittance, y.transmittance);
+    EXPECT_SAME_FLOAT(x.ior, y.ior);
+    EXPECT_EQ(x.fresnel, y.fresnel);
+    ASSERT_EQ(x.checker.has_value(), y.checker.has_value());
+    if (x.checker) {
+      EXPECT_SAME_VEC3(x.checker->colorA, y.checker->colorA);
+      EXPECT_SAME_VEC3(x.checker->colorB, y.checker->colorB);
+      EXPECT_SAME_FLOAT(x.checker->scale, y.checker->scale);
+    }
+    expectSameLoc(x.loc, y.loc);
+  }
+
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    EXPECT_SAME_VEC3(a.lights[i].position, b.lights[i].position);
+    EXPECT_SAME_VEC3(a.lights[i].intensity, b.lights[i].intensity);
+    EXPECT_SAME_FLOAT(a.lights[i].attenuation.constant, b.lights[i].attenuation.constant);
+    EXPECT_SAME_FLOAT(a.lights[i].attenuation.linear, b.lights[i].attenuation.linear);
+    EXPECT_SAME_FLOAT(a.lights[i].attenuation.quadratic, b.lights[i].attenuation.quadratic);
+    expectSameLoc(a.lights[i].loc, b.lights[i].loc);
+  }
+
+  ASSERT_EQ(a.spheres.size(), b.spheres.size());
+  for (size_t i = 0; i < a.spheres.size(); ++i) {
+    EXPECT_SAME_VEC3(a.spheres[i].center, b.spheres[i].center);
+    EXPECT_SAME_FLOAT(a.spheres[i].radius, b.spheres[i].radius);
+    EXPECT_EQ(a.spheres[i].material, b.spheres[i].material);
+    expectSameLoc(a.spheres[i].loc, b.spheres[i].loc);
+  }
+
+  ASSERT_EQ(a.planes.size(), b.planes.size());
+  for (size_t i = 0; i < a.planes.size(); ++i) {
+    EXPECT_SAME_VEC3(a.planes[i].point, b.planes[i].point);
+    EXPECT_SAME_VEC3(a.planes[i].normal, b.planes[i].normal);
+    EXPECT_EQ(a.planes[i].material, b.planes[i].material);
+    expectSameLoc(a.planes[i].loc, b.planes[i].loc);
+  }
+
+  ASSERT_EQ(a.cones.size(), b.cones.size());
+  for (size_t i = 0; i < a.cones.size(); ++i) {
+    EXPECT_SAME_VEC3(a.cones[i].base, b.cones[i].base);
+    EXPECT_SAME_FLOAT(a.cones[i].baseRadius, b.cones[i].baseRadius);
+    EXPECT_SAME_VEC3(a.cones[i].apex, b.cones[i].apex);
+    EXPECT_SAME_FLOAT(a.cones[i].apexRadius, b.cones[i].apexRadius);
+    EXPECT_EQ(a.cones[i].material, b.cones[i].material);
+    expectSameLoc(a.cones[i].loc, b.cones[i].loc);
+  }
+
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  for (size_t i = 0; i < a.meshes.size(); ++i) {
+    EXPECT_EQ(a.meshes[i].source, b.meshes[i].source);
+    expectSameVec3s(a.meshes[i].positions, b.meshes[i].positions);
+    expectSameVec3s(a.meshes[i].normals, b.meshes[i].normals);
+    EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices);
+    EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+    expectSameLoc(a.meshes[i].loc, b.meshes[i].loc);
+  }
+}
+
+TEST(SceneCodec, EveryFieldSurvivesTheRoundTrip) {
+  const SceneDescription sent = fullScene();
+  const SceneDescription back = roundTrip(sent);
+  expectSameScene(sent, back);
+  EXPECT_EQ(encodeScene(back), encodeScene(sent));
+}
+
+TEST(SceneCodec, DefaultSceneRoundTrips) {
+  const SceneDescription sent;
+  expectSameScene(sent, roundTrip(sent));
+}
+
+// The codec names every field in structured bindings, so a new field breaks its build; these
+// sizes catch what the bindings cannot see, such as a field that the test above never sets.
+TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
+#if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
+  const char* update =
+      "a SceneDescription struct changed: update common/wire/SceneCodec.cpp (write and read), "
+      "fullScene() and expectSameScene() in this file, then the size here";
+  EXPECT_EQ(sizeof(FileLoc), 40u) << update;
+  EXPECT_EQ(sizeof(CameraDesc), 96u) << update;
+  EXPECT_EQ(sizeof(Attenuation), 12u) << update;
+  EXPECT_EQ(sizeof(PointLightDesc), 80u) << update;
+  EXPECT_EQ(sizeof(CheckerDesc), 28u) << update;
+  EXPECT_EQ(sizeof(MaterialDesc), 176u) << update;
+  EXPECT_EQ(sizeof(SphereDesc), 64u) << update;
+  EXPECT_EQ(sizeof(PlaneDesc), 72u) << update;
+  EXPECT_EQ(sizeof(ConeDesc), 80u) << update;
+  EXPECT_EQ(sizeof(MeshDesc), 152u) << update;
+  EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
+  EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
+  EXPECT_EQ(sizeof(RenderSettings), 40u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 736u) << update;
+#else
+  GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
+#endif
+}
+
+TEST(SceneCodec, EveryTruncationIsRejected) {
+  const std::vector<uint8_t> bytes = payloadOf(fullScene());
+  for (size_t length = 0; length < bytes.size(); ++length) {
+    const std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + length);
+    EXPECT_THROW(decodeBytes(prefix), WireError) << length;
+  }
+}
+
+TEST(SceneCodec, UnknownEnumValuesAreRejected) {
+  SceneDescription d = fullScene();
+  d.camera.projection = static_cast<Projection>(7);
+  expectWireError(d, "invalid camera projection 7");
+  d = fullScene();
+  d.render.triangleTest = static_cast<TriangleTest>(-1);
+  expectWireError(d, "invalid triangle test 4294967295");
+}
+
+TEST(SceneCodec, MeshesThatWouldReadOutOfBoundsAreRejected) {
+  SceneDescription d = fullScene();
+  d.meshes[1].indices[1] = 3;
+  expectWireError(d,
+                  "mesh 1 (everything.yaml:50:7) 'triangle': index 1 is 3, past the 3 positions");
+  d = fullScene();
+  d.meshes[0].normals.pop_back();
+  expectWireError(d, "3 normals for 4 positions");
+  d = fullScene();
+  d.meshes[0].indices.pop_back();
+  expectWireError(d, "5 indices, not a multiple of 3");
+}
+
+TEST(SceneCodec, MaterialIdsMustNameAMaterial) {
+  SceneDescription d = fullScene();
+  d.spheres[1].material = 2;
+  expectWireError(d, "sphere 1: material 2 but the scene has 2 materials");
+  d = fullScene();
+  d.planes[0].material = 9;
+  expectWireError(d, "plane 0 (everything.yaml:41:5): material 9");
+  d = fullScene();
+  d.cones[0].material = 2;
+  expectWireError(d, "cone 0");
+  d = fullScene();
+  d.meshes[1].material = 2;
+  expectWireError(d, "mesh 1");
+}
+
+// Scene supplies a default material when the list is empty, so id 0 is valid then.
+TEST(SceneCodec, MaterialZeroIsValidWithoutMaterials) {
+  SceneDescription d = fullScene();
+  d.materials.clear();
+  for (auto& s : d.spheres) s.material = 0;
+  for (auto& p : d.planes) p.material = 0;
+  for (auto& c : d.cones) c.material = 0;
+  for (auto& m : d.meshes) m.material = 0;
+  EXPECT_NO_THROW(decodeBytes(payloadOf(d)));
+  d.meshes[0].material = 1;
+  expectWireError(d, "mesh 0 (everything.yaml:44:5): material 1 but the scene has 0 materials");
+}
+
+TEST(SceneCodec, ImagesMustHoldWidthTimesHeightPixels) {
+  SceneDescription d = fullScene();
+  d.environment->faces[3].pixels.pop_back();
+  expectWireError(d, "cube-map face 3 is 2x2 but carries 3 pixels");
+  d = fullScene();
+  d.environment->faces[2] = ImageRgb();
+  expectWireError(d, "cube-map face 2 is empty");
+  d = fullScene();
+  d.environment->faces[1].width = -2;
+  d.environment->faces[1].height = -2;
+  expectWireError(d, "cube-map face 1 has negative size -2x-2");
+}
+
+TEST(SceneCodec, RenderSettingsThatCannotRenderAreRejected) {
+  SceneDescription d = fullScene();
+  d.render.width = 0;
+  expectWireError(d, "invalid render size 0x203");
+  d = fullScene();
+  d.render.samplesPerPixel = 0;
+  expectWireError(d, "invalid samples per pixel 0");
+  d = fullScene();
+  d.render.maxDepth = -1;
+  expectWireError(d, "invalid max depth -1");
+}
+
+TEST(SceneCodec, HugeCorruptedCountThrowsWithoutAllocating) {
+  SceneDescription d;
+  d.meshes.resize(1);
+  std::vector<uint8_t> bytes = payloadOf(d);
+  // The empty mesh ends the payload: source (4-byte length), positions count (8), normals count
+  // (8), indices count (8), material (4), loc (4 + 4 + 4).
+  const size_t positionsCount = bytes.size() - 44 + 4;
+  ASSERT_EQ(std::count(bytes.begin() + positionsCount, bytes.begin() + positionsCount + 8, 0), 8);
+  bytes[positionsCount + 7] = 0x10;  // 2^60
+  try {
+    decodeBytes(bytes);
+    FAIL() << "corrupted count accepted";
+  } catch (const WireError& e) {
+    EXPECT_NE(std::string(e.what()).find("corrupt element count 1152921504606846976"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneCodec, SceneMessageIsCheckedLikeAnyOther) {
+  std::vector<uint8_t> bytes = encodeScene(fullScene());
+  EXPECT_THROW(decodeTileJob(decodeMessage(bytes)), WireError);
+  bytes[kHeaderSize + 10] ^= 0x20;
+  EXPECT_THROW(decodeMessage(bytes), WireError);
+}
+
+std::vector<std::string> realSceneFiles() {
+  std::vector<std::string> files = {std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml"};
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(PRISM_TEST_DATA_DIR) + "/scenes")) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin() + 1, files.end());
+  return files;
+}
+
+TEST(SceneCodec, RealSceneFilesRoundTripByteForByte) {
+  const std::vector<std::string> files = realSceneFiles();
+  ASSERT_GE(files.size(), 3u);
+  for (const std::string& path : files) {
+    SCOPED_TRACE(path);
+    const SceneDescription loaded = loadScene(path);
+    const std::vector<uint8_t> bytes = encodeScene(loaded);
+    const SceneDescription back = decodeScene(decodeMessage(bytes));
+    expectSameScene(loaded, back);
+    EXPECT_EQ(encodeScene(back), bytes);
+  }
+}
+
+}  // namespace
+}  // namespace prism::wire
