@@ -2,12 +2,11 @@
 #include "master/RenderCommand.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 
+#include "PrismProcess.h"
 #include "image/ImageIo.h"
 #include "parse/SceneLoader.h"
 #include "scene/Camera.h"
@@ -17,38 +16,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ProcessRun {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
+using test::ProcessRun;
+using test::runPrism;
 
-ProcessRun runPrism(const std::string& arguments) {
-  const std::string command = std::string(PRISM_EXECUTABLE) + " " + arguments + " 2>&1";
-  ProcessRun run;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    run.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-class RenderCommandTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("prism-cli-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class RenderCommandTest : public test::ScratchFolderTest {};
 
 const std::string kSceneDir = std::string(PRISM_SOURCE_DIR) + "/scenes/";
 

@@ -1,0 +1,105 @@
+// MPI integration tests: `mpiexec -n N prism render` must write exactly the pixels of the
+// single-process render, for every rank count, both schedules and two tile sizes, and survive a
+// slave that hangs or drops tiles.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <tuple>
+
+#include "PrismProcess.h"
+#include "image/ImageIo.h"
+
+namespace prism {
+namespace {
+
+// The default scene (mesh from an OBJ file, glass, mirror, checker, cube map), small and quick.
+const std::string kScene =
+    std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 96 -H 54 --spp 2";
+
+bool samePixels(const ImageRgb& a, const ImageRgb& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
+}
+
+class DistributedRender : public test::ScratchFolderTest {
+ protected:
+  ImageRgb singleProcessReference() {
+    const test::ProcessRun run =
+        test::runPrism("render " + kScene + " -q -o " + path("reference.exr"));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    return readImage(path("reference.exr"));
+  }
+};
+
+class DistributedRenderMatrix
+    : public DistributedRender,
+      public ::testing::WithParamInterface<std::tuple<int, const char*, int>> {};
+
+TEST_P(DistributedRenderMatrix, PixelsAreBitIdenticalToTheSingleProcessRender) {
+  const auto [ranks, schedule, tileSize] = GetParam();
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run =
+      test::runPrismMpi(ranks, "render " + kScene + " -o " + path("mpi.exr") + " --schedule " +
+                                   schedule + " --tile-size " + std::to_string(tileSize));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), reference)) << run.output;
+  if (ranks > 1) {
+    EXPECT_NE(run.output.find("ranks     " + std::to_string(ranks)), std::string::npos)
+        << run.output;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(RanksSchedulesTiles, DistributedRenderMatrix,
+                         ::testing::Combine(::testing::Values(1, 2, 3, 4),
+                                            ::testing::Values("dynamic", "static"),
+                                            ::testing::Values(16, 37)));
+
+TEST_F(DistributedRender, HungSlaveIsRetiredAndTheFrameCompletesWithTheSamePixels) {
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run =
+      test::runPrismMpi(3, "render " + kScene + " -o " + path("hang.exr") +
+                               " --tile-size 8 --lease-timeout 1 --inject-fault hang:2");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("hang.exr")), reference));
+  EXPECT_NE(run.output.find("rank 2:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("re-issued"), std::string::npos) << run.output;
+}
+
+TEST_F(DistributedRender, SlaveDroppingTilesIsRetiredAndTheFrameCompletes) {
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run =
+      test::runPrismMpi(3, "render " + kScene + " -o " + path("drop.exr") +
+                               " --tile-size 8 --lease-timeout 1 --inject-fault drop:1");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("drop.exr")), reference));
+  EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+}
+
+TEST_F(DistributedRender, BadSceneEndsEveryRankWithOneErrorFromRankZero) {
+  const std::string scene = path("bad.yaml");
+  FILE* f = std::fopen(scene.c_str(), "w");
+  std::fputs("objects:\n  - sphere: {center: [0, 0, 0], radius: -1}\n", f);
+  std::fclose(f);
+  const test::ProcessRun run = test::runPrismMpi(3, "render " + scene + " -o " + path("o.png"));
+  EXPECT_NE(run.exitCode, 0);
+  const std::string message = "bad.yaml:2:";
+  const size_t first = run.output.find(message);
+  ASSERT_NE(first, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(message, first + 1), std::string::npos) << "reported twice:\n"
+                                                                    << run.output;
+  EXPECT_FALSE(std::filesystem::exists(path("o.png")));
+}
+
+TEST_F(DistributedRender, BadOptionIsReportedOnceNotByEveryRank) {
+  const test::ProcessRun run =
+      test::runPrismMpi(3, "render " + kScene + " --schedule sideways -o " + path("o.png"));
+  EXPECT_NE(run.exitCode, 0);
+  const size_t first = run.output.find("sideways");
+  ASSERT_NE(first, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("--schedule", run.output.find("\n", first)), std::string::npos)
+      << run.output;
+}
+
+}  // namespace
+}  // namespace prism

@@ -1,0 +1,66 @@
+// Runs the real prism executable (optionally under mpiexec) for end-to-end tests, and gives
+// each test its own scratch folder.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace prism::test {
+
+struct ProcessRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+inline ProcessRun runCommand(const std::string& command) {
+  ProcessRun run;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    run.output.append(buffer.data(), n);
+  }
+  const int status = ::pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+inline ProcessRun runPrism(const std::string& arguments) {
+  return runCommand(std::string(PRISM_EXECUTABLE) + " " + arguments);
+}
+
+// Runs prism on `ranks` MPI processes. Open MPI refuses root without two variables and more
+// ranks than cores without --oversubscribe: the test sets both, the user never has to. The
+// timeout bounds a run that would otherwise hang the suite.
+inline ProcessRun runPrismMpi(int ranks, const std::string& arguments) {
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  return runCommand("timeout 120 mpiexec -n " + std::to_string(ranks) + " --oversubscribe " +
+                    std::string(PRISM_EXECUTABLE) + " " + arguments);
+}
+
+class ScratchFolderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+    for (char& c : name) {
+      if (c == '/') c = '_';
+    }
+    dir_ = std::filesystem::temp_directory_path() / ("prism-" + name);
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+}  // namespace prism::test
