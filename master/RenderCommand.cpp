@@ -40,20 +40,48 @@ std::string defaultOutputPath(const std::string& scenePath) {
 
 namespace {
 
-// Tells every slave the frame is over, whatever happened, so no rank waits for work forever.
-class SlaveShutdown {
- public:
-  explicit SlaveShutdown(MpiSession* session) : session_(session) {}
-  ~SlaveShutdown() {
-    if (!session_) return;
-    for (int rank = 1; rank < session_->size(); ++rank) {
-      session_->send(rank, wire::encodeShutdown());
+// Ends the frame on every slave. Each slave answers a Shutdown with its own Shutdown as it
+// leaves. One that does not answer within the bound is stopped or wedged; MPI_Finalize would
+// wait for it forever, so the job is ended with MPI_Abort instead, after saying why (the image
+// is already written; the exit code stays the run's own).
+// Slaves already found silent during the frame get a shorter wait.
+int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
+                   std::ostream& err) {
+  if (!session || session->size() <= 1) return exitCode;
+  constexpr double kAcknowledgeSeconds = 10.0;
+  constexpr double kSilentAcknowledgeSeconds = 2.0;
+  for (int rank = 1; rank < session->size(); ++rank) session->send(rank, wire::encodeShutdown());
+  std::vector<bool> gone(static_cast<size_t>(session->size()), false);
+  int waiting = session->size() - 1;
+  const auto start = std::chrono::steady_clock::now();
+  auto onlySilentLeft = [&] {
+    for (int rank = 1; rank < session->size(); ++rank) {
+      if (!gone[rank] && !(rank < static_cast<int>(silent.size()) && silent[rank])) return false;
+    }
+    return true;
+  };
+  while (waiting > 0 && secondsSince(start) < kAcknowledgeSeconds &&
+         !(onlySilentLeft() && secondsSince(start) > kSilentAcknowledgeSeconds)) {
+    const auto incoming = session->waitForMessage(0.05);
+    if (!incoming || gone[incoming->source]) continue;
+    try {
+      if (wire::decodeMessage(incoming->bytes).type != wire::MessageType::Shutdown) continue;
+    } catch (const wire::WireError&) {
+      continue;
+    }
+    gone[incoming->source] = true;
+    --waiting;
+  }
+  if (waiting == 0) return exitCode;
+  for (int rank = 1; rank < session->size(); ++rank) {
+    if (!gone[rank]) {
+      err << "prism: rank " << rank << " did not acknowledge the end of the job in "
+          << secondsSince(start) << " s; ending the job with MPI_Abort so it does not hang\n";
     }
   }
-
- private:
-  MpiSession* session_;
-};
+  err.flush();
+  session->abortJob(exitCode);
+}
 
 }  // namespace
 
@@ -89,7 +117,8 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     return 1;
   }
 
-  const SlaveShutdown shutdown(session);
+  int exitCode = 0;
+  std::vector<bool> silentRanks;
   try {
     if (session) {
       const auto broadcastStart = std::chrono::steady_clock::now();
@@ -115,6 +144,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     };
     const FrameResult frame = renderFrame(scene, frameOptions, session);
     progress.finish();
+    for (const WorkerStats& w : frame.workers) silentRanks.push_back(w.retired);
 
     const auto writeStart = std::chrono::steady_clock::now();
     writeImage(frame.image, output, description.render.exposure);
@@ -131,11 +161,12 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       summary.totalSeconds = secondsSince(start);
       printRunSummary(summary, out);
     }
-    return 0;
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";
-    return 1;
+    exitCode = 1;
   }
+  out.flush();
+  return shutDownSlaves(session, exitCode, silentRanks, err);
 }
 
 }  // namespace prism

@@ -12,6 +12,8 @@ FaultInjection parseFaultInjection(const std::string& text) {
     fault.kind = FaultInjection::Kind::Hang;
   } else if (kind == "drop") {
     fault.kind = FaultInjection::Kind::DropTiles;
+  } else if (kind == "crash") {
+    fault.kind = FaultInjection::Kind::Crash;
   }
   size_t used = 0;
   int rank = -1;
@@ -24,8 +26,9 @@ FaultInjection parseFaultInjection(const std::string& text) {
   }
   if (fault.kind == FaultInjection::Kind::None || colon == std::string::npos || rank < 1 ||
       used != text.size() - colon - 1) {
-    throw std::invalid_argument("fault injection '" + text +
-                                "' must be hang:RANK or drop:RANK with a slave rank >= 1");
+    throw std::invalid_argument(
+        "fault injection '" + text +
+        "' must be hang:RANK, drop:RANK or crash:RANK with a slave rank >= 1");
   }
   fault.rank = rank;
   return fault;

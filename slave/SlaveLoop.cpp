@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <mutex>
 #include <utility>
@@ -48,6 +49,7 @@ void awaitShutdown(MpiSession& session, double timeoutSeconds) {
     try {
       if (wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size()).type ==
           wire::MessageType::Shutdown) {
+        session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
         return;
       }
     } catch (const wire::WireError&) {
@@ -91,6 +93,8 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   const bool drop = options.fault.appliesTo(session.rank()) &&
                     options.fault.kind == FaultInjection::Kind::DropTiles;
   size_t received = 0;
+  bool shutdownReceived = false;
+  bool masterSilent = false;
   auto lastHeard = Clock::now();
   int exitCode = 0;
   try {
@@ -105,6 +109,7 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
           std::fprintf(stderr, "prism: rank %d: no word from rank 0 for %.0f s, giving up\n",
                        session.rank(), options.masterTimeoutSeconds);
           exitCode = 1;
+          masterSilent = true;
           break;
         }
         continue;
@@ -112,10 +117,17 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       lastHeard = Clock::now();
       const wire::Message message =
           wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
-      if (message.type == wire::MessageType::Shutdown) break;
+      if (message.type == wire::MessageType::Shutdown) {
+        shutdownReceived = true;
+        break;
+      }
       if (message.type != wire::MessageType::TileJob) continue;
       const wire::TileJobMessage job = wire::decodeTileJob(message);
       ++received;
+      if (options.fault.appliesTo(session.rank()) &&
+          options.fault.kind == FaultInjection::Kind::Crash) {
+        std::_Exit(9);  // dies without MPI_Finalize, like a killed process
+      }
       if (hang || (drop && received % 2 == 0)) continue;
       jobs.push({job.tileIndex, job.rect});
     }
@@ -131,6 +143,11 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
     session.send(0, wire::encodeError({std::string("render thread failed: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);
     return 1;
+  }
+  if (shutdownReceived) {
+    session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+  } else if (!masterSilent) {
+    awaitShutdown(session, options.masterTimeoutSeconds);  // after an error this rank reported
   }
   return exitCode;
 }

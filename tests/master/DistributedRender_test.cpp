@@ -76,6 +76,28 @@ TEST_F(DistributedRender, SlaveDroppingTilesIsRetiredAndTheFrameCompletes) {
   EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
 }
 
+// Open MPI 4.1 has no ULFM: by default the death of any rank aborts the whole job. With
+// `mpirun --enable-recovery` the others live on, and the master re-issues the dead slave's tiles.
+TEST_F(DistributedRender, CrashedSlaveUnderEnableRecoveryIsRetiredAndTheFrameCompletes) {
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run =
+      test::runPrismMpi(3,
+                        "render " + kScene + " -o " + path("crash.exr") +
+                            " --tile-size 8 --lease-timeout 1 --inject-fault crash:2",
+                        "--enable-recovery");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("crash.exr")), reference));
+  EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+}
+
+TEST_F(DistributedRender, CrashedSlaveWithoutRecoveryEndsTheJobPromptly) {
+  const test::ProcessRun run = test::runPrismMpi(
+      3, "render " + kScene + " -o " + path("crash.png") + " --inject-fault crash:1");
+  EXPECT_NE(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.exitCode, 124) << "timed out:\n" << run.output;  // `timeout` exit code
+  EXPECT_FALSE(std::filesystem::exists(path("crash.png")));
+}
+
 TEST_F(DistributedRender, BadSceneEndsEveryRankWithOneErrorFromRankZero) {
   const std::string scene = path("bad.yaml");
   FILE* f = std::fopen(scene.c_str(), "w");

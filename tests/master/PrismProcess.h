@@ -39,11 +39,12 @@ inline ProcessRun runPrism(const std::string& arguments) {
 // Runs prism on `ranks` MPI processes. Open MPI refuses root without two variables and more
 // ranks than cores without --oversubscribe: the test sets both, the user never has to. The
 // timeout bounds a run that would otherwise hang the suite.
-inline ProcessRun runPrismMpi(int ranks, const std::string& arguments) {
+inline ProcessRun runPrismMpi(int ranks, const std::string& arguments,
+                              const std::string& mpiexecOptions = "") {
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   return runCommand("timeout 120 mpiexec -n " + std::to_string(ranks) + " --oversubscribe " +
-                    std::string(PRISM_EXECUTABLE) + " " + arguments);
+                    mpiexecOptions + " " + std::string(PRISM_EXECUTABLE) + " " + arguments);
 }
 
 class ScratchFolderTest : public ::testing::Test {
