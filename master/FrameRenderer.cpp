@@ -73,6 +73,13 @@ class FrameState {
     changed_.notify_all();
   }
 
+  void retire(int rank) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    scheduler_.retire(rank);
+    stats_[rank].retired = true;
+    changed_.notify_all();
+  }
+
   void recordReady(int rank, double buildSeconds, int threads) {
     const std::lock_guard<std::mutex> lock(mutex_);
     stats_[rank].buildSeconds = buildSeconds;
@@ -134,7 +141,10 @@ void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
     while (state.outstanding(rank) < static_cast<size_t>(prefetch)) {
       const std::optional<TileJob> job = state.nextJobFor(rank);
       if (!job) break;
-      cluster.send(rank, wire::encodeTileJob({0, job->tileIndex, job->rect}));
+      if (!cluster.send(rank, wire::encodeTileJob({0, job->tileIndex, job->rect}))) {
+        state.retire(rank);  // MPI knows it is gone: its tiles go back at once
+        break;
+      }
     }
   }
   const std::optional<IncomingMessage> incoming = cluster.waitForMessage(0.005);

@@ -50,9 +50,14 @@ int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& s
   if (!session || session->size() <= 1) return exitCode;
   constexpr double kAcknowledgeSeconds = 10.0;
   constexpr double kSilentAcknowledgeSeconds = 2.0;
-  for (int rank = 1; rank < session->size(); ++rank) session->send(rank, wire::encodeShutdown());
   std::vector<bool> gone(static_cast<size_t>(session->size()), false);
   int waiting = session->size() - 1;
+  for (int rank = 1; rank < session->size(); ++rank) {
+    if (!session->send(rank, wire::encodeShutdown())) {
+      gone[rank] = true;  // MPI already knows it is gone
+      --waiting;
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   auto onlySilentLeft = [&] {
     for (int rank = 1; rank < session->size(); ++rank) {

@@ -35,6 +35,10 @@ class TileScheduler {
 
   // Retires workers silent past their lease and re-queues their tiles; returns them.
   std::vector<int> reclaimExpired(double now);
+  // Retires a worker known to be gone (a send to it failed) and re-queues its tiles.
+  void retire(int worker) {
+    if (!workers_[worker].retired) retire(workers_[worker]);
+  }
 
   bool finished() const { return doneCount_ == done_.size(); }
   size_t doneCount() const { return doneCount_; }

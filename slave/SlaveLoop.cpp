@@ -100,8 +100,16 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   try {
     for (;;) {
       if (pool.failed()) break;
+      bool masterReachable = true;
       for (TileResult& tile : outbox.take()) {
-        session.send(0, wire::encodeTileResult({0, std::move(tile)}));
+        masterReachable =
+            session.send(0, wire::encodeTileResult({0, std::move(tile)})) && masterReachable;
+      }
+      if (!masterReachable) {
+        std::fprintf(stderr, "prism: rank %d: rank 0 is gone, stopping\n", session.rank());
+        exitCode = 1;
+        masterSilent = true;
+        break;
       }
       const auto incoming = session.waitForMessage(0.002);
       if (!incoming) {

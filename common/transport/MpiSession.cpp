@@ -99,7 +99,7 @@ void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {
   }
 }
 
-void MpiSession::send(int dest, std::vector<uint8_t> bytes) {
+bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
     throw TransportError("message of " + std::to_string(bytes.size()) + " bytes is too large");
   }
@@ -107,10 +107,9 @@ void MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   pending->bytes = std::move(bytes);
   const int error = MPI_Isend(pending->bytes.data(), static_cast<int>(pending->bytes.size()),
                               MPI_BYTE, dest, kMessageTag, MPI_COMM_WORLD, &pending->request);
-  if (error != MPI_SUCCESS) {
-    throw TransportError("cannot send to rank " + std::to_string(dest));
-  }
+  if (error != MPI_SUCCESS) return false;
   pendingSends_.push_back(std::move(pending));
+  return true;
 }
 
 size_t MpiSession::progressSends() {

@@ -43,7 +43,9 @@ class MpiSession {
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds);
 
   // Queues bytes for rank dest without blocking; the buffer lives until the send completes.
-  void send(int dest, std::vector<uint8_t> bytes);
+  // Returns false when MPI refuses at once (the destination is known to be gone, e.g. under
+  // `mpirun --enable-recovery`); the caller decides what that rank's loss means.
+  bool send(int dest, std::vector<uint8_t> bytes);
   // Completes finished sends; returns how many are still outstanding.
   size_t progressSends();
 

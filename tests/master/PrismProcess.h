@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -55,7 +56,9 @@ class ScratchFolderTest : public ::testing::Test {
     for (char& c : name) {
       if (c == '/') c = '_';
     }
-    dir_ = std::filesystem::temp_directory_path() / ("prism-" + name);
+    // The process id keeps two runs of the same test (ctest -j, repeated runs) apart.
+    dir_ = std::filesystem::temp_directory_path() /
+           ("prism-" + name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }
