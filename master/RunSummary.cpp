@@ -33,6 +33,10 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
   if (f.reissuedTiles > 0) out << "; " << f.reissuedTiles << " tiles re-issued";
   out << "\n";
   for (const WorkerStats& w : f.workers) {
+    if (w.rank > 0 && w.threads == 0 && w.tiles == 0 && !w.retired) {
+      out << "  rank " << w.rank << ": still building its scene when the frame was done\n";
+      continue;
+    }
     out << "  rank " << w.rank << ": " << w.threads << " threads, " << w.tiles << " tiles, "
         << formatCount(static_cast<double>(w.rays.total())) << " rays, busy "
         << fixed(w.busySeconds, 2) << " thread-s";
