@@ -9,6 +9,7 @@
 #include "master/ProgressBar.h"
 #include "master/ResourceCheck.h"
 #include "master/RunSummary.h"
+#include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
 #include "slave/SlaveLoop.h"
@@ -37,58 +38,6 @@ void applyOverrides(const RenderOptions& o, RenderSettings& s) {
 std::string defaultOutputPath(const std::string& scenePath) {
   return std::filesystem::path(scenePath).stem().string() + ".png";
 }
-
-namespace {
-
-// Ends the frame on every slave. Each slave answers a Shutdown with its own Shutdown as it
-// leaves. One that does not answer within the bound is stopped or wedged; MPI_Finalize would
-// wait for it forever, so the job is ended with MPI_Abort instead, after saying why (the image
-// is already written; the exit code stays the run's own).
-// Slaves already found silent during the frame get a shorter wait.
-int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
-                   std::ostream& err) {
-  if (!session || session->size() <= 1) return exitCode;
-  constexpr double kAcknowledgeSeconds = 10.0;
-  constexpr double kSilentAcknowledgeSeconds = 2.0;
-  std::vector<bool> gone(static_cast<size_t>(session->size()), false);
-  int waiting = session->size() - 1;
-  for (int rank = 1; rank < session->size(); ++rank) {
-    if (!session->send(rank, wire::encodeShutdown())) {
-      gone[rank] = true;  // MPI already knows it is gone
-      --waiting;
-    }
-  }
-  const auto start = std::chrono::steady_clock::now();
-  auto onlySilentLeft = [&] {
-    for (int rank = 1; rank < session->size(); ++rank) {
-      if (!gone[rank] && !(rank < static_cast<int>(silent.size()) && silent[rank])) return false;
-    }
-    return true;
-  };
-  while (waiting > 0 && secondsSince(start) < kAcknowledgeSeconds &&
-         !(onlySilentLeft() && secondsSince(start) > kSilentAcknowledgeSeconds)) {
-    const auto incoming = session->waitForMessage(0.05);
-    if (!incoming || gone[incoming->source]) continue;
-    try {
-      if (wire::decodeMessage(incoming->bytes).type != wire::MessageType::Shutdown) continue;
-    } catch (const wire::WireError&) {
-      continue;
-    }
-    gone[incoming->source] = true;
-    --waiting;
-  }
-  if (waiting == 0) return exitCode;
-  for (int rank = 1; rank < session->size(); ++rank) {
-    if (!gone[rank]) {
-      err << "prism: rank " << rank << " did not acknowledge the end of the job in "
-          << secondsSince(start) << " s; ending the job with MPI_Abort so it does not hang\n";
-    }
-  }
-  err.flush();
-  session->abortJob(exitCode);
-}
-
-}  // namespace
 
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,
               MpiSession* session) {

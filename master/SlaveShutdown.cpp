@@ -1,0 +1,61 @@
+#include "master/SlaveShutdown.h"
+
+#include <chrono>
+#include <ostream>
+
+#include "transport/MpiSession.h"
+#include "wire/Messages.h"
+
+namespace prism {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
+                   std::ostream& err) {
+  if (!session || session->size() <= 1) return exitCode;
+  constexpr double kAcknowledgeSeconds = 10.0;
+  constexpr double kSilentAcknowledgeSeconds = 2.0;
+  std::vector<bool> gone(static_cast<size_t>(session->size()), false);
+  int waiting = session->size() - 1;
+  for (int rank = 1; rank < session->size(); ++rank) {
+    if (!session->send(rank, wire::encodeShutdown())) {
+      gone[rank] = true;  // MPI already knows it is gone
+      --waiting;
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto onlySilentLeft = [&] {
+    for (int rank = 1; rank < session->size(); ++rank) {
+      if (!gone[rank] && !(rank < static_cast<int>(silent.size()) && silent[rank])) return false;
+    }
+    return true;
+  };
+  while (waiting > 0 && secondsSince(start) < kAcknowledgeSeconds &&
+         !(onlySilentLeft() && secondsSince(start) > kSilentAcknowledgeSeconds)) {
+    const auto incoming = session->waitForMessage(0.05);
+    if (!incoming || gone[incoming->source]) continue;
+    try {
+      if (wire::decodeMessage(incoming->bytes).type != wire::MessageType::Shutdown) continue;
+    } catch (const wire::WireError&) {
+      continue;
+    }
+    gone[incoming->source] = true;
+    --waiting;
+  }
+  if (waiting == 0) return exitCode;
+  for (int rank = 1; rank < session->size(); ++rank) {
+    if (!gone[rank]) {
+      err << "prism: rank " << rank << " did not acknowledge the end of the job in "
+          << secondsSince(start) << " s; ending the job with MPI_Abort so it does not hang\n";
+    }
+  }
+  err.flush();
+  session->abortJob(exitCode);
+}
+
+}  // namespace prism

@@ -1,0 +1,19 @@
+// The end of an MPI job. Each slave answers rank 0's Shutdown with its own Shutdown as it leaves.
+// One that does not answer within the bound is stopped or wedged, and MPI_Finalize would wait
+// for it forever; so the job is ended with MPI_Abort instead, after saying why. The image is
+// already written by then, and the exit code stays the run's own.
+#pragma once
+
+#include <iosfwd>
+#include <vector>
+
+namespace prism {
+
+class MpiSession;
+
+// Returns exitCode when every slave acknowledged (or session is null or has no slaves); does
+// not return otherwise. Slaves marked silent (retired during the frame) get a shorter wait.
+int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
+                   std::ostream& err);
+
+}  // namespace prism
