@@ -62,8 +62,9 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
                                   CLI::ignore_case))
       ->option_text("dynamic|static");
   render
-      ->add_option("--lease-timeout", o.leaseSeconds,
-                   "Seconds a slave may hold tiles without answering before they are re-issued")
+      ->add_option(
+          "--lease-timeout", o.leaseSeconds,
+          "Seconds a slave may hold tiles without answering before they are re-issued (default 30)")
       ->check(CLI::Range(0.1, 86400.0));
   render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
