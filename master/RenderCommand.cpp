@@ -14,17 +14,10 @@
 #include "scene/Scene.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiSession.h"
+#include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
 namespace prism {
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 void applyOverrides(const RenderOptions& o, RenderSettings& s) {
   if (o.width) s.width = *o.width;
   if (o.height) s.height = *o.height;

@@ -4,17 +4,10 @@
 #include <ostream>
 
 #include "transport/MpiSession.h"
+#include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
 namespace prism {
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
                    std::ostream& err) {
   if (!session || session->size() <= 1) return exitCode;

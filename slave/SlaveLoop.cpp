@@ -11,16 +11,13 @@
 #include "slave/JobQueue.h"
 #include "slave/TileWorkerPool.h"
 #include "transport/MpiSession.h"
+#include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
 namespace prism {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using Clock = SteadyClock;
 
 // Finished tiles waiting for the main thread, the only one that may call MPI.
 class Outbox {

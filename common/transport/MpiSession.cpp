@@ -8,16 +8,14 @@
 #include <limits>
 #include <thread>
 
+#include "util/Stopwatch.h"
+
 namespace prism {
 namespace {
 
 constexpr int kMessageTag = 7;
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using Clock = SteadyClock;
 
 // Polls a request until it completes or the time is up. Short sleeps keep a waiting rank from
 // burning the core its render threads need.
