@@ -80,6 +80,13 @@ class FrameState {
     changed_.notify_all();
   }
 
+  void recordProgress(int rank, const wire::ProgressMessage& progress) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    scheduler_.heardFrom(rank, now());
+    stats_[rank].lostTiles += scheduler_.reconcile(rank, progress.jobsReceived, progress.heldTiles);
+    changed_.notify_all();
+  }
+
   void recordReady(int rank, double buildSeconds, int threads) {
     const std::lock_guard<std::mutex> lock(mutex_);
     stats_[rank].buildSeconds = buildSeconds;
@@ -154,6 +161,9 @@ void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
     switch (message.type) {
       case wire::MessageType::TileResult:
         state.accept(wire::decodeTileResult(message).result, incoming->source);
+        break;
+      case wire::MessageType::Progress:
+        state.recordProgress(incoming->source, wire::decodeProgress(message));
         break;
       case wire::MessageType::Ready: {
         const wire::ReadyMessage ready = wire::decodeReady(message);

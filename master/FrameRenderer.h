@@ -35,6 +35,7 @@ struct WorkerStats {
   double busySeconds = 0.0;   // thread-seconds spent rendering its tiles
   double buildSeconds = 0.0;  // building its Scene from the description
   size_t duplicates = 0;      // results for tiles someone else had already delivered
+  size_t lostTiles = 0;       // tiles it received but lost (found by its heartbeat), re-issued
   bool retired = false;       // stopped answering; its tiles were re-issued
 };
 

@@ -42,6 +42,7 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
         << fixed(w.busySeconds, 2) << " thread-s";
     if (w.rank > 0) out << ", scene built in " << milliseconds(w.buildSeconds);
     if (w.duplicates > 0) out << ", " << w.duplicates << " late duplicates dropped";
+    if (w.lostTiles > 0) out << ", lost " << w.lostTiles << " tiles (re-issued)";
     if (w.retired) out << "; STOPPED ANSWERING, its tiles were re-issued";
     out << "\n";
   }

@@ -36,6 +36,7 @@ std::optional<uint32_t> TileScheduler::next(int worker, double now) {
       if (done_[tile]) continue;
       if (w.leased.empty()) w.lastHeard = now;  // the silence clock starts with the first lease
       w.leased.push_back(tile);
+      w.leasedSeq.push_back(w.sent++);
       issued_[tile] = true;
       return tile;
     }
@@ -49,7 +50,13 @@ bool TileScheduler::complete(uint32_t tile, int worker, double now) {
   }
   Worker& w = workers_[worker];
   w.lastHeard = now;
-  w.leased.erase(std::remove(w.leased.begin(), w.leased.end(), tile), w.leased.end());
+  for (size_t i = 0; i < w.leased.size(); ++i) {
+    if (w.leased[i] == tile) {
+      w.leased.erase(w.leased.begin() + static_cast<std::ptrdiff_t>(i));
+      w.leasedSeq.erase(w.leasedSeq.begin() + static_cast<std::ptrdiff_t>(i));
+      break;
+    }
+  }
   if (!issued_[tile] || done_[tile]) return false;
   done_[tile] = true;
   ++doneCount_;
@@ -66,8 +73,31 @@ void TileScheduler::retire(Worker& w) {
     }
   }
   w.leased.clear();
+  w.leasedSeq.clear();
   for (uint32_t tile : w.own) shared_.push_back(tile);
   w.own.clear();
+}
+
+size_t TileScheduler::reconcile(int worker, uint64_t jobsReceived,
+                                const std::vector<uint32_t>& heldTiles) {
+  Worker& w = workers_[worker];
+  size_t lost = 0;
+  for (size_t i = 0; i < w.leased.size();) {
+    const uint32_t tile = w.leased[i];
+    const bool received = w.leasedSeq[i] < jobsReceived;
+    if (received && std::find(heldTiles.begin(), heldTiles.end(), tile) == heldTiles.end()) {
+      w.leased.erase(w.leased.begin() + static_cast<std::ptrdiff_t>(i));
+      w.leasedSeq.erase(w.leasedSeq.begin() + static_cast<std::ptrdiff_t>(i));
+      if (!done_[tile]) {
+        shared_.push_front(tile);
+        ++reissued_;
+        ++lost;
+      }
+      continue;
+    }
+    ++i;
+  }
+  return lost;
 }
 
 std::vector<int> TileScheduler::reclaimExpired(double now) {

@@ -4,10 +4,12 @@
 // Dynamic schedule: one queue in row-major order; every worker takes the next tile.
 // Static schedule: tile i belongs to worker i mod W (interleaved rows of tiles), for honest
 // comparison with the dynamic one.
-// Leases: a tile handed out is leased to its worker. When a worker has been silent (no result)
-// for leaseSeconds while holding leases, it is retired: its tiles go back to the front of the
-// queue for anyone to take, and it gets no more work. A late result from it is still accepted
-// if the tile is not done yet; a second copy of a tile is reported as a duplicate.
+// Leases: a tile handed out is leased to its worker. When a worker has been silent (no result,
+// no heartbeat) for leaseSeconds while holding leases, it is retired: its tiles go back to the
+// front of the queue for anyone to take, and it gets no more work. A late result from it is
+// still accepted if the tile is not done yet; a second copy of a tile is reported as a
+// duplicate. A live worker's heartbeat lists the tiles it holds; a tile it was sent, has
+// received and neither holds nor delivered was lost, and goes back to the queue at once.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +35,13 @@ class TileScheduler {
   // tile index out of range or a tile never handed out.
   bool complete(uint32_t tile, int worker, double now);
 
+  // A heartbeat: the worker is alive.
+  void heardFrom(int worker, double now) { workers_[worker].lastHeard = now; }
+
+  // Re-queues the tiles among the first jobsReceived sent to this worker that it no longer
+  // holds and has not delivered; returns how many.
+  size_t reconcile(int worker, uint64_t jobsReceived, const std::vector<uint32_t>& heldTiles);
+
   // Retires workers silent past their lease and re-queues their tiles; returns them.
   std::vector<int> reclaimExpired(double now);
   // Retires a worker known to be gone (a send to it failed) and re-queues its tiles.
@@ -48,8 +57,10 @@ class TileScheduler {
 
  private:
   struct Worker {
-    std::deque<uint32_t> own;      // static schedule: this worker's tiles
-    std::vector<uint32_t> leased;  // handed out, not finished
+    std::deque<uint32_t> own;         // static schedule: this worker's tiles
+    std::vector<uint32_t> leased;     // handed out, not finished
+    std::vector<uint64_t> leasedSeq;  // the order in which each leased tile was sent
+    uint64_t sent = 0;
     double lastHeard = 0.0;
     bool exempt = false;
     bool retired = false;

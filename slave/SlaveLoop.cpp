@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <utility>
 
 #include "scene/Scene.h"
@@ -89,7 +90,10 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
   const bool drop = options.fault.appliesTo(session.rank()) &&
                     options.fault.kind == FaultInjection::Kind::DropTiles;
-  size_t received = 0;
+  constexpr double kHeartbeatSeconds = 0.5;
+  uint64_t received = 0;
+  std::set<uint32_t> held;  // received, not yet returned
+  auto lastHeartbeat = Clock::now();
   bool shutdownReceived = false;
   bool masterSilent = false;
   auto lastHeard = Clock::now();
@@ -99,8 +103,16 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       if (pool.failed()) break;
       bool masterReachable = true;
       for (TileResult& tile : outbox.take()) {
+        held.erase(tile.tileIndex);
         masterReachable =
             session.send(0, wire::encodeTileResult({0, std::move(tile)})) && masterReachable;
+      }
+      // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets
+      // the master spot tiles this rank lost.
+      if (!hang && secondsSince(lastHeartbeat) > kHeartbeatSeconds) {
+        const wire::ProgressMessage progress{received, {held.begin(), held.end()}};
+        masterReachable = session.send(0, wire::encodeProgress(progress)) && masterReachable;
+        lastHeartbeat = Clock::now();
       }
       if (!masterReachable) {
         std::fprintf(stderr, "prism: rank %d: rank 0 is gone, stopping\n", session.rank());
@@ -134,6 +146,7 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         std::_Exit(9);  // dies without MPI_Finalize, like a killed process
       }
       if (hang || (drop && received % 2 == 0)) continue;
+      held.insert(job.tileIndex);
       jobs.push({job.tileIndex, job.rect});
     }
   } catch (const std::exception& e) {

@@ -17,7 +17,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::Error);
+         raw <= static_cast<uint16_t>(MessageType::Progress);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -93,6 +93,8 @@ const char* messageTypeName(MessageType type) {
       return "Shutdown";
     case MessageType::Error:
       return "Error";
+    case MessageType::Progress:
+      return "Progress";
   }
   return "unknown";
 }
@@ -255,6 +257,24 @@ std::vector<uint8_t> encodeShutdown() {
 
 void decodeShutdown(const Message& message) {
   decodePayload(message, MessageType::Shutdown, [](ByteReader&) { return 0; });
+}
+
+std::vector<uint8_t> encodeProgress(const ProgressMessage& progress) {
+  return encodeWith(MessageType::Progress, [&](ByteWriter& w) {
+    const auto& [jobsReceived, heldTiles] = progress;
+    w.writeU64(jobsReceived);
+    w.writeU32s(heldTiles);
+  });
+}
+
+ProgressMessage decodeProgress(const Message& message) {
+  return decodePayload(message, MessageType::Progress, [](ByteReader& r) {
+    ProgressMessage progress;
+    auto& [jobsReceived, heldTiles] = progress;
+    jobsReceived = r.readU64();
+    heldTiles = r.readU32s();
+    return progress;
+  });
 }
 
 }  // namespace prism::wire

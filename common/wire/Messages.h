@@ -26,7 +26,8 @@ enum class MessageType : uint16_t {
   TileJob = 3,
   TileResult = 4,
   Shutdown = 5,
-  Error = 6
+  Error = 6,
+  Progress = 7
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -69,6 +70,14 @@ struct ErrorMessage {
   std::string text;
 };
 
+// A slave's heartbeat while it has work: how many jobs it has received so far and which tiles
+// it still holds (queued or rendering). Jobs and results travel in order between two ranks,
+// so a tile sent among the first jobsReceived jobs that is neither held nor delivered was lost.
+struct ProgressMessage {
+  uint64_t jobsReceived = 0;
+  std::vector<uint32_t> heldTiles;
+};
+
 // Each encodeX returns a full message (envelope included); each decodeX checks the message type
 // and the payload (sizes, ranges, nothing left over) and throws WireError.
 std::vector<uint8_t> encodeScene(const SceneDescription& scene);
@@ -85,6 +94,9 @@ ReadyMessage decodeReady(const Message& message);
 
 std::vector<uint8_t> encodeError(const ErrorMessage& error);
 ErrorMessage decodeError(const Message& message);
+
+std::vector<uint8_t> encodeProgress(const ProgressMessage& progress);
+ProgressMessage decodeProgress(const Message& message);
 
 std::vector<uint8_t> encodeShutdown();
 // Checks that message is a Shutdown with an empty payload.

@@ -86,5 +86,29 @@ TEST(TileScheduler, StaticScheduleHandsARetiredWorkersShareToOthers) {
   EXPECT_EQ(got, (std::set<uint32_t>{0, 1, 2, 3, 4, 5}));
 }
 
+TEST(TileScheduler, HeartbeatKeepsASlowWorkerAlive) {
+  TileScheduler s(4, 2, Schedule::Dynamic, 5.0);
+  s.next(1, 0.0);
+  s.heardFrom(1, 4.0);
+  EXPECT_TRUE(s.reclaimExpired(8.0).empty());
+  EXPECT_EQ(s.reclaimExpired(9.5), std::vector<int>{1});
+}
+
+TEST(TileScheduler, ReconcileReissuesOnlyTilesReceivedButNoLongerHeld) {
+  TileScheduler s(10, 2, Schedule::Dynamic, 30.0);
+  const uint32_t a = *s.next(1, 0.0);  // job 0
+  const uint32_t b = *s.next(1, 0.0);  // job 1
+  const uint32_t c = *s.next(1, 0.0);  // job 2, still in flight to the worker
+  // The worker has received jobs 0 and 1, holds a, and lost b; c has not arrived yet.
+  EXPECT_EQ(s.reconcile(1, 2, {a}), 1u);
+  EXPECT_EQ(s.outstanding(1), 2u);  // a and c
+  EXPECT_EQ(s.reissuedCount(), 1u);
+  EXPECT_EQ(s.next(0, 1.0), b);  // the lost tile is first in line
+  // A tile delivered before the heartbeat is not reported lost.
+  EXPECT_TRUE(s.complete(a, 1, 1.0));
+  EXPECT_EQ(s.reconcile(1, 3, {c}), 0u);
+  EXPECT_FALSE(s.retired(1));
+}
+
 }  // namespace
 }  // namespace prism

@@ -146,7 +146,7 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad = header(kMagic, 2, 6, 0, fnv1a64(nullptr, 0));
   expectWireError([&] { decodeMessage(bad); }, "message version 2, this build speaks 1");
 
-  for (uint16_t type : {0, 7, 0xFFFF}) {
+  for (uint16_t type : {0, 8, 0xFFFF}) {
     bad = header(kMagic, 1, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -255,6 +255,19 @@ TEST(Messages, TileTimeMustBeFiniteAndNonNegative) {
   EXPECT_THROW(decodeTileResult(decodeMessage(encodeTileResult(m))), WireError);
 }
 
+TEST(Messages, ProgressRoundTripsAndRejectsCorruption) {
+  const ProgressMessage progress{12345678901ull, {3, 1, 4, 1, 5}};
+  std::vector<uint8_t> bytes = encodeProgress(progress);
+  const ProgressMessage back = decodeProgress(decodeMessage(bytes));
+  EXPECT_EQ(back.jobsReceived, progress.jobsReceived);
+  EXPECT_EQ(back.heldTiles, progress.heldTiles);
+  EXPECT_EQ(decodeProgress(decodeMessage(encodeProgress({}))).heldTiles.size(), 0u);
+  bytes.back() ^= 0x01;
+  EXPECT_THROW(decodeMessage(bytes), WireError);
+  EXPECT_THROW(decodeProgress(decodeMessage(encodeShutdown())), WireError);
+  EXPECT_STREQ(messageTypeName(MessageType::Progress), "Progress");
+}
+
 TEST(Messages, MessageStructsMatchTheCodec) {
 #if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
   const char* update =
@@ -266,6 +279,7 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(TileResultMessage), 88u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
+  EXPECT_EQ(sizeof(ProgressMessage), 32u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
