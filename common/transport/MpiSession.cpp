@@ -71,13 +71,6 @@ MpiSession::~MpiSession() {
   MPI_Finalize();
 }
 
-std::string MpiSession::processorName() const {
-  char name[MPI_MAX_PROCESSOR_NAME];
-  int length = 0;
-  MPI_Get_processor_name(name, &length);
-  return std::string(name, static_cast<size_t>(length));
-}
-
 void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {
   uint64_t size = bytes.size();
   MPI_Request request;

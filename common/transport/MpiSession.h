@@ -37,7 +37,6 @@ class MpiSession {
 
   int rank() const { return rank_; }
   int size() const { return size_; }
-  std::string processorName() const;
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds);
