@@ -20,15 +20,9 @@ struct RenderOverrideValues {
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
-void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
-  CLI::App* render = app.add_subcommand(
-      "render",
-      "Render a scene to an image file.\n"
-      "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
-      "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
+// The options `render` and `view` share: scene, overrides, threads and distribution.
+void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
   render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
-  render->add_option("-o,--output", o.outputPath,
-                     "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_option("-t,--threads", o.threads, "Worker threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
   render->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
@@ -52,7 +46,6 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
       ->option_text("moller-trumbore|plane-inside");
   render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
-  render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
   render
       ->add_option("--schedule", o.schedule,
                    "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)")
@@ -76,9 +69,67 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
       ->group("");
 }
 
+void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
+  CLI::App* render = app.add_subcommand(
+      "render",
+      "Render a scene to an image file.\n"
+      "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
+      "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
+  addSceneOptions(render, o, v);
+  render->add_option("-o,--output", o.outputPath,
+                     "Image to write; the extension picks the format (default: <scene>.png)");
+  render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+}
+
+void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Render a scene live in a Qt window (rank 0 only; other ranks render tiles).\n"
+      "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
+      "N normals, n image, q quits, h or F1 shows every key. See docs/viewer.md.");
+  addSceneOptions(view, o.render, v);
+  view->add_option("--preview-scale", o.previewScale,
+                   "After a camera change, first render 1/N of each side at 1 spp (default 4; "
+                   "1: no preview)")
+      ->check(CLI::Range(1, 64));
+  view->add_option("--max-passes", o.maxPasses,
+                   "Full-resolution passes of --spp samples averaged while the camera is still "
+                   "(default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  view->add_option("--speedup-csv", o.speedupCsv,
+                   "Speedup table (columns p,seconds,speedup,efficiency) to chart at start")
+      ->check(CLI::ExistingFile);
+  view->add_option("--exit-after-passes", o.exitAfterPasses,
+                   "Quit once this many full passes of the starting view are done (scripts)")
+      ->check(CLI::Range(1, 1 << 20));
+  view->add_option("--save", o.savePath,
+                   "Save the image here (.png or .exr) when the viewer quits");
+  view->add_option("--screenshot", o.screenshotPath,
+                   "Save a picture of the whole window (.png) after --screenshot-after, then quit");
+  view->add_option("--screenshot-after", o.screenshotSeconds,
+                   "Seconds after start for --screenshot (default 2)")
+      ->check(CLI::Range(0.0, 3600.0));
+  view->add_option("--benchmark-moves", o.benchmarkMoves,
+                   "Orbit the camera N times, each as soon as the last preview is shown; print "
+                   "the preview latencies and frame rate, then quit")
+      ->check(CLI::Range(1, 100000));
+}
+
+void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& overrides,
+                         RenderOptions& options) {
+  auto given = [&](const char* name) { return command->get_option(name)->count() > 0; };
+  if (given("--width")) options.width = overrides.width;
+  if (given("--height")) options.height = overrides.height;
+  if (given("--spp")) options.samples = overrides.samples;
+  if (given("--max-depth")) options.maxDepth = overrides.maxDepth;
+  if (given("--seed")) options.seed = overrides.seed;
+  if (given("--exposure")) options.exposure = overrides.exposure;
+  if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
+}
+
 }  // namespace
 
-int runCli(int argc, char** argv, MpiSession* session) {
+int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer) {
   const bool quietRank = session && session->rank() != 0;
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
@@ -88,6 +139,9 @@ int runCli(int argc, char** argv, MpiSession* session) {
   RenderOptions renderOptions;
   RenderOverrideValues overrides;
   addRenderCommand(app, renderOptions, overrides);
+  ViewOptions viewOptions;
+  RenderOverrideValues viewOverrides;
+  addViewCommand(app, viewOptions, viewOverrides);
 
   try {
     app.parse(argc, argv);
@@ -101,15 +155,13 @@ int runCli(int argc, char** argv, MpiSession* session) {
 
   CLI::App* render = app.get_subcommand("render");
   if (render->parsed()) {
-    auto given = [&](const char* name) { return render->get_option(name)->count() > 0; };
-    if (given("--width")) renderOptions.width = overrides.width;
-    if (given("--height")) renderOptions.height = overrides.height;
-    if (given("--spp")) renderOptions.samples = overrides.samples;
-    if (given("--max-depth")) renderOptions.maxDepth = overrides.maxDepth;
-    if (given("--seed")) renderOptions.seed = overrides.seed;
-    if (given("--exposure")) renderOptions.exposure = overrides.exposure;
-    if (given("--triangle-test")) renderOptions.triangleTest = overrides.triangleTest;
+    applyGivenOverrides(render, overrides, renderOptions);
     return runRender(renderOptions, std::cout, std::cerr, session);
+  }
+  CLI::App* view = app.get_subcommand("view");
+  if (view->parsed()) {
+    applyGivenOverrides(view, viewOverrides, viewOptions.render);
+    return runView(viewOptions, std::cout, std::cerr, session, viewer);
   }
   return 1;
 }

@@ -4,12 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "master/ViewCommand.h"
+
 namespace prism {
 
 class MpiSession;
 
 // Parses argv and runs the chosen subcommand; returns the process exit code. In an MPI run
-// every rank parses the same arguments; only rank 0 prints help and usage errors.
-int runCli(int argc, char** argv, MpiSession* session = nullptr);
+// every rank parses the same arguments; only rank 0 prints help and usage errors. viewer runs
+// `prism view` on rank 0; it is empty in a build without Qt.
+int runCli(int argc, char** argv, MpiSession* session = nullptr, const ViewerRunner& viewer = {});
 
 }  // namespace prism

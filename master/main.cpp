@@ -5,6 +5,9 @@
 
 #include "master/Cli.h"
 #include "transport/MpiSession.h"
+#ifdef PRISM_HAVE_VIEWER
+#include "gui/Viewer.h"
+#endif
 
 int main(int argc, char** argv) {
   std::unique_ptr<prism::MpiSession> session;
@@ -16,5 +19,9 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+#ifdef PRISM_HAVE_VIEWER
+  return prism::runCli(argc, argv, session.get(), prism::runViewer);
+#else
   return prism::runCli(argc, argv, session.get());
+#endif
 }

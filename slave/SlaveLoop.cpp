@@ -20,21 +20,22 @@ namespace {
 
 using Clock = SteadyClock;
 
-// Finished tiles waiting for the main thread, the only one that may call MPI.
+// Finished tiles, with the frame they belong to, waiting for the main thread, the only one
+// that calls MPI.
 class Outbox {
  public:
-  void add(TileResult&& tile) {
+  void add(uint32_t frame, TileResult&& tile) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    tiles_.push_back(std::move(tile));
+    tiles_.push_back({frame, std::move(tile)});
   }
-  std::vector<TileResult> take() {
+  std::vector<wire::TileResultMessage> take() {
     const std::lock_guard<std::mutex> lock(mutex_);
     return std::exchange(tiles_, {});
   }
 
  private:
   std::mutex mutex_;
-  std::vector<TileResult> tiles_;
+  std::vector<wire::TileResultMessage> tiles_;
 };
 
 // After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
@@ -84,7 +85,9 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   JobQueue jobs;
   Outbox outbox;
   TileWorkerPool pool(*scene, options.threads);
-  pool.start([&] { return jobs.pop(); }, [&](TileResult&& tile) { outbox.add(std::move(tile)); });
+  pool.start(
+      [&] { return jobs.pop(); },
+      [&](const TileJob& job, TileResult&& tile) { outbox.add(job.frame, std::move(tile)); });
 
   const bool hang =
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
@@ -98,14 +101,18 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   bool masterSilent = false;
   auto lastHeard = Clock::now();
   int exitCode = 0;
+  // The viewer's current frame and what it renders; `prism render` sends no View and its jobs
+  // are all frame 0 with the scene's own camera.
+  uint32_t frame = 0;
+  std::shared_ptr<const RenderView> view;
   try {
     for (;;) {
       if (pool.failed()) break;
       bool masterReachable = true;
-      for (TileResult& tile : outbox.take()) {
-        held.erase(tile.tileIndex);
-        masterReachable =
-            session.send(0, wire::encodeTileResult({0, std::move(tile)})) && masterReachable;
+      for (wire::TileResultMessage& result : outbox.take()) {
+        if (result.frame != frame) continue;  // finished after the viewer moved on: stale
+        held.erase(result.result.tileIndex);
+        masterReachable = session.send(0, wire::encodeTileResult(result)) && masterReachable;
       }
       // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets
       // the master spot tiles this rank lost.
@@ -138,16 +145,25 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         shutdownReceived = true;
         break;
       }
+      if (message.type == wire::MessageType::View) {
+        wire::ViewMessage next = wire::decodeView(message);
+        frame = next.frame;
+        view = std::make_shared<const RenderView>(std::move(next.view));
+        jobs.clear();  // tiles of earlier frames nobody wants any more
+        held.clear();
+        continue;
+      }
       if (message.type != wire::MessageType::TileJob) continue;
       const wire::TileJobMessage job = wire::decodeTileJob(message);
       ++received;
+      if (job.frame != frame) continue;  // a job of a frame already ended
       if (options.fault.appliesTo(session.rank()) &&
           options.fault.kind == FaultInjection::Kind::Crash) {
         std::_Exit(9);  // dies without MPI_Finalize, like a killed process
       }
       if (hang || (drop && received % 2 == 0)) continue;
       held.insert(job.tileIndex);
-      jobs.push({job.tileIndex, job.rect});
+      jobs.push({job.tileIndex, job.rect, job.frame, view});
     }
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({e.what()}));

@@ -27,13 +27,21 @@ TileWorkerPool::~TileWorkerPool() {
 }
 
 void TileWorkerPool::start(JobSource source, ResultHandler onResult) {
+  start(std::move(source),
+        [onResult](const TileJob&, TileResult&& tile) { onResult(std::move(tile)); });
+}
+
+void TileWorkerPool::start(JobSource source, JobResultHandler onResult) {
   threads_.reserve(static_cast<size_t>(threadCount_));
   for (int t = 0; t < threadCount_; ++t) {
     threads_.emplace_back([this, source, onResult] {
       try {
         const TileRenderer renderer(scene_);
         while (const std::optional<TileJob> job = source()) {
-          onResult(renderer.render(job->tileIndex, job->rect));
+          // A view's renderer is a camera and a few numbers: cheap to make per tile.
+          onResult(*job, job->view
+                             ? TileRenderer(scene_, *job->view).render(job->tileIndex, job->rect)
+                             : renderer.render(job->tileIndex, job->rect));
         }
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex_);

@@ -7,25 +7,38 @@
 
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
 
+#include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
 
 namespace prism {
 
 struct TileJob {
+  TileJob() = default;
+  TileJob(uint32_t tile, const TileRect& r, uint32_t f = 0,
+          std::shared_ptr<const RenderView> v = nullptr)
+      : tileIndex(tile), rect(r), frame(f), view(std::move(v)) {}
+
   uint32_t tileIndex = 0;
   TileRect rect;
+  // The viewer's jobs: which frame they belong to and what it renders. Without a view the
+  // tile is rendered with the scene's own camera and settings, as `prism render` does.
+  uint32_t frame = 0;
+  std::shared_ptr<const RenderView> view;
 };
 
 class TileWorkerPool {
  public:
   using JobSource = std::function<std::optional<TileJob>()>;
   using ResultHandler = std::function<void(TileResult&&)>;
+  // Also told which job the result answers (its frame, its view).
+  using JobResultHandler = std::function<void(const TileJob&, TileResult&&)>;
 
   TileWorkerPool(const Scene& scene, int threadCount);
   ~TileWorkerPool();  // joins
@@ -34,6 +47,7 @@ class TileWorkerPool {
 
   // Starts the threads. The source and handler are called concurrently from them.
   void start(JobSource source, ResultHandler onResult);
+  void start(JobSource source, JobResultHandler onResult);
   // Waits for every thread to finish (each stops when the source returns nothing), then
   // rethrows the first exception a thread hit, if any.
   void join();

@@ -2,19 +2,36 @@
 
 #include <chrono>
 
+#include "render/DebugShading.h"
+
 namespace prism {
 
 TileRenderer::TileRenderer(const Scene& scene)
-    : scene_(scene), integrator_(scene), sampler_(scene.settings().samplesPerPixel) {}
+    : scene_(scene),
+      camera_(scene.camera()),
+      seed_(scene.settings().seed),
+      integrator_(scene),
+      sampler_(scene.settings().samplesPerPixel) {}
+
+TileRenderer::TileRenderer(const Scene& scene, const RenderView& view)
+    : scene_(scene),
+      camera_(view.camera, view.width, view.height),
+      seed_(view.seed),
+      debugView_(view.debugView),
+      integrator_(scene),
+      sampler_(view.samplesPerPixel) {}
 
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
-  Pcg32 rng =
-      Pcg32::forKey(scene_.settings().seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
+  Pcg32 rng = Pcg32::forKey(seed_, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
   Color sum(0.0f);
   for (int i = 0; i < sampler_.count(); ++i) {
     const Vec2 offset = sampler_.offset(i, rng);
-    const Ray ray = scene_.camera().generateRay(static_cast<float>(x) + offset.x,
-                                                static_cast<float>(y) + offset.y);
+    const Ray ray =
+        camera_.generateRay(static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y);
+    if (debugView_ != DebugView::Image) {
+      sum += debugColor(scene_, ray, debugView_, rays);
+      continue;
+    }
     ++rays.primary;
     sum += integrator_.radiance(ray, 0, Color(1.0f), rays);
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/PixelSampler.h"
+#include "render/RenderView.h"
 #include "render/Tile.h"
 #include "render/WhittedIntegrator.h"
 
@@ -12,6 +13,9 @@ namespace prism {
 class TileRenderer {
  public:
   explicit TileRenderer(const Scene& scene);
+  // The viewer: the view's camera, image size, samples, seed and debug view replace the
+  // scene's own.
+  TileRenderer(const Scene& scene, const RenderView& view);
 
   TileResult render(uint32_t tileIndex, const TileRect& rect) const;
 
@@ -19,6 +23,9 @@ class TileRenderer {
   Color renderPixel(int x, int y, RayCounters& rays) const;
 
   const Scene& scene_;
+  Camera camera_;
+  uint64_t seed_;
+  DebugView debugView_ = DebugView::Image;
   WhittedIntegrator integrator_;
   PixelSampler sampler_;
 };

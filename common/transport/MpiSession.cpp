@@ -46,10 +46,12 @@ struct MpiSession::PendingSend {
 
 MpiSession::MpiSession(int* argc, char*** argv) {
   int provided = 0;
-  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
-  if (provided < MPI_THREAD_FUNNELED) {
+  // SERIALIZED rather than FUNNELED: `prism view` keeps MPI in one coordinator thread that is
+  // not the main one (the main thread runs the Qt event loop). Calls are never concurrent.
+  MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
+  if (provided < MPI_THREAD_SERIALIZED) {
     MPI_Finalize();
-    throw TransportError("the MPI library does not allow threads (MPI_THREAD_FUNNELED)");
+    throw TransportError("the MPI library does not allow threads (MPI_THREAD_SERIALIZED)");
   }
   // Errors come back as codes so they can be reported, not as an immediate abort.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);

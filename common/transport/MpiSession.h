@@ -29,7 +29,8 @@ struct IncomingMessage {
 
 class MpiSession {
  public:
-  // Initialises MPI (threads allowed, MPI called from the main thread only).
+  // Initialises MPI (threads allowed; MPI called from one thread at a time: the main thread,
+  // or in `prism view` the master's coordinator thread).
   MpiSession(int* argc, char*** argv);
   ~MpiSession();  // waits a bounded time for outstanding sends, then finalises
   MpiSession(const MpiSession&) = delete;

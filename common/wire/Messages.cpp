@@ -17,7 +17,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::Progress);
+         raw <= static_cast<uint16_t>(MessageType::View);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -95,6 +95,8 @@ const char* messageTypeName(MessageType type) {
       return "Error";
     case MessageType::Progress:
       return "Progress";
+    case MessageType::View:
+      return "View";
   }
   return "unknown";
 }
@@ -274,6 +276,48 @@ ProgressMessage decodeProgress(const Message& message) {
     jobsReceived = r.readU64();
     heldTiles = r.readU32s();
     return progress;
+  });
+}
+
+std::vector<uint8_t> encodeView(const ViewMessage& message) {
+  return encodeWith(MessageType::View, [&](ByteWriter& w) {
+    const auto& [frame, view] = message;
+    const auto& [camera, width, height, samplesPerPixel, seed, debugView] = view;
+    w.writeU32(frame);
+    writeCamera(w, camera);
+    w.writeI32(width);
+    w.writeI32(height);
+    w.writeI32(samplesPerPixel);
+    w.writeU64(seed);
+    w.writeU32(static_cast<uint32_t>(debugView));
+  });
+}
+
+ViewMessage decodeView(const Message& message) {
+  return decodePayload(message, MessageType::View, [](ByteReader& r) {
+    ViewMessage m;
+    auto& [frame, view] = m;
+    auto& [camera, width, height, samplesPerPixel, seed, debugView] = view;
+    frame = r.readU32();
+    camera = readCamera(r);
+    width = r.readI32();
+    height = r.readI32();
+    samplesPerPixel = r.readI32();
+    seed = r.readU64();
+    const uint32_t rawView = r.readU32();
+    if (width <= 0 || height <= 0 || int64_t{width} * height > INT_MAX) {
+      throw WireError("invalid view size " + std::to_string(width) + "x" + std::to_string(height));
+    }
+    if (samplesPerPixel <= 0) {
+      throw WireError("invalid samples per pixel " + std::to_string(samplesPerPixel));
+    }
+    switch (static_cast<DebugView>(rawView)) {
+      case DebugView::Image:
+      case DebugView::Normals:
+        debugView = static_cast<DebugView>(rawView);
+        return m;
+    }
+    throw WireError("invalid debug view " + std::to_string(rawView));
   });
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"
 #include "wire/ByteBuffer.h"
@@ -16,7 +17,7 @@
 namespace prism::wire {
 
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
-inline constexpr uint16_t kVersion = 1;
+inline constexpr uint16_t kVersion = 2;         // 2: the View message
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -27,7 +28,8 @@ enum class MessageType : uint16_t {
   TileResult = 4,
   Shutdown = 5,
   Error = 6,
-  Progress = 7
+  Progress = 7,
+  View = 8
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -78,6 +80,13 @@ struct ProgressMessage {
   std::vector<uint32_t> heldTiles;
 };
 
+// The viewer's render request: the TileJobs that follow with the same frame are tiles of this
+// view. A new View ends every earlier frame, so a slave drops the jobs it still holds for them.
+struct ViewMessage {
+  uint32_t frame = 0;
+  RenderView view;
+};
+
 // Each encodeX returns a full message (envelope included); each decodeX checks the message type
 // and the payload (sizes, ranges, nothing left over) and throws WireError.
 std::vector<uint8_t> encodeScene(const SceneDescription& scene);
@@ -97,6 +106,9 @@ ErrorMessage decodeError(const Message& message);
 
 std::vector<uint8_t> encodeProgress(const ProgressMessage& progress);
 ProgressMessage decodeProgress(const Message& message);
+
+std::vector<uint8_t> encodeView(const ViewMessage& view);
+ViewMessage decodeView(const Message& message);
 
 std::vector<uint8_t> encodeShutdown();
 // Checks that message is a Shutdown with an empty payload.

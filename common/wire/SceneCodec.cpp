@@ -70,6 +70,8 @@ FileLoc readLoc(ByteReader& r) {
   return loc;
 }
 
+}  // namespace
+
 void writeCamera(ByteWriter& w, const CameraDesc& c) {
   const auto& [projection, position, lookAt, up, fovDegrees, width, nearClip, loc] = c;
   writeEnum(w, projection);
@@ -95,6 +97,8 @@ CameraDesc readCamera(ByteReader& r) {
   loc = readLoc(r);
   return c;
 }
+
+namespace {
 
 void writeRender(ByteWriter& w, const RenderSettings& s) {
   const auto& [width, height, samplesPerPixel, maxDepth, minContribution, seed, exposure,

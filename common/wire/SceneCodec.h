@@ -16,4 +16,8 @@ void writeScene(ByteWriter& w, const SceneDescription& scene);
 // Throws WireError.
 SceneDescription readScene(ByteReader& r);
 
+// The camera alone, for the viewer's View message. readCamera rejects unknown projections.
+void writeCamera(ByteWriter& w, const CameraDesc& camera);
+CameraDesc readCamera(ByteReader& r);
+
 }  // namespace prism::wire

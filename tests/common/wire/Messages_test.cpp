@@ -143,11 +143,11 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad[0] = 'Q';
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
-  bad = header(kMagic, 2, 6, 0, fnv1a64(nullptr, 0));
-  expectWireError([&] { decodeMessage(bad); }, "message version 2, this build speaks 1");
+  bad = header(kMagic, 1, 6, 0, fnv1a64(nullptr, 0));
+  expectWireError([&] { decodeMessage(bad); }, "message version 1, this build speaks 2");
 
-  for (uint16_t type : {0, 8, 0xFFFF}) {
-    bad = header(kMagic, 1, type, 0, fnv1a64(nullptr, 0));
+  for (uint16_t type : {0, 9, 0xFFFF}) {
+    bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
 
@@ -268,6 +268,44 @@ TEST(Messages, ProgressRoundTripsAndRejectsCorruption) {
   EXPECT_STREQ(messageTypeName(MessageType::Progress), "Progress");
 }
 
+TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
+  ViewMessage m;
+  m.frame = 41;
+  m.view.camera.position = Vec3(1.0f, 2.0f, 3.0f);
+  m.view.camera.lookAt = Vec3(-1.0f, 0.5f, 0.0f);
+  m.view.camera.fovDegrees = 33.0f;
+  m.view.camera.projection = Projection::Orthographic;
+  m.view.width = 160;
+  m.view.height = 90;
+  m.view.samplesPerPixel = 3;
+  m.view.seed = 0xDEADBEEFCAFEull;
+  m.view.debugView = DebugView::Normals;
+  const ViewMessage back = decodeView(decodeMessage(encodeView(m)));
+  EXPECT_EQ(back.frame, 41u);
+  EXPECT_EQ(back.view.camera.position, m.view.camera.position);
+  EXPECT_EQ(back.view.camera.lookAt, m.view.camera.lookAt);
+  EXPECT_EQ(back.view.camera.fovDegrees, 33.0f);
+  EXPECT_EQ(back.view.camera.projection, Projection::Orthographic);
+  EXPECT_EQ(back.view.width, 160);
+  EXPECT_EQ(back.view.height, 90);
+  EXPECT_EQ(back.view.samplesPerPixel, 3);
+  EXPECT_EQ(back.view.seed, 0xDEADBEEFCAFEull);
+  EXPECT_EQ(back.view.debugView, DebugView::Normals);
+  EXPECT_STREQ(messageTypeName(MessageType::View), "View");
+
+  ViewMessage bad = m;
+  bad.view.width = 0;
+  expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid view size 0x90");
+  bad = m;
+  bad.view.samplesPerPixel = -2;
+  expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); },
+                  "invalid samples per pixel -2");
+  bad = m;
+  bad.view.debugView = static_cast<DebugView>(77);
+  expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid debug view 77");
+  EXPECT_THROW(decodeView(decodeMessage(encodeShutdown())), WireError);
+}
+
 TEST(Messages, MessageStructsMatchTheCodec) {
 #if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
   const char* update =
@@ -280,6 +318,8 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
   EXPECT_EQ(sizeof(ProgressMessage), 32u) << update;
+  EXPECT_EQ(sizeof(RenderView), 120u) << update;
+  EXPECT_EQ(sizeof(ViewMessage), 128u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif

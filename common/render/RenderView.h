@@ -1,0 +1,29 @@
+// What to render when it is not the scene file's own camera and settings: the viewer's camera,
+// a reduced preview resolution, the samples and seed of one refinement pass, a debug view.
+// `prism render` never uses this; its TileRenderer reads the Scene's camera and settings.
+#pragma once
+
+#include <cstdint>
+
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+// What a pixel shows. Extension point for the caustics work: caster (refractor) positions,
+// receiver positions and the caustic map get their enumerators here, their shading in
+// render/DebugShading.cpp, their key in gui/MainWindow.cpp and a wire value in Messages.cpp.
+enum class DebugView : uint8_t {
+  Image = 0,    // radiance, as `prism render` computes it
+  Normals = 1,  // shading normal of the first hit, mapped from [-1, 1] to [0, 1]
+};
+
+struct RenderView {
+  CameraDesc camera;
+  int width = 0;  // the image the tiles belong to (a preview is smaller than the final image)
+  int height = 0;
+  int samplesPerPixel = 1;
+  uint64_t seed = 0;  // each refinement pass uses its own, so passes average to more samples
+  DebugView debugView = DebugView::Image;
+};
+
+}  // namespace prism

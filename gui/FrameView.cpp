@@ -1,0 +1,110 @@
+#include "gui/FrameView.h"
+
+#include <QMouseEvent>
+#include <QPainter>
+#include <QWheelEvent>
+
+#include "gui/HelpText.h"
+
+namespace prism {
+
+FrameView::FrameView(const FrameAccumulator& frame, float exposure, QWidget* parent)
+    : QWidget(parent),
+      frame_(frame),
+      encoder_(exposure),
+      display_(frame.image().width, frame.image().height, QImage::Format_RGB888) {
+  display_.fill(Qt::black);
+  setFocusPolicy(Qt::StrongFocus);
+  setMinimumSize(160, 90);
+  connect(&timer_, &QTimer::timeout, this, &FrameView::refresh);
+  timer_.start(16);
+}
+
+QSize FrameView::sizeHint() const {
+  return display_.size();
+}
+
+QColor FrameView::rankColor(int rank) {
+  return QColor::fromHsv((rank * 137 + 30) % 360, 230, 255);  // golden-angle hues
+}
+
+void FrameView::setShowTiles(bool show) {
+  showTiles_ = show;
+  update();
+}
+
+void FrameView::setShowHelp(bool show) {
+  showHelp_ = show;
+  update();
+}
+
+void FrameView::convert(const TileRect& r) {
+  const ImageRgb& image = frame_.image();
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    uchar* line = display_.scanLine(y);
+    for (int x = r.x; x < r.x + r.width; ++x) {
+      const Color& c = image.at(x, y);
+      line[3 * x + 0] = encoder_(c.r);
+      line[3 * x + 1] = encoder_(c.g);
+      line[3 * x + 2] = encoder_(c.b);
+    }
+  }
+}
+
+void FrameView::refresh() {
+  if (!changed_) return;
+  changed_ = false;
+  // The accumulator belongs to the main thread, like this widget: no lock needed.
+  const TileRect dirty = const_cast<FrameAccumulator&>(frame_).takeDirty();
+  if (dirty.width > 0) convert(dirty);
+  update();
+}
+
+QRect FrameView::imageRect() const {
+  const QSize scaled = display_.size().scaled(size(), Qt::KeepAspectRatio);
+  return QRect(QPoint((width() - scaled.width()) / 2, (height() - scaled.height()) / 2), scaled);
+}
+
+void FrameView::paintEvent(QPaintEvent*) {
+  QPainter painter(this);
+  painter.fillRect(rect(), Qt::black);
+  const QRect target = imageRect();
+  painter.drawImage(target, display_);
+  if (showTiles_) {
+    const double sx = static_cast<double>(target.width()) / display_.width();
+    const double sy = static_cast<double>(target.height()) / display_.height();
+    for (const FrameAccumulator::InFlight& t : frame_.inFlight()) {
+      painter.setPen(QPen(rankColor(t.rank), 2));
+      painter.drawRect(QRectF(target.x() + t.rect.x * sx + 1, target.y() + t.rect.y * sy + 1,
+                              t.rect.width * sx - 2, t.rect.height * sy - 2));
+    }
+  }
+  if (showHelp_) {
+    painter.fillRect(rect(), QColor(0, 0, 0, 170));
+    painter.setPen(Qt::white);
+    QFont font("Monospace");
+    font.setStyleHint(QFont::TypeWriter);
+    painter.setFont(font);
+    painter.drawText(rect().adjusted(24, 24, -24, -24), Qt::AlignLeft | Qt::AlignTop,
+                     QString::fromUtf8(kViewerHelpText));
+  }
+  emit painted(frame_.frame(), frame_.pass().pass, frame_.passComplete());
+}
+
+void FrameView::mousePressEvent(QMouseEvent* event) {
+  lastMouse_ = event->pos();
+}
+
+void FrameView::mouseMoveEvent(QMouseEvent* event) {
+  if (!(event->buttons() & Qt::LeftButton)) return;
+  const QPoint delta = event->pos() - lastMouse_;
+  lastMouse_ = event->pos();
+  if (!delta.isNull()) emit dragged(delta.x(), delta.y());
+}
+
+void FrameView::wheelEvent(QWheelEvent* event) {
+  const int steps = event->angleDelta().y() / 120;
+  if (steps != 0) emit wheelTurned(steps);
+}
+
+}  // namespace prism

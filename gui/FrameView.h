@@ -1,0 +1,64 @@
+// The live image. Tiles go into the FrameAccumulator as they arrive; this widget repaints on
+// a timer (60 Hz at most, and only when something changed), converting just the changed
+// rectangle to display bytes, so a burst of small tiles costs one repaint. Draws the tiles in
+// flight outlined in their rank's colour (toggleable) and the help overlay.
+#pragma once
+
+#include <QImage>
+#include <QTimer>
+#include <QWidget>
+
+#include "gui/FrameAccumulator.h"
+#include "image/ToneMap.h"
+
+namespace prism {
+
+class FrameView : public QWidget {
+  Q_OBJECT
+
+ public:
+  FrameView(const FrameAccumulator& frame, float exposure, QWidget* parent = nullptr);
+
+  void setShowTiles(bool show);
+  bool showTiles() const { return showTiles_; }
+  void setShowHelp(bool show);
+  bool showHelp() const { return showHelp_; }
+  // Something changed (a tile, an assignment, a new pass): repaint at the next tick.
+  void markChanged() { changed_ = true; }
+
+  // The image as displayed (sRGB bytes), at the frame's resolution.
+  const QImage& displayImage() const { return display_; }
+  // Where the image is drawn in the widget (aspect kept, centred).
+  QRect imageRect() const;
+  QSize sizeHint() const override;
+
+  // A rank's outline colour: distinct hues, the same for a rank every time.
+  static QColor rankColor(int rank);
+
+ signals:
+  // After a paint: which frame and pass it showed and whether that pass was complete.
+  void painted(uint32_t frame, int pass, bool passComplete);
+  void dragged(int dx, int dy);  // mouse drag, in pixels
+  void wheelTurned(int steps);   // + away from the user
+
+ protected:
+  void paintEvent(QPaintEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+
+ private:
+  void refresh();
+  void convert(const TileRect& r);
+
+  const FrameAccumulator& frame_;
+  DisplayEncoder encoder_;
+  QImage display_;
+  QTimer timer_;
+  bool changed_ = false;
+  bool showTiles_ = true;
+  bool showHelp_ = false;
+  QPoint lastMouse_;
+};
+
+}  // namespace prism

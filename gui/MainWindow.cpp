@@ -1,0 +1,283 @@
+#include "gui/MainWindow.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QButtonGroup>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QRadioButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QVBoxLayout>
+
+#include "gui/FrameView.h"
+#include "gui/SpeedupCsv.h"
+#include "gui/StatsPanel.h"
+#include "image/ImageIo.h"
+
+namespace prism {
+namespace {
+constexpr float kTurnDegrees = 5.0f;
+constexpr float kOrbitDegreesPerPixel = 0.4f;
+constexpr float kZoomPerStep = 0.9f;
+}  // namespace
+
+MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
+                       ViewRequest requestView, QWidget* parent)
+    : QMainWindow(parent),
+      exposure_(scene.render.exposure),
+      requestView_(std::move(requestView)),
+      camera_(scene.camera),
+      frame_(scene.render.width, scene.render.height) {
+  setWindowTitle("Prism — " + sceneName);
+  settings_.camera = scene.camera;
+  settings_.samplesPerPixel = scene.render.samplesPerPixel;
+
+  view_ = new FrameView(frame_, exposure_, this);
+  stats_ = new StatsPanel(this);
+  connect(view_, &FrameView::dragged, this, [this](int dx, int dy) {
+    camera_.orbit(-kOrbitDegreesPerPixel * static_cast<float>(dx),
+                  -kOrbitDegreesPerPixel * static_cast<float>(dy));
+    viewChanged();
+  });
+  connect(view_, &FrameView::wheelTurned, this, [this](int steps) {
+    camera_.zoom(std::pow(kZoomPerStep, static_cast<float>(steps)));
+    viewChanged();
+  });
+
+  auto* splitter = new QSplitter(this);
+  splitter->addWidget(view_);
+  auto* scroll = new QScrollArea(splitter);
+  scroll->setWidget(buildSidePanel());
+  scroll->setWidgetResizable(true);
+  scroll->setMinimumWidth(430);
+  splitter->addWidget(scroll);
+  splitter->setStretchFactor(0, 1);
+  setCentralWidget(splitter);
+  status_ = new QLabel(this);
+  statusBar()->addWidget(status_, 1);
+  buildMenus();
+  view_->setFocus();
+  updateStatusBar();
+}
+
+QWidget* MainWindow::buildSidePanel() {
+  auto* panel = new QWidget(this);
+  auto* layout = new QVBoxLayout(panel);
+
+  auto* render = new QGroupBox("Rendering", panel);
+  auto* form = new QFormLayout(render);
+  spp_ = new QSpinBox(render);
+  spp_->setRange(1, 1024);
+  spp_->setValue(settings_.samplesPerPixel);
+  spp_->setToolTip("Samples per pixel in each full-resolution pass; passes are averaged");
+  connect(spp_, qOverload<int>(&QSpinBox::valueChanged), this, [this](int spp) {
+    if (spp == settings_.samplesPerPixel) return;
+    settings_.samplesPerPixel = spp;
+    viewChanged();
+  });
+  connect(spp_, &QSpinBox::editingFinished, this, [this] { view_->setFocus(); });
+  form->addRow("samples / pixel / pass", spp_);
+  layout->addWidget(render);
+
+  // Debug views. Extension point for the caustics work: caster positions (R), receiver
+  // positions (P) and the caustic map (C) get a button here and an enumerator in
+  // common/render/RenderView.h.
+  auto* debug = new QGroupBox("Debug view", panel);
+  auto* debugLayout = new QVBoxLayout(debug);
+  imageButton_ = new QRadioButton("image (n)", debug);
+  normalsButton_ = new QRadioButton("normals (N)", debug);
+  imageButton_->setChecked(true);
+  auto* group = new QButtonGroup(debug);
+  group->addButton(imageButton_);
+  group->addButton(normalsButton_);
+  connect(imageButton_, &QRadioButton::toggled, this, [this](bool on) {
+    if (on) setDebugView(DebugView::Image);
+  });
+  connect(normalsButton_, &QRadioButton::toggled, this, [this](bool on) {
+    if (on) setDebugView(DebugView::Normals);
+  });
+  debugLayout->addWidget(imageButton_);
+  debugLayout->addWidget(normalsButton_);
+  layout->addWidget(debug);
+
+  // Extension point for the caustics work: the caustics method switch (none / photon map /
+  // caustic map), the photon budget and the blur toggle (b) go in a group here.
+
+  auto* statsGroup = new QGroupBox("Statistics", panel);
+  auto* statsLayout = new QVBoxLayout(statsGroup);
+  statsLayout->addWidget(stats_);
+  layout->addWidget(statsGroup, 1);
+  return panel;
+}
+
+void MainWindow::buildMenus() {
+  QMenu* file = menuBar()->addMenu("&File");
+  QAction* save = file->addAction("&Save image…");
+  save->setShortcut(QKeySequence::Save);
+  connect(save, &QAction::triggered, this, [this] {
+    const QString path =
+        QFileDialog::getSaveFileName(this, "Save image", "prism.png", "Images (*.png *.exr)");
+    if (path.isEmpty()) return;
+    try {
+      saveImage(path);
+      statusBar()->showMessage("saved " + path, 5000);
+    } catch (const std::exception& e) {
+      QMessageBox::warning(this, "Save image", e.what());
+    }
+  });
+  QAction* csv = file->addAction("&Load speedup CSV…");
+  csv->setShortcut(QKeySequence::Open);
+  connect(csv, &QAction::triggered, this, [this] {
+    const QString path =
+        QFileDialog::getOpenFileName(this, "Load speedup CSV", QString(), "CSV (*.csv)");
+    if (path.isEmpty()) return;
+    const QString error = loadSpeedupCsv(path);
+    if (!error.isEmpty()) QMessageBox::warning(this, "Load speedup CSV", error);
+  });
+  file->addSeparator();
+  QAction* quit = file->addAction("&Quit (q)");
+  connect(quit, &QAction::triggered, this, &QWidget::close);
+
+  QMenu* viewMenu = menuBar()->addMenu("&View");
+  tilesAction_ = viewMenu->addAction("Show &tiles in flight (t)");
+  tilesAction_->setCheckable(true);
+  tilesAction_->setChecked(view_->showTiles());
+  connect(tilesAction_, &QAction::toggled, view_, &FrameView::setShowTiles);
+  QAction* help = viewMenu->addAction("&Keys (h, F1)");
+  connect(help, &QAction::triggered, this, [this] { view_->setShowHelp(!view_->showHelp()); });
+}
+
+void MainWindow::startRendering() {
+  requestView_(settings_);
+}
+
+void MainWindow::viewChanged() {
+  settings_.camera = camera_.camera();
+  requestView_(settings_);
+}
+
+void MainWindow::setDebugView(DebugView view) {
+  if (settings_.debugView == view) return;
+  settings_.debugView = view;
+  (view == DebugView::Normals ? normalsButton_ : imageButton_)->setChecked(true);
+  viewChanged();
+}
+
+void MainWindow::saveImage(const QString& path) const {
+  writeImage(frame_.image(), path.toStdString(), exposure_);
+}
+
+QString MainWindow::loadSpeedupCsv(const QString& path) {
+  try {
+    stats_->setSpeedupTable(readSpeedupCsv(path.toStdString()), QFileInfo(path).fileName());
+    return {};
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+}
+
+void MainWindow::keyPressEvent(QKeyEvent* event) {
+  // Letters by the text typed, so Shift tells q (quit) from Q (down) and n from N.
+  const QString text = event->text();
+  const QChar c = text.size() == 1 ? text[0] : QChar();
+  bool cameraMoved = true;
+  if (c == 'w' || c == 'W') {
+    camera_.move(1, 0, 0);
+  } else if (c == 's' || c == 'S') {
+    camera_.move(-1, 0, 0);
+  } else if (c == 'a' || c == 'A') {
+    camera_.move(0, -1, 0);
+  } else if (c == 'd' || c == 'D') {
+    camera_.move(0, 1, 0);
+  } else if (c == 'Q') {
+    camera_.move(0, 0, -1);
+  } else if (c == 'E' || c == 'e') {
+    camera_.move(0, 0, 1);
+  } else if (event->key() == Qt::Key_Left) {
+    camera_.rotate(kTurnDegrees, 0);
+  } else if (event->key() == Qt::Key_Right) {
+    camera_.rotate(-kTurnDegrees, 0);
+  } else if (event->key() == Qt::Key_Up) {
+    camera_.rotate(0, kTurnDegrees);
+  } else if (event->key() == Qt::Key_Down) {
+    camera_.rotate(0, -kTurnDegrees);
+  } else if (c == 'r') {
+    camera_.reset();
+  } else {
+    cameraMoved = false;
+  }
+  if (cameraMoved) {
+    viewChanged();
+    return;
+  }
+  if (c == 'N') {
+    setDebugView(DebugView::Normals);
+  } else if (c == 'n') {
+    setDebugView(DebugView::Image);
+  } else if (c == 'q') {
+    close();
+  } else if (c == 't') {
+    tilesAction_->toggle();
+  } else if (c == '+' || c == '=') {
+    spp_->setValue(spp_->value() + 1);
+  } else if (c == '-') {
+    spp_->setValue(spp_->value() - 1);
+  } else if (c == 'h' || event->key() == Qt::Key_F1) {
+    view_->setShowHelp(!view_->showHelp());
+  } else if (event->key() == Qt::Key_Escape && view_->showHelp()) {
+    view_->setShowHelp(false);
+  } else {
+    QMainWindow::keyPressEvent(event);
+  }
+}
+
+void MainWindow::onPassStarted(const PassInfo& pass) {
+  if (pass.viewId != frame_.pass().viewId) fullPassesDone_ = 0;
+  frame_.beginPass(pass);
+  view_->markChanged();
+  updateStatusBar();
+}
+
+void MainWindow::onTileAssigned(uint32_t frame, uint32_t tile, int rank) {
+  if (frame_.assign(frame, tile, rank)) view_->markChanged();
+}
+
+void MainWindow::onTileFinished(uint32_t frame, std::shared_ptr<const TileResult> tile, int) {
+  if (frame_.addTile(frame, *tile)) view_->markChanged();
+}
+
+void MainWindow::onPassFinished(uint32_t frame, double) {
+  if (frame != frame_.frame()) return;
+  updateStatusBar();
+  if (frame_.pass().pass >= 1) emit fullPassDone(++fullPassesDone_);
+}
+
+void MainWindow::onStats(const LiveStats& stats) {
+  stats_->showStats(stats);
+  updateStatusBar();
+}
+
+void MainWindow::updateStatusBar() {
+  const PassInfo& p = frame_.pass();
+  const QString what =
+      p.pass == 0
+          ? QString("preview 1/%1").arg(p.scale)
+          : QString("pass %1 (%2 spp each)").arg(p.pass).arg(p.view ? p.view->samplesPerPixel : 0);
+  status_->setText(QString("frame %1 · %2 · tiles %3/%4 · %5 spp averaged · h: keys")
+                       .arg(p.frame)
+                       .arg(what)
+                       .arg(frame_.tilesDone())
+                       .arg(p.tiles.size())
+                       .arg(fullPassesDone_ * settings_.samplesPerPixel));
+}
+
+}  // namespace prism

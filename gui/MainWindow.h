@@ -1,0 +1,88 @@
+// The viewer window: the live frame in the middle, a side panel with the render controls and
+// the statistics, menus for saving the image and loading a speedup table, and the keys listed
+// in gui/HelpText.h. Every camera or setting change asks the renderer for a new view, which
+// starts a new frame; tiles of the old one are ignored when they arrive.
+#pragma once
+
+#include <QMainWindow>
+#include <functional>
+
+#include "gui/CameraController.h"
+#include "gui/FrameAccumulator.h"
+#include "master/LiveRenderer.h"
+
+class QSpinBox;
+class QRadioButton;
+class QVBoxLayout;
+class QAction;
+class QLabel;
+
+namespace prism {
+
+class FrameView;
+class StatsPanel;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  using ViewRequest = std::function<void(const ViewSettings&)>;
+
+  MainWindow(const SceneDescription& scene, const QString& sceneName, ViewRequest requestView,
+             QWidget* parent = nullptr);
+
+  // Asks for the first view (the scene's camera); call once the renderer runs.
+  void startRendering();
+
+  // Saves the current image (PNG tone-mapped, EXR linear); throws std::runtime_error.
+  void saveImage(const QString& path) const;
+  // Loads a speedup CSV into the chart; returns an error message, empty on success.
+  QString loadSpeedupCsv(const QString& path);
+
+  CameraController& cameraController() { return camera_; }
+  // Sends the current camera and settings as a new view.
+  void viewChanged();
+
+  const ViewSettings& viewSettings() const { return settings_; }
+  const FrameAccumulator& frame() const { return frame_; }
+  FrameView* frameView() const { return view_; }
+  StatsPanel* statsPanel() const { return stats_; }
+  int fullPassesDone() const { return fullPassesDone_; }
+  uint64_t viewId() const { return frame_.pass().viewId; }
+
+ public slots:
+  void onPassStarted(const prism::PassInfo& pass);
+  void onTileAssigned(uint32_t frame, uint32_t tile, int rank);
+  void onTileFinished(uint32_t frame, std::shared_ptr<const prism::TileResult> tile, int rank);
+  void onPassFinished(uint32_t frame, double seconds);
+  void onStats(const prism::LiveStats& stats);
+
+ signals:
+  // A full-resolution pass of the current view is complete (count since the view started).
+  void fullPassDone(int passes);
+
+ protected:
+  void keyPressEvent(QKeyEvent* event) override;
+
+ private:
+  QWidget* buildSidePanel();
+  void buildMenus();
+  void setDebugView(DebugView view);
+  void updateStatusBar();
+
+  float exposure_;
+  ViewRequest requestView_;
+  CameraController camera_;
+  ViewSettings settings_;
+  FrameAccumulator frame_;
+  FrameView* view_;
+  StatsPanel* stats_;
+  QSpinBox* spp_;
+  QRadioButton* imageButton_;
+  QRadioButton* normalsButton_;
+  QAction* tilesAction_;
+  QLabel* status_;
+  int fullPassesDone_ = 0;
+};
+
+}  // namespace prism

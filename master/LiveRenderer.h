@@ -1,0 +1,154 @@
+// The viewer's renderer: renders frame after frame of one Scene while the camera moves, on rank
+// 0's threads and, in an MPI run, on the slaves. No Qt here; the viewer listens through
+// LiveListener.
+//
+// A view (camera, samples per pixel, debug view) is rendered in passes: pass 0 is a preview
+// at 1/previewScale of the resolution with 1 sample per pixel, passes 1..maxPasses are full
+// resolution with samplesPerPixel samples each, every one with its own seed so that their
+// average converges (pass 1 uses the scene's seed: it is exactly the image `prism render`
+// makes). Each pass is its own frame on the wire (a new frame id); a new view ends the
+// current frame at once, and slaves drop its queued tiles.
+//
+// run() is the coordinator: the only thread that calls MPI, the only thread that calls the
+// listener. setView() and stop() may be called from any thread.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "master/TileScheduler.h"
+#include "render/RayCounters.h"
+#include "render/RenderView.h"
+#include "render/Tile.h"
+#include "scene/Scene.h"
+#include "slave/TileWorkerPool.h"
+#include "util/Stopwatch.h"
+
+namespace prism {
+
+class MpiSession;
+
+struct LiveOptions {
+  int threads = 0;       // render threads on rank 0; 0: every available core
+  int previewScale = 4;  // pass 0 renders 1/previewScale of each side at 1 spp; 1: no preview
+  int maxPasses = 64;    // full-resolution passes per view; then the renderer idles
+  int tileSize = 0;      // 0: automatic for each pass's resolution
+  Schedule schedule = Schedule::Dynamic;
+  double leaseSeconds = 30.0;
+  int prefetch = 2;
+  double statsInterval = 0.25;  // seconds between LiveListener::statsUpdated calls
+};
+
+// What the user controls.
+struct ViewSettings {
+  CameraDesc camera;
+  int samplesPerPixel = 1;  // per full-resolution pass
+  DebugView debugView = DebugView::Image;
+};
+
+struct PassInfo {
+  uint32_t frame = 0;                      // wire frame id, unique per pass
+  uint64_t viewId = 0;                     // increases with every setView()
+  int pass = 0;                            // 0: preview (when previewScale > 1)
+  int scale = 1;                           // the pass's pixels are scale × scale display pixels
+  std::shared_ptr<const RenderView> view;  // what the pass renders, at its own resolution
+  std::vector<TileRect> tiles;             // in the pass's resolution
+};
+
+struct RankStats {
+  int rank = 0;
+  int threads = 0;
+  size_t tiles = 0;          // since the viewer started
+  double busySeconds = 0.0;  // thread-seconds spent rendering them
+  RayCounters rays;
+  size_t staleTiles = 0;  // results for frames already ended, dropped
+  bool retired = false;
+};
+
+struct LiveStats {
+  uint32_t frame = 0;
+  uint64_t viewId = 0;
+  int pass = 0;
+  int passesDone = 0;                  // full-resolution passes finished for the current view
+  std::vector<RankStats> ranks;        // index = rank
+  double raysPerSecond = 0.0;          // over the last statsInterval
+  double lastPassSeconds = 0.0;        // wall time of the last finished full-resolution pass
+  double lastPassBusySeconds = 0.0;    // thread-seconds all ranks spent on it
+  int totalThreads = 0;                // over all live ranks
+  double previewLatencySeconds = 0.0;  // setView() to its preview pass finished
+  double firstFullSeconds = 0.0;       // setView() to its first full-resolution pass finished
+};
+
+// Called on the coordinator thread only.
+class LiveListener {
+ public:
+  virtual ~LiveListener() = default;
+  virtual void passStarted(const PassInfo& pass) = 0;
+  virtual void tileAssigned(uint32_t frame, uint32_t tile, int rank) = 0;
+  virtual void tileFinished(uint32_t frame, std::shared_ptr<const TileResult> tile, int rank) = 0;
+  virtual void passFinished(uint32_t frame, double seconds) = 0;
+  virtual void statsUpdated(const LiveStats& stats) = 0;
+};
+
+class LiveRenderer {
+ public:
+  LiveRenderer(const Scene& scene, const LiveOptions& options, MpiSession* cluster = nullptr);
+  ~LiveRenderer();
+
+  // Ends the current frame and starts rendering this view from pass 0.
+  void setView(const ViewSettings& view);
+  // Makes run() return soon.
+  void stop();
+  // Renders until stop(). Throws std::runtime_error when a slave reports an error or a render
+  // thread fails.
+  void run(LiveListener& listener);
+
+  // The numbers statsUpdated reports, now (rays/s: since the last report). Any thread.
+  LiveStats stats();
+
+  // The seed of full-resolution pass p ≥ 1: pass 1 keeps the scene's seed.
+  static uint64_t passSeed(uint64_t sceneSeed, int pass);
+
+ private:
+  struct Event;
+  struct Pass;
+
+  std::optional<TileJob> nextLocalJob();
+  void accept(uint32_t frame, TileResult&& tile, int rank);
+  void startNextPassLocked(std::vector<PassInfo>& started);
+  void beginPassLocked(int index, std::vector<PassInfo>& started);
+  void serviceSlaves();
+  LiveStats statsLocked(double elapsedSeconds);
+  double now() const { return secondsSince(start_); }
+
+  const Scene& scene_;
+  LiveOptions options_;
+  MpiSession* cluster_;
+  int ranks_;
+  TileWorkerPool pool_;
+  SteadyClock::time_point start_;
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool stopped_ = false;
+  std::optional<ViewSettings> pendingView_;
+  SteadyClock::time_point pendingSince_;
+  ViewSettings view_;
+  uint64_t viewId_ = 0;
+  SteadyClock::time_point viewSince_;
+  uint32_t nextFrame_ = 1;  // 0 is `prism render`'s frame
+  std::unique_ptr<Pass> pass_;
+  std::deque<Event> events_;
+  std::vector<RankStats> stats_;
+  LiveStats live_;
+  RayCounters raysAtLastStats_;
+  SteadyClock::time_point lastStats_;
+};
+
+}  // namespace prism
