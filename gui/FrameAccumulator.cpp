@@ -60,12 +60,15 @@ bool FrameAccumulator::addTile(uint32_t frame, const TileResult& tile) {
       }
     }
   } else {
-    // Full-resolution pass p averages with the p - 1 before it (pass 1 replaces the preview).
+    // Full-resolution pass p averages with the p - 1 before it; pass 1 replaces the preview
+    // (copied, so it is exactly the image `prism render` makes).
+    const bool first = pass_.pass <= 1;
     const float weight = 1.0f / static_cast<float>(std::max(pass_.pass, 1));
     for (int ty = 0; ty < r.height; ++ty) {
       for (int tx = 0; tx < r.width; ++tx) {
         Color& mean = image_.at(r.x + tx, r.y + ty);
-        mean += (tile.pixels[static_cast<size_t>(ty) * r.width + tx] - mean) * weight;
+        const Color& sample = tile.pixels[static_cast<size_t>(ty) * r.width + tx];
+        mean = first ? sample : mean + (sample - mean) * weight;
       }
     }
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <ostream>
 #include <thread>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "gui/MainWindow.h"
 #include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
+#include "image/ImageIo.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -155,9 +157,15 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
       return 1;
     }
   }
+  // Kept at the moment the viewer decides to quit: tiles of the next pass may still be
+  // delivered before the event loop ends.
+  std::optional<ImageRgb> finalImage;
   if (options.exitAfterPasses > 0) {
     QObject::connect(&window, &MainWindow::fullPassDone, &window, [&](int passes) {
-      if (window.viewId() == 1 && passes >= options.exitAfterPasses) window.close();
+      if (finalImage || window.viewId() != 1 || passes < options.exitAfterPasses) return;
+      finalImage = window.frame().image();
+      renderer.stop();
+      window.close();
     });
   }
   if (!options.screenshotPath.empty()) {
@@ -190,7 +198,8 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   coordinator.join();
   if (failure) std::rethrow_exception(failure);  // runView reports it
   if (!options.savePath.empty()) {
-    window.saveImage(QString::fromStdString(options.savePath));
+    writeImage(finalImage ? *finalImage : window.frame().image(), options.savePath,
+               description.render.exposure);
     out << "written    " << options.savePath << "\n";
   }
   printSummary(renderer.stats(), out);

@@ -67,7 +67,7 @@ TEST(Messages, EnvelopeLayout) {
   ASSERT_EQ(bytes.size(), kHeaderSize + 1);
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 4), "PRSM");
   EXPECT_EQ(std::vector<uint8_t>(bytes.begin(), bytes.begin() + kHeaderSize),
-            header(kMagic, 1, 6, 1, 0xAF63DC4C8601EC8Cull));
+            header(kMagic, kVersion, 6, 1, 0xAF63DC4C8601EC8Cull));
   EXPECT_EQ(bytes.back(), 'a');
 }
 
@@ -318,8 +318,8 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
   EXPECT_EQ(sizeof(ProgressMessage), 32u) << update;
-  EXPECT_EQ(sizeof(RenderView), 120u) << update;
-  EXPECT_EQ(sizeof(ViewMessage), 128u) << update;
+  EXPECT_EQ(sizeof(RenderView), 128u) << update;
+  EXPECT_EQ(sizeof(ViewMessage), 136u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif

@@ -1,0 +1,255 @@
+// The window against the real renderer: LiveRenderer on its own coordinator thread, tiles
+// through RenderBridge's queued signals, as `prism view` runs it.
+#include "gui/MainWindow.h"
+
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QTableWidget>
+#include <QTest>
+#include <QtCharts/QLineSeries>
+#include <QtCharts/QScatterSeries>
+#include <functional>
+#include <thread>
+
+#include "gui/FrameView.h"
+#include "gui/RenderBridge.h"
+#include "gui/StatsPanel.h"
+#include "image/ToneMap.h"
+#include "master/FrameRenderer.h"
+#include "parse/SceneLoader.h"
+
+namespace prism {
+namespace {
+
+bool waitUntil(const std::function<bool()>& done, int milliseconds = 20000) {
+  QElapsedTimer timer;
+  timer.start();
+  while (!done()) {
+    if (timer.elapsed() > milliseconds) return false;
+    QApplication::processEvents(QEventLoop::AllEvents, 5);
+  }
+  return true;
+}
+
+class LiveWindow {
+ public:
+  LiveWindow(const std::string& scenePath, int width, int height, int spp, int maxPasses = 3)
+      : description_(load(scenePath, width, height, spp)),
+        scene_(description_),
+        renderer_(scene_, options(maxPasses)),
+        window_(description_, "test", [this](const ViewSettings& v) { renderer_.setView(v); }) {
+    QObject::connect(&bridge_, &RenderBridge::passStartedSignal, &window_,
+                     &MainWindow::onPassStarted, Qt::QueuedConnection);
+    QObject::connect(&bridge_, &RenderBridge::tileAssignedSignal, &window_,
+                     &MainWindow::onTileAssigned, Qt::QueuedConnection);
+    QObject::connect(&bridge_, &RenderBridge::tileFinishedSignal, &window_,
+                     &MainWindow::onTileFinished, Qt::QueuedConnection);
+    QObject::connect(&bridge_, &RenderBridge::passFinishedSignal, &window_,
+                     &MainWindow::onPassFinished, Qt::QueuedConnection);
+    QObject::connect(&bridge_, &RenderBridge::statsUpdatedSignal, &window_, &MainWindow::onStats,
+                     Qt::QueuedConnection);
+    coordinator_ = std::thread([this] { renderer_.run(bridge_); });
+    window_.show();
+    window_.startRendering();
+  }
+  ~LiveWindow() {
+    renderer_.stop();
+    coordinator_.join();
+  }
+
+  MainWindow& window() { return window_; }
+  const Scene& scene() const { return scene_; }
+  const SceneDescription& description() const { return description_; }
+
+  bool waitForFullPasses(int passes) {
+    return waitUntil([&] { return window_.fullPassesDone() >= passes; });
+  }
+
+ private:
+  static SceneDescription load(const std::string& path, int width, int height, int spp) {
+    SceneDescription d = loadScene(path);
+    d.render.width = width;
+    d.render.height = height;
+    d.render.samplesPerPixel = spp;
+    return d;
+  }
+  static LiveOptions options(int maxPasses) {
+    LiveOptions o;
+    o.threads = 2;
+    o.previewScale = 4;
+    o.maxPasses = maxPasses;
+    o.statsInterval = 0.05;
+    return o;
+  }
+
+  SceneDescription description_;
+  Scene scene_;
+  LiveRenderer renderer_;
+  RenderBridge bridge_;
+  MainWindow window_;
+  std::thread coordinator_;
+};
+
+const std::string kDefaultScene = PRISM_SOURCE_DIR "/scenes/default.yaml";
+const std::string kPlaneScene = PRISM_SOURCE_DIR "/scenes/lambert-plane.yaml";
+
+TEST(MainWindow, ShowsTheFrameTheRendererProduced) {
+  LiveWindow live(kDefaultScene, 96, 54, 2, 1);  // one full pass, then still
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  // Pass 1 uses the scene's seed and spp: exactly the image `prism render` makes.
+  const ImageRgb& shown = live.window().frame().image();
+  const ImageRgb expected = renderFrame(live.scene(), FrameOptions{}).image;
+  ASSERT_EQ(shown.pixels.size(), expected.pixels.size());
+  for (size_t i = 0; i < shown.pixels.size(); ++i) {
+    ASSERT_EQ(shown.pixels[i], expected.pixels[i]) << "pixel " << i;
+  }
+
+  // The widget, at the image's size and without outlines, shows those pixels tone-mapped.
+  FrameView* view = live.window().frameView();
+  view->setShowTiles(false);
+  view->setFixedSize(96, 54);
+  ASSERT_TRUE(waitUntil([&] { return view->size() == QSize(96, 54); }));
+  QTest::qWait(60);  // a repaint tick
+  const QImage grabbed = view->grab().toImage().convertToFormat(QImage::Format_RGB888);
+  ASSERT_EQ(grabbed.size(), QSize(96, 54));
+  const DisplayEncoder encode(live.description().render.exposure);
+  int mismatches = 0;
+  for (int y = 0; y < 54; ++y) {
+    for (int x = 0; x < 96; ++x) {
+      const Color& c = expected.at(x, y);
+      const QColor got = grabbed.pixelColor(x, y);
+      if (got.red() != encode(c.r) || got.green() != encode(c.g) || got.blue() != encode(c.b)) {
+        ++mismatches;
+      }
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(MainWindow, KeysMoveTheCameraAndStartANewFrame) {
+  LiveWindow live(kDefaultScene, 64, 36, 1);
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  MainWindow& w = live.window();
+  const uint32_t frameBefore = w.frame().frame();
+  const uint64_t viewBefore = w.viewId();
+  const CameraDesc home = live.description().camera;
+  const Vec3 forward = glm::normalize(home.lookAt - home.position);
+  const float step = CameraController::kMoveFraction * glm::length(home.lookAt - home.position);
+
+  QTest::keyClick(w.frameView(), Qt::Key_W, Qt::NoModifier, 0);
+  const Vec3 moved = w.viewSettings().camera.position - home.position;
+  EXPECT_NEAR(glm::length(moved - step * forward), 0.0f, 1e-4f);
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == viewBefore + 1; }));
+  EXPECT_GT(w.frame().frame(), frameBefore);
+  EXPECT_EQ(w.frame().pass().view->camera.position, w.viewSettings().camera.position);
+
+  QTest::keyClick(w.frameView(), Qt::Key_Left);  // turns: the look-at point moves
+  EXPECT_NE(w.viewSettings().camera.lookAt, home.lookAt + step * forward);
+  QTest::keyClick(w.frameView(), Qt::Key_R, Qt::NoModifier);  // 'r': back home
+  EXPECT_EQ(w.viewSettings().camera.position, home.position);
+  EXPECT_EQ(w.viewSettings().camera.lookAt, home.lookAt);
+  // Views asked for faster than passes start are coalesced: the renderer goes to the latest.
+  ASSERT_TRUE(waitUntil([&] {
+    return w.viewId() > viewBefore + 1 && w.frame().pass().view->camera.lookAt == home.lookAt;
+  }));
+
+  QTest::keyClicks(w.frameView(), "h");
+  EXPECT_TRUE(w.frameView()->showHelp());
+  QTest::keyClick(w.frameView(), Qt::Key_Escape);
+  EXPECT_FALSE(w.frameView()->showHelp());
+  QTest::keyClicks(w.frameView(), "q");
+  EXPECT_FALSE(w.isVisible());
+}
+
+TEST(MainWindow, NormalsViewShowsTheNormalAndBack) {
+  LiveWindow live(kPlaneScene, 16, 16, 1);
+  MainWindow& w = live.window();
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  QTest::keyClicks(w.frameView(), "N");
+  EXPECT_EQ(w.viewSettings().debugView, DebugView::Normals);
+  const uint64_t normalsView = w.viewId() + 1;
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == normalsView && w.frame().passComplete(); }));
+  // Every pixel sees the plane y = 0 from above: normal (0, 1, 0) shows as (0.5, 1, 0.5).
+  for (const Color& c : w.frame().image().pixels) ASSERT_EQ(c, Color(0.5f, 1.0f, 0.5f));
+  QTest::keyClicks(w.frameView(), "n");
+  EXPECT_EQ(w.viewSettings().debugView, DebugView::Image);
+}
+
+TEST(MainWindow, StaleTilesAreIgnored) {
+  SceneDescription d = loadScene(kPlaneScene);
+  std::vector<ViewSettings> requested;
+  MainWindow w(d, "test", [&](const ViewSettings& v) { requested.push_back(v); });
+  PassInfo p;
+  p.frame = 5;
+  p.viewId = 2;
+  p.pass = 1;
+  auto view = std::make_shared<RenderView>();
+  view->width = d.render.width;
+  view->height = d.render.height;
+  p.view = view;
+  p.tiles = {{0, 0, d.render.width, d.render.height}};
+  w.onPassStarted(p);
+  auto tile = std::make_shared<TileResult>();
+  tile->rect = p.tiles[0];
+  tile->pixels.assign(static_cast<size_t>(tile->rect.pixelCount()), Color(1.0f));
+  w.onTileFinished(4, tile, 1);  // a frame the window has moved on from
+  EXPECT_EQ(w.frame().image().at(0, 0), Color(0.0f));
+  EXPECT_EQ(w.frame().staleTiles(), 1u);
+  w.onTileFinished(5, tile, 1);
+  EXPECT_EQ(w.frame().image().at(0, 0), Color(1.0f));
+  EXPECT_TRUE(requested.empty());  // nothing asked the renderer for a view
+}
+
+TEST(MainWindow, StatsPanelReceivesPerRankNumbers) {
+  LiveWindow live(kDefaultScene, 64, 36, 1);
+  ASSERT_TRUE(live.waitForFullPasses(2));
+  const QTableWidget* table = live.window().statsPanel()->rankTable();
+  ASSERT_TRUE(waitUntil([&] {
+    return table->rowCount() == 1 && table->item(0, 2) && table->item(0, 2)->text().toInt() > 0;
+  }));
+  EXPECT_EQ(table->item(0, 0)->text(), "0");
+  EXPECT_EQ(table->item(0, 1)->text(), "2");  // threads
+
+  // Known numbers in, the same numbers out, one row per rank, and the chart's live point.
+  LiveStats s;
+  s.ranks.resize(3);
+  for (int r = 0; r < 3; ++r) {
+    s.ranks[r].rank = r;
+    s.ranks[r].threads = 2;
+    s.ranks[r].tiles = static_cast<size_t>(10 * (r + 1));
+    s.ranks[r].busySeconds = 0.5 * (r + 1);
+    s.ranks[r].rays.primary = 1500000ull * (r + 1);
+  }
+  s.ranks[2].retired = true;
+  s.lastPassSeconds = 0.5;
+  s.lastPassBusySeconds = 2.0;
+  s.totalThreads = 4;
+  StatsPanel panel;
+  panel.showStats(s);
+  ASSERT_EQ(panel.rankTable()->rowCount(), 3);
+  EXPECT_EQ(panel.rankTable()->item(1, 2)->text(), "20");
+  EXPECT_EQ(panel.rankTable()->item(1, 3)->text(), "1.00");
+  EXPECT_EQ(panel.rankTable()->item(2, 4)->text(), "4.50");
+  EXPECT_EQ(panel.rankTable()->item(2, 0)->text(), "2 (retired)");
+  ASSERT_EQ(panel.liveSpeedup()->count(), 1);
+  EXPECT_EQ(panel.liveSpeedup()->at(0), QPointF(4.0, 4.0));  // 2 thread-s in 0.5 s on 4 threads
+  EXPECT_TRUE(panel.summaryText().contains("efficiency 1.00"));
+
+  panel.setSpeedupTable({{1, 4.0, 1.0, 1.0}, {2, 2.5, 1.6, 0.8}}, "x.csv");
+  ASSERT_EQ(panel.csvSpeedup()->count(), 2);
+  EXPECT_EQ(panel.csvSpeedup()->at(1), QPointF(2.0, 1.6));
+  EXPECT_EQ(panel.csvEfficiency()->at(1), QPointF(2.0, 0.8));
+}
+
+TEST(MainWindow, SpeedupCsvErrorsAreReported) {
+  SceneDescription d = loadScene(kPlaneScene);
+  MainWindow w(d, "test", [](const ViewSettings&) {});
+  EXPECT_TRUE(w.loadSpeedupCsv("/no/such.csv").contains("cannot open"));
+  EXPECT_TRUE(w.loadSpeedupCsv(PRISM_SOURCE_DIR "/docs/speedup-default.csv").isEmpty());
+  EXPECT_EQ(w.statsPanel()->csvSpeedup()->count(), 2);
+}
+
+}  // namespace
+}  // namespace prism

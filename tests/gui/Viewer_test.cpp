@@ -1,0 +1,64 @@
+// `prism view` end to end: the real executable, under the offscreen platform, alone and with
+// 2 MPI ranks.
+#include "gui/Viewer.h"
+
+#include <gtest/gtest.h>
+
+#include "image/ImageIo.h"
+#include "master/PrismProcess.h"  // tests/master/
+
+namespace prism {
+namespace {
+
+using test::runPrism;
+using test::runPrismMpi;
+
+class Viewer : public test::ScratchFolderTest {};
+
+const std::string kScene = PRISM_SOURCE_DIR "/scenes/default.yaml";
+
+void expectSameImage(const std::string& a, const std::string& b) {
+  const ImageRgb x = readImage(a);
+  const ImageRgb y = readImage(b);
+  ASSERT_EQ(x.width, y.width);
+  ASSERT_EQ(x.height, y.height);
+  size_t different = 0;
+  for (size_t i = 0; i < x.pixels.size(); ++i) different += x.pixels[i] != y.pixels[i];
+  EXPECT_EQ(different, 0u);
+}
+
+TEST_F(Viewer, TwoRanksUnderOffscreenRenderTheSameImageAsRender) {
+  ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  const std::string size = " --width 96 --height 54 --spp 2";
+  const auto view =
+      runPrismMpi(2, "view " + kScene + size + " --exit-after-passes 1 --save " + path("view.exr"));
+  ASSERT_EQ(view.exitCode, 0) << view.output;
+  // The slave rendered part of it.
+  const auto at = view.output.find("rank 1 ");
+  ASSERT_NE(at, std::string::npos) << view.output;
+  const auto tiles = std::stoi(view.output.substr(view.output.find("threads, ", at) + 9));
+  EXPECT_GT(tiles, 0) << view.output;
+  const auto render = runPrism("render " + kScene + size + " -q -o " + path("render.exr"));
+  ASSERT_EQ(render.exitCode, 0) << render.output;
+  expectSameImage(path("view.exr"), path("render.exr"));
+}
+
+TEST_F(Viewer, NoDisplayIsAClearError) {
+  const auto bare = test::runCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " +
+                                     std::string(PRISM_EXECUTABLE) + " view " + kScene);
+  EXPECT_EQ(bare.exitCode, 1);
+  EXPECT_NE(bare.output.find("prism: error: no display"), std::string::npos) << bare.output;
+}
+
+TEST_F(Viewer, BadSceneAndBadCsvAreClearErrors) {
+  ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  const auto missing = runPrism("view " + path("nope.yaml"));
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.output.find("prism: error:"), std::string::npos) << missing.output;
+  const auto badSave = runPrism("view " + kScene + " --save " + path("x.bmpx"));
+  EXPECT_EQ(badSave.exitCode, 1);
+  EXPECT_NE(badSave.output.find("prism: error:"), std::string::npos) << badSave.output;
+}
+
+}  // namespace
+}  // namespace prism
