@@ -12,6 +12,7 @@ FrameAccumulator::FrameAccumulator(int width, int height)
     : image_(width, height), dirtyX0_(width), dirtyY0_(height) {}
 
 void FrameAccumulator::beginPass(const PassInfo& pass) {
+  if (!started_ || pass.viewId != pass_.viewId) completedPass_ = -1;
   pass_ = pass;
   started_ = true;
   owner_.assign(pass.tiles.size(), kNone);
@@ -73,7 +74,7 @@ bool FrameAccumulator::addTile(uint32_t frame, const TileResult& tile) {
     }
   }
   owner_[tile.tileIndex] = kDone;
-  ++tilesDone_;
+  if (++tilesDone_ == owner_.size()) completedPass_ = pass_.pass;
   markDirty(toDisplay(r));
   return true;
 }

@@ -36,6 +36,9 @@ class FrameAccumulator {
   size_t tilesDone() const { return tilesDone_; }
   bool passComplete() const { return !pass_.tiles.empty() && tilesDone_ == pass_.tiles.size(); }
   size_t staleTiles() const { return staleTiles_; }
+  // The highest pass of the current view whose every tile is in (-1: none yet). The next pass
+  // may already be under way, so passComplete() alone misses it.
+  int completedPass() const { return completedPass_; }
 
   // A rectangle of the pass's image in display pixels.
   TileRect toDisplay(const TileRect& r) const;
@@ -46,6 +49,7 @@ class FrameAccumulator {
   ImageRgb image_;
   PassInfo pass_;
   bool started_ = false;
+  int completedPass_ = -1;
   std::vector<int> owner_;  // per tile: rendering rank, kNone or kDone
   size_t tilesDone_ = 0;
   size_t staleTiles_ = 0;

@@ -88,7 +88,7 @@ void FrameView::paintEvent(QPaintEvent*) {
     painter.drawText(rect().adjusted(24, 24, -24, -24), Qt::AlignLeft | Qt::AlignTop,
                      QString::fromUtf8(kViewerHelpText));
   }
-  emit painted(frame_.frame(), frame_.pass().pass, frame_.passComplete());
+  emit painted(frame_.pass().viewId, frame_.completedPass());
 }
 
 void FrameView::mousePressEvent(QMouseEvent* event) {

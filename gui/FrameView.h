@@ -36,8 +36,8 @@ class FrameView : public QWidget {
   static QColor rankColor(int rank);
 
  signals:
-  // After a paint: which frame and pass it showed and whether that pass was complete.
-  void painted(uint32_t frame, int pass, bool passComplete);
+  // After a paint: the view it showed and the highest pass of it shown complete (-1: none).
+  void painted(uint64_t viewId, int completedPass);
   void dragged(int dx, int dy);  // mouse drag, in pixels
   void wheelTurned(int steps);   // + away from the user
 

@@ -58,7 +58,7 @@ MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
   auto* scroll = new QScrollArea(splitter);
   scroll->setWidget(buildSidePanel());
   scroll->setWidgetResizable(true);
-  scroll->setMinimumWidth(430);
+  scroll->setMinimumWidth(540);
   splitter->addWidget(scroll);
   splitter->setStretchFactor(0, 1);
   setCentralWidget(splitter);

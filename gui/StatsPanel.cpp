@@ -43,7 +43,8 @@ StatsPanel::StatsPanel(QWidget* parent) : QWidget(parent) {
   table_->verticalHeader()->hide();
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->setMaximumHeight(150);
+  table_->setMinimumHeight(120);
+  table_->setMaximumHeight(170);
   layout->addWidget(table_);
 
   chart_ = new QChart();
@@ -92,7 +93,7 @@ StatsPanel::StatsPanel(QWidget* parent) : QWidget(parent) {
   }
   auto* view = new QChartView(chart_, this);
   view->setRenderHint(QPainter::Antialiasing);
-  view->setMinimumHeight(260);
+  view->setMinimumHeight(330);
   layout->addWidget(view, 1);
   rescaleAxes();
   summary_->setText("waiting for the first tiles");

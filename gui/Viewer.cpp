@@ -54,16 +54,16 @@ class MoveBenchmark : public QObject {
     waitingView_ = window_.viewId() + 1;
   }
 
-  void onPainted(uint32_t, int pass, bool complete) {
+  void onPainted(uint64_t viewId, int completedPass) {
     if (!started_) {
-      if (pass >= 1 && complete) {  // the first full image is on screen: start moving
+      if (completedPass >= 1) {  // the first full image is on screen: start moving
         started_ = true;
         runStart_ = SteadyClock::now();
         move();
       }
       return;
     }
-    if (done_ || window_.viewId() != waitingView_ || !complete) return;
+    if (done_ || viewId != waitingView_ || completedPass < 0) return;
     if (latencies_.size() < static_cast<size_t>(moves_)) {
       latencies_.push_back(secondsSince(moveStart_));
       if (latencies_.size() < static_cast<size_t>(moves_)) {
@@ -74,7 +74,7 @@ class MoveBenchmark : public QObject {
       fullStart_ = moveStart_;
       waitingFull_ = true;
     }
-    if (waitingFull_ && pass >= 1) {
+    if (waitingFull_ && completedPass >= 1) {
       done_ = true;
       const double full = secondsSince(fullStart_);
       const double fps = static_cast<double>(latencies_.size()) / movingSeconds_;
@@ -190,7 +190,7 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
       QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
     }
   });
-  window.resize(1280, 720);
+  window.resize(1600, 900);
   window.show();
   window.startRendering();
   app.exec();

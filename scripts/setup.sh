@@ -9,6 +9,7 @@ packages=(
   libglm-dev libyaml-cpp-dev libopenimageio-dev   # renderer core: math, scenes, images
   libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
   libopenmpi-dev openmpi-bin                      # distribution over MPI
+  qtbase5-dev libqt5charts5-dev                   # the viewer (prism view)
   libgtest-dev                                    # tests
 )
 
