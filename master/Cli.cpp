@@ -18,6 +18,12 @@ struct RenderOverrideValues {
   uint64_t seed = 0;
   float exposure = 1.0f;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  CausticMethod causticMethod = CausticMethod::None;
+  uint64_t photons = 0;
+  int gather = 0, passes = 0;
+  float gatherRadius = 0.0f;
+  double timeBudget = 0.0;
+  bool progressive = false;
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
@@ -53,6 +59,45 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  const char* caustics = "Caustics (override the scene's 'caustics' section)";
+  render
+      ->add_option("--caustics", v.causticMethod,
+                   "Caustics method: none or photon-map (default: the scene's)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, CausticMethod>{{"none", CausticMethod::None},
+                                               {"photon-map", CausticMethod::PhotonMap}},
+          CLI::ignore_case))
+      ->option_text("none|photon-map")
+      ->group(caustics);
+  render
+      ->add_option("--photons", v.photons,
+                   "Photons emitted per pass towards the caustic casters (implies photon-map)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40))
+      ->group(caustics);
+  render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
+      ->check(CLI::Range(1, 100000))
+      ->group(caustics);
+  render
+      ->add_option("--gather-radius", v.gatherRadius,
+                   "Largest gather radius (k-NN), or the first radius (progressive); world units")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_flag("--progressive", v.progressive,
+                 "Progressive photon mapping: passes with a shrinking radius (implies photon-map)")
+      ->group(caustics);
+  render->add_option("--passes", v.passes, "Progressive photon passes (implies photon-map)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->group(caustics);
+  render
+      ->add_option("--time-budget", v.timeBudget,
+                   "Seconds after which no further progressive pass starts")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_option("--photon-image", o.photonImagePath,
+                   "Debug: also write an image of where the stored photons landed")
+      ->group(caustics);
   render
       ->add_option("--schedule", o.schedule,
                    "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)")
@@ -109,6 +154,13 @@ int runCli(int argc, char** argv, MpiSession* session) {
     if (given("--seed")) renderOptions.seed = overrides.seed;
     if (given("--exposure")) renderOptions.exposure = overrides.exposure;
     if (given("--triangle-test")) renderOptions.triangleTest = overrides.triangleTest;
+    if (given("--caustics")) renderOptions.causticMethod = overrides.causticMethod;
+    if (given("--photons")) renderOptions.photons = overrides.photons;
+    if (given("--gather")) renderOptions.gather = overrides.gather;
+    if (given("--gather-radius")) renderOptions.gatherRadius = overrides.gatherRadius;
+    if (given("--progressive")) renderOptions.progressive = true;
+    if (given("--passes")) renderOptions.passes = overrides.passes;
+    if (given("--time-budget")) renderOptions.timeBudget = overrides.timeBudget;
     return runRender(renderOptions, std::cout, std::cerr, session);
   }
   return 1;

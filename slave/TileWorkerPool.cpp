@@ -31,9 +31,9 @@ void TileWorkerPool::start(JobSource source, ResultHandler onResult) {
   for (int t = 0; t < threadCount_; ++t) {
     threads_.emplace_back([this, source, onResult] {
       try {
-        const TileRenderer renderer(scene_);
         while (const std::optional<TileJob> job = source()) {
-          onResult(renderer.render(job->tileIndex, job->rect));
+          const TileRenderer renderer(scene_, job->pass ? job->pass->terms() : LightTerms{});
+          onResult(*job, renderer.render(job->tileIndex, job->rect));
         }
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex_);

@@ -12,20 +12,23 @@
 #include <thread>
 #include <vector>
 
+#include "render/RenderPass.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
 
 namespace prism {
 
 struct TileJob {
+  uint32_t frame = 0;
   uint32_t tileIndex = 0;
   TileRect rect;
+  std::shared_ptr<const RenderPass> pass;  // null: direct light only
 };
 
 class TileWorkerPool {
  public:
   using JobSource = std::function<std::optional<TileJob>()>;
-  using ResultHandler = std::function<void(TileResult&&)>;
+  using ResultHandler = std::function<void(const TileJob&, TileResult&&)>;
 
   TileWorkerPool(const Scene& scene, int threadCount);
   ~TileWorkerPool();  // joins

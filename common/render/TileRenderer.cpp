@@ -4,8 +4,8 @@
 
 namespace prism {
 
-TileRenderer::TileRenderer(const Scene& scene)
-    : scene_(scene), integrator_(scene), sampler_(scene.settings().samplesPerPixel) {}
+TileRenderer::TileRenderer(const Scene& scene, const LightTerms& terms)
+    : scene_(scene), integrator_(scene, terms), sampler_(scene.settings().samplesPerPixel) {}
 
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   Pcg32 rng =

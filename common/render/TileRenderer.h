@@ -11,7 +11,7 @@ namespace prism {
 
 class TileRenderer {
  public:
-  explicit TileRenderer(const Scene& scene);
+  explicit TileRenderer(const Scene& scene, const LightTerms& terms = {});
 
   TileResult render(uint32_t tileIndex, const TileRect& rect) const;
 

@@ -256,9 +256,10 @@ TEST(Messages, TileTimeMustBeFiniteAndNonNegative) {
 }
 
 TEST(Messages, ProgressRoundTripsAndRejectsCorruption) {
-  const ProgressMessage progress{12345678901ull, {3, 1, 4, 1, 5}};
+  const ProgressMessage progress{7, 12345678901ull, {3, 1, 4, 1, 5}};
   std::vector<uint8_t> bytes = encodeProgress(progress);
   const ProgressMessage back = decodeProgress(decodeMessage(bytes));
+  EXPECT_EQ(back.frame, 7u);
   EXPECT_EQ(back.jobsReceived, progress.jobsReceived);
   EXPECT_EQ(back.heldTiles, progress.heldTiles);
   EXPECT_EQ(decodeProgress(decodeMessage(encodeProgress({}))).heldTiles.size(), 0u);
@@ -275,11 +276,14 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(TileRect), 16u) << update;
   EXPECT_EQ(sizeof(RayCounters), 24u) << update;
   EXPECT_EQ(sizeof(TileResult), 80u) << update;
-  EXPECT_EQ(sizeof(TileJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
+  EXPECT_EQ(sizeof(PhotonJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
+  EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 88u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
-  EXPECT_EQ(sizeof(ProgressMessage), 32u) << update;
+  EXPECT_EQ(sizeof(ProgressMessage), 40u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
