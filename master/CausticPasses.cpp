@@ -5,6 +5,7 @@
 
 #include "caustics/PhotonGather.h"
 #include "master/PhotonPass.h"
+#include "slave/TileWorkerPool.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -108,14 +109,14 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     return out;
   }
 
-  const int threads = options.threads;
+  // Resolved here: the photon shares are sized by thread counts.
+  const int threads = options.threads > 0 ? options.threads : availableCores();
   const float maxRadius =
       settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
   const auto photonPass = [&](uint32_t pass, const std::string& label) {
     if (progress) progress(label + " photons", 0, 1);
     PhotonPassStats p;
-    auto map = tracePhotonPass(*tracer, pass, threads > 0 ? threads : 0, cluster, roster,
-                               options.leaseSeconds, p);
+    auto map = tracePhotonPass(*tracer, pass, threads, cluster, roster, options.leaseSeconds, p);
     addPhotonStats(stats, p);
     ++stats.passes;
     return std::make_pair(std::move(map), p);
