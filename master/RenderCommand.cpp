@@ -76,6 +76,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     applyOverrides(options, description.render);
     applyOverrides(options, description.caustics);
     checkRenderFits(description.render, physicalMemoryBytes());
+    checkCausticsFit(description.caustics, physicalMemoryBytes());
   } catch (const std::exception& e) {
     // The slaves wait for a scene: send them the error instead so they stop at once.
     if (session) {
