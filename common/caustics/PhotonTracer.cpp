@@ -107,7 +107,7 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
       out.push_back(photon);
       ++stats.stored;
     }
-    if (!(s.caustic & kCastsCaustics) || bounce >= maxBounces_) {
+    if (!(s.caustic & kCastsCaustics) || bounce >= maxBounces_) {  // bounce 0: not a caster
       ++(bounce == 0 ? stats.missed : stats.absorbed);
       return;
     }
@@ -129,7 +129,7 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
       power *= split.transmitWeight / transmitP;
       direction = *split.refracted;
     } else {
-      ++(bounce == 0 ? stats.missed : stats.absorbed);
+      ++stats.absorbed;  // by roulette, at a caster
       return;
     }
     ray = Ray{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};

@@ -25,9 +25,11 @@ namespace prism {
 
 struct PhotonTraceStats {
   uint64_t emitted = 0;
-  uint64_t stored = 0;
-  uint64_t missed = 0;  // left the scene, or met a non-caster first: power that was not needed
-  uint64_t absorbed = 0;
+  uint64_t stored = 0;  // photon records written (a photon may land on several receivers)
+  // Every emitted photon ends as one of these two: emitted == missed + absorbed.
+  uint64_t missed = 0;    // met no caster first (left the scene, or hit a non-caster)
+  uint64_t absorbed = 0;  // reached a caster, then ended: stored on a receiver that does not
+                          // cast, absorbed by roulette, escaped, or out of bounces
   PhotonTraceStats& operator+=(const PhotonTraceStats& o) {
     emitted += o.emitted;
     stored += o.stored;

@@ -102,7 +102,9 @@ TEST_P(ProjectionMapSphere, CoversTheCapAndNotWildlyMore) {
   EXPECT_GE(covered, capSolidAngle(beta));
   EXPECT_LE(covered, capSolidAngle(beta + 0.26));
   // Near the equator cells are ~0.0077 rad in radius: the tighter bound cap(β + 2·0.0077·1.05).
-  if (std::abs(axis.z) < 0.5f) EXPECT_LE(covered, capSolidAngle(beta + 0.017));
+  if (std::abs(axis.z) < 0.5f) {
+    EXPECT_LE(covered, capSolidAngle(beta + 0.017));
+  }
   RecordProperty("covered_over_cap", std::to_string(covered / capSolidAngle(beta)));
 }
 
