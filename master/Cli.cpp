@@ -18,6 +18,12 @@ struct RenderOverrideValues {
   uint64_t seed = 0;
   float exposure = 1.0f;
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  CausticMethod causticMethod = CausticMethod::None;
+  uint64_t photons = 0;
+  int gather = 0, passes = 0;
+  float gatherRadius = 0.0f;
+  double timeBudget = 0.0;
+  bool progressive = false;
 };
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
@@ -69,6 +75,49 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
       ->group("");
 }
 
+// Caustics options: `render` only for now (the viewer renders direct light).
+void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
+  const char* caustics = "Caustics (override the scene's 'caustics' section)";
+  render
+      ->add_option("--caustics", v.causticMethod,
+                   "Caustics method: none or photon-map (default: the scene's)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, CausticMethod>{{"none", CausticMethod::None},
+                                               {"photon-map", CausticMethod::PhotonMap}},
+          CLI::ignore_case))
+      ->option_text("none|photon-map")
+      ->group(caustics);
+  render
+      ->add_option("--photons", v.photons,
+                   "Photons emitted per pass towards the caustic casters (implies photon-map)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40))
+      ->group(caustics);
+  render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
+      ->check(CLI::Range(1, 100000))
+      ->group(caustics);
+  render
+      ->add_option("--gather-radius", v.gatherRadius,
+                   "Largest gather radius (k-NN), or the first radius (progressive); world units")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_flag("--progressive", v.progressive,
+                 "Progressive photon mapping: passes with a shrinking radius (implies photon-map)")
+      ->group(caustics);
+  render->add_option("--passes", v.passes, "Progressive photon passes (implies photon-map)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->group(caustics);
+  render
+      ->add_option("--time-budget", v.timeBudget,
+                   "Seconds after which no further progressive pass starts")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_option("--photon-image", o.photonImagePath,
+                   "Debug: also write an image of where the stored photons landed")
+      ->group(caustics);
+}
+
 void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
   CLI::App* render = app.add_subcommand(
       "render",
@@ -79,6 +128,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  addCausticOptions(render, o, v);
 }
 
 void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
@@ -125,6 +175,14 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--seed")) options.seed = overrides.seed;
   if (given("--exposure")) options.exposure = overrides.exposure;
   if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
+  if (!command->get_option_no_throw("--caustics")) return;  // `view` has no caustics options
+  if (given("--caustics")) options.causticMethod = overrides.causticMethod;
+  if (given("--photons")) options.photons = overrides.photons;
+  if (given("--gather")) options.gather = overrides.gather;
+  if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
+  if (given("--progressive")) options.progressive = true;
+  if (given("--passes")) options.passes = overrides.passes;
+  if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
 }
 
 }  // namespace

@@ -23,12 +23,24 @@ class FrameState {
   FrameState(const std::vector<TileRect>& rects, int workers, const FrameOptions& options,
              int width, int height)
       : rects_(rects),
+        pass_(options.pass),
+        frameId_(options.frameId),
         scheduler_(rects.size(), workers, options.schedule, options.leaseSeconds),
         framebuffer_(width, height, rects.size()),
         stats_(static_cast<size_t>(workers)),
         start_(Clock::now()) {
     scheduler_.exemptFromLeases(kLocalWorker);
     for (int r = 0; r < workers; ++r) stats_[r].rank = r;
+    if (const ClusterRoster* roster = options.roster) {
+      for (int r = 1; r < workers && static_cast<size_t>(r) < roster->retired.size(); ++r) {
+        stats_[r].threads = roster->threads[r];
+        stats_[r].buildSeconds = roster->buildSeconds[r];
+        if (roster->retired[r]) {
+          scheduler_.retire(r);
+          stats_[r].retired = true;
+        }
+      }
+    }
   }
 
   double now() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
@@ -40,14 +52,16 @@ class FrameState {
     for (;;) {
       if (framebuffer_.complete() || abandoned_) return std::nullopt;
       if (const auto tile = scheduler_.next(kLocalWorker, now()))
-        return TileJob{*tile, rects_[*tile]};
+        return TileJob(*tile, rects_[*tile], frameId_, nullptr, pass_);
       changed_.wait_for(lock, std::chrono::milliseconds(50));
     }
   }
 
   std::optional<TileJob> nextJobFor(int rank) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (const auto tile = scheduler_.next(rank, now())) return TileJob{*tile, rects_[*tile]};
+    if (const auto tile = scheduler_.next(rank, now())) {
+      return TileJob(*tile, rects_[*tile], frameId_, nullptr, pass_);
+    }
     return std::nullopt;
   }
 
@@ -80,9 +94,12 @@ class FrameState {
     changed_.notify_all();
   }
 
+  uint32_t frameId() const { return frameId_; }
+
   void recordProgress(int rank, const wire::ProgressMessage& progress) {
     const std::lock_guard<std::mutex> lock(mutex_);
     scheduler_.heardFrom(rank, now());
+    if (progress.frame != frameId_) return;  // counts of an earlier frame
     stats_[rank].lostTiles += scheduler_.reconcile(rank, progress.jobsReceived, progress.heldTiles);
     changed_.notify_all();
   }
@@ -132,6 +149,8 @@ class FrameState {
   }
 
   const std::vector<TileRect>& rects_;
+  std::shared_ptr<const RenderPass> pass_;
+  uint32_t frameId_;
   std::mutex mutex_;
   std::condition_variable changed_;
   TileScheduler scheduler_;
@@ -148,7 +167,13 @@ void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
     while (state.outstanding(rank) < static_cast<size_t>(prefetch)) {
       const std::optional<TileJob> job = state.nextJobFor(rank);
       if (!job) break;
-      if (!cluster.send(rank, wire::encodeTileJob({0, job->tileIndex, job->rect}))) {
+      wire::TileJobMessage message{job->frame, job->tileIndex, job->rect, 0, wire::kTermDirect};
+      if (job->pass) {
+        message.pass = job->pass->index;
+        message.terms = static_cast<uint8_t>((job->pass->direct ? wire::kTermDirect : 0) |
+                                             (job->pass->caustics ? wire::kTermCaustics : 0));
+      }
+      if (!cluster.send(rank, wire::encodeTileJob(message))) {
         state.retire(rank);  // MPI knows it is gone: its tiles go back at once
         break;
       }
@@ -159,9 +184,13 @@ void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
     const wire::Message message =
         wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
     switch (message.type) {
-      case wire::MessageType::TileResult:
-        state.accept(wire::decodeTileResult(message).result, incoming->source);
+      case wire::MessageType::TileResult: {
+        const wire::TileResultMessage tile = wire::decodeTileResult(message);
+        if (tile.frame == state.frameId()) state.accept(tile.result, incoming->source);
         break;
+      }
+      case wire::MessageType::PhotonShare:
+        break;  // late share of a photon pass that was completed without it
       case wire::MessageType::Progress:
         state.recordProgress(incoming->source, wire::decodeProgress(message));
         break;
@@ -201,7 +230,7 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   FrameState state(rects, ranks, options, settings.width, settings.height);
   state.stats()[kLocalWorker].threads = pool.threadCount();
   pool.start([&] { return state.nextLocalJob(); },
-             [&](TileResult&& tile) { state.accept(tile, kLocalWorker); });
+             [&](const TileJob&, TileResult&& tile) { state.accept(tile, kLocalWorker); });
 
   try {
     auto lastProgress = Clock::now();
@@ -232,6 +261,14 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   for (const WorkerStats& w : result.workers) {
     result.rays += w.rays;
     result.busyThreadSeconds += w.busySeconds;
+  }
+  if (ClusterRoster* roster = options.roster) {
+    for (const WorkerStats& w : result.workers) {
+      if (w.rank == kLocalWorker || static_cast<size_t>(w.rank) >= roster->retired.size()) continue;
+      roster->threads[w.rank] = w.threads;
+      roster->buildSeconds[w.rank] = w.buildSeconds;
+      roster->retired[w.rank] = roster->retired[w.rank] || w.retired;
+    }
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

@@ -10,11 +10,24 @@
 #include "image/ImageRgb.h"
 #include "master/TileScheduler.h"
 #include "render/RayCounters.h"
+#include "render/RenderPass.h"
 #include "scene/Scene.h"
 
 namespace prism {
 
 class MpiSession;
+
+// What the master knows about the ranks between the frames and photon passes of one run (index =
+// rank): slaves that stopped answering stay retired, and what their Ready said is kept.
+struct ClusterRoster {
+  explicit ClusterRoster(int ranks = 1)
+      : threads(static_cast<size_t>(ranks), 0),
+        buildSeconds(static_cast<size_t>(ranks), 0.0),
+        retired(static_cast<size_t>(ranks), false) {}
+  std::vector<int> threads;
+  std::vector<double> buildSeconds;
+  std::vector<bool> retired;
+};
 
 struct FrameOptions {
   int threads = 0;   // render threads on this rank; 0: every available core
@@ -24,6 +37,13 @@ struct FrameOptions {
   int prefetch = 2;            // tiles in flight per slave, so none waits for its next job
   // Called on the coordinating thread with (tiles done, tiles total), about ten times a second.
   std::function<void(size_t, size_t)> progress;
+  // The pass every tile renders; null: one pass of direct light. In an MPI run a pass with
+  // caustics needs its photon map already sent to the slaves (master/PhotonPass.h).
+  std::shared_ptr<const RenderPass> pass;
+  ClusterRoster* roster = nullptr;  // read before the frame and updated after it, when given
+  // Tags the frame's messages; every frame of a run needs its own, so that a late tile or
+  // heartbeat from an earlier frame is recognised and ignored.
+  uint32_t frameId = 0;
 };
 
 // What one rank did for the frame.

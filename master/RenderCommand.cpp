@@ -2,9 +2,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <ostream>
 
+#include "caustics/PhotonImage.h"
 #include "image/ImageIo.h"
+#include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/ProgressBar.h"
 #include "master/ResourceCheck.h"
@@ -28,6 +31,21 @@ void applyOverrides(const RenderOptions& o, RenderSettings& s) {
   if (o.triangleTest) s.triangleTest = *o.triangleTest;
 }
 
+void applyOverrides(const RenderOptions& o, CausticSettings& c) {
+  if (o.causticMethod) c.method = *o.causticMethod;
+  if (o.photons) c.photons = *o.photons;
+  if (o.gather) c.gather = *o.gather;
+  if (o.passes) c.passes = *o.passes;
+  if (o.progressive) c.progressive = *o.progressive;
+  if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;
+  if (o.timeBudget) c.timeBudgetSeconds = *o.timeBudget;
+  // Asking for passes, a budget or a photon image means asking for photon mapping.
+  if ((o.progressive || o.passes || o.timeBudget || o.photons) && !o.causticMethod &&
+      c.method == CausticMethod::None) {
+    c.method = CausticMethod::PhotonMap;
+  }
+}
+
 std::string defaultOutputPath(const std::string& scenePath) {
   return std::filesystem::path(scenePath).stem().string() + ".png";
 }
@@ -49,11 +67,16 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   try {
     std::string why;
     if (!isWritableImagePath(output, &why)) throw std::runtime_error(why);
+    if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
+      throw std::runtime_error("--photon-image: " + why);
+    }
     const auto parseStart = std::chrono::steady_clock::now();
     description = loadScene(options.scenePath);
     summary.parseSeconds = secondsSince(parseStart);
     applyOverrides(options, description.render);
+    applyOverrides(options, description.caustics);
     checkRenderFits(description.render, physicalMemoryBytes());
+    checkCausticsFit(description.caustics, physicalMemoryBytes());
   } catch (const std::exception& e) {
     // The slaves wait for a scene: send them the error instead so they stop at once.
     if (session) {
@@ -84,18 +107,42 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     frameOptions.schedule = options.schedule;
     frameOptions.leaseSeconds = options.leaseSeconds;
     frameOptions.prefetch = options.prefetch;
-    ProgressBar progress("render", 0, "tiles", !options.quiet);
-    frameOptions.progress = [&](size_t done, size_t total) {
-      progress.setTotal(total);
-      progress.update(done);
+    std::unique_ptr<ProgressBar> progress;
+    std::string stage;
+    const auto onProgress = [&](const std::string& label, size_t done, size_t total) {
+      if (options.quiet) return;
+      if (!progress || label != stage) {
+        if (progress) progress->finish();
+        progress = std::make_unique<ProgressBar>(label, total, "tiles", true);
+        stage = label;
+      }
+      progress->setTotal(total);
+      progress->update(done);
     };
-    const FrameResult frame = renderFrame(scene, frameOptions, session);
-    progress.finish();
+    ClusterRoster roster(session ? session->size() : 1);
+    const CausticFrame result =
+        renderWithCaustics(scene, frameOptions, session, roster, onProgress);
+    if (progress) progress->finish();
+    const FrameResult& frame = result.frames;
     for (const WorkerStats& w : frame.workers) silentRanks.push_back(w.retired);
+    if (result.caustics.noCasters && !options.quiet) {
+      err << "prism: warning: caustics asked for, but no light reaches a caustic caster "
+             "(a reflective or transparent object): rendered without photons\n";
+    }
 
     const auto writeStart = std::chrono::steady_clock::now();
-    writeImage(frame.image, output, description.render.exposure);
+    writeImage(result.image, output, description.render.exposure);
     summary.writeSeconds = secondsSince(writeStart);
+    if (!options.photonImagePath.empty()) {
+      if (result.lastMap) {
+        const RenderSettings& r = description.render;
+        writeImage(photonImage(*result.lastMap, scene.camera(), r.width, r.height),
+                   options.photonImagePath, 1.0f);
+      } else {
+        err << "prism: warning: no photons were traced, so " << options.photonImagePath
+            << " was not written\n";
+      }
+    }
 
     if (!options.quiet) {
       summary.scenePath = options.scenePath;
@@ -105,6 +152,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       summary.lightCount = description.lights.size();
       summary.schedule = options.schedule;
       summary.frame = &frame;
+      summary.caustics = &result.caustics;
       summary.totalSeconds = secondsSince(start);
       printRunSummary(summary, out);
     }

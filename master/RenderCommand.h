@@ -22,7 +22,15 @@ struct RenderOptions {
   std::optional<uint64_t> seed;
   std::optional<float> exposure;
   std::optional<TriangleTest> triangleTest;
-  bool quiet = false;  // no progress bar and no summary
+  // Caustics: override the scene's `caustics` section.
+  std::optional<CausticMethod> causticMethod;
+  std::optional<uint64_t> photons;
+  std::optional<int> gather, passes;
+  std::optional<bool> progressive;
+  std::optional<float> gatherRadius;  // k-NN cap, or the first progressive radius
+  std::optional<double> timeBudget;
+  std::string photonImagePath;  // debug: where the stored photons landed
+  bool quiet = false;           // no progress bar and no summary
   // Distribution (MPI runs): how tiles are handed out and when a silent slave is given up on.
   Schedule schedule = Schedule::Dynamic;
   double leaseSeconds = 30.0;
@@ -32,6 +40,7 @@ struct RenderOptions {
 
 // Applies the overrides the user gave to the scene's own settings.
 void applyOverrides(const RenderOptions& options, RenderSettings& settings);
+void applyOverrides(const RenderOptions& options, CausticSettings& caustics);
 
 // The output path used when none is given: the scene's file name with a .png extension.
 std::string defaultOutputPath(const std::string& scenePath);

@@ -43,4 +43,24 @@ void checkRenderFits(const RenderSettings& s, uint64_t availableBytes) {
   }
 }
 
+uint64_t photonMemoryBytes(const CausticSettings& c) {
+  if (c.method != CausticMethod::PhotonMap) return 0;
+  // 28-byte photons held three times (shares, map, outgoing message) plus a 4-byte tree index
+  // and about one 8-byte node share per photon.
+  constexpr double kBytesPerPhoton = 3.0 * 28.0 + 4.0 + 8.0;
+  const double bytes = static_cast<double>(c.photons) * kBytesPerPhoton;
+  return bytes >= 1.8e19 ? UINT64_MAX : static_cast<uint64_t>(bytes);
+}
+
+void checkCausticsFit(const CausticSettings& c, uint64_t availableBytes) {
+  const uint64_t needed = photonMemoryBytes(c);
+  if (needed > availableBytes / 2) {
+    throw std::runtime_error(std::to_string(c.photons) + " photons per pass may need " +
+                             formatBytes(static_cast<double>(needed)) +
+                             " for the photon map; this machine has " +
+                             formatBytes(static_cast<double>(availableBytes)) +
+                             " of memory (reduce --photons, or use more --passes of fewer)");
+  }
+}
+
 }  // namespace prism

@@ -19,6 +19,13 @@ uint64_t physicalMemoryBytes();
 // the memory available.
 void checkRenderFits(const RenderSettings& settings, uint64_t availableBytes);
 
+// Bytes a photon pass of these settings may need on rank 0 at worst (every photon stored): the
+// shares as they arrive, the assembled map with its kd-tree, and the message that sends it on.
+uint64_t photonMemoryBytes(const CausticSettings& caustics);
+
+// Throws std::runtime_error when the photon map cannot fit, naming the bytes and the memory.
+void checkCausticsFit(const CausticSettings& caustics, uint64_t availableBytes);
+
 // "1.5 GiB", "312 KiB", ...
 std::string formatBytes(double bytes);
 

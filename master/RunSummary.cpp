@@ -48,6 +48,42 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
   }
 }
 
+// What the photon passes did: counts, sizes and times.
+void printCaustics(const RunSummary& s, std::ostream& out) {
+  const CausticRunStats& c = *s.caustics;
+  if (c.method == CausticMethod::None) return;
+  if (c.noCasters) {
+    out << "caustics  photon map asked for, but no light reaches a caster: no photons traced\n";
+    return;
+  }
+  const double stored = static_cast<double>(c.trace.stored);
+  out << "caustics  photon map" << (c.progressive ? " (progressive)" : "") << ": "
+      << formatCount(static_cast<double>(c.photonsPerPass)) << " photons x " << c.passes
+      << (c.passes == 1 ? " pass" : " passes") << ", " << formatCount(stored) << " stored ("
+      << fixed(100.0 * stored / std::max<double>(1.0, static_cast<double>(c.trace.emitted)), 1)
+      << " %), " << sizeof(Photon) << " B per photon, map "
+      << formatBytes(static_cast<double>(c.mapBytes)) << "\n"
+      << "          ";
+  if (c.progressive) {
+    out << "gather radius " << fixed(c.firstRadius, 4) << " -> " << fixed(c.lastRadius, 4);
+  } else {
+    out << "gather " << c.k << " nearest within " << fixed(c.firstRadius, 4);
+  }
+  out << "; trace " << milliseconds(c.traceSeconds) << ", kd-tree " << milliseconds(c.buildSeconds);
+  if (c.sentBytes > 0) {
+    out << ", maps sent " << formatBytes(static_cast<double>(c.sentBytes)) << " in "
+        << milliseconds(c.distributeSeconds);
+  }
+  out << ", frames with gathers " << fixed(c.gatherRenderSeconds, 3) << " s\n";
+  if (c.photonsByRank.size() > 1) {
+    out << "          photons traced by rank:";
+    for (size_t r = 0; r < c.photonsByRank.size(); ++r) {
+      out << (r ? ", " : " ") << r << ": " << formatCount(static_cast<double>(c.photonsByRank[r]));
+    }
+    out << "\n";
+  }
+}
+
 }  // namespace
 
 std::string formatCount(double count) {
@@ -76,6 +112,7 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       << " spp, max depth " << r.maxDepth << ", " << f.tileCount << " tiles of " << f.tileSize
       << " px\n";
   printWorkers(s, out);
+  if (s.caustics) printCaustics(s, out);
   out << "rays      " << formatCount(static_cast<double>(f.rays.total()))
       << " total: " << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
       << formatCount(static_cast<double>(f.rays.shadow)) << " shadow, "

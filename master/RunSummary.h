@@ -5,6 +5,7 @@
 #include <iosfwd>
 #include <string>
 
+#include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "scene/Scene.h"
 
@@ -17,6 +18,7 @@ struct RunSummary {
   SceneBuildStats sceneStats;
   size_t lightCount = 0;
   const FrameResult* frame = nullptr;
+  const CausticRunStats* caustics = nullptr;
   Schedule schedule = Schedule::Dynamic;
   double parseSeconds = 0.0;
   double broadcastSeconds = 0.0;  // MPI runs only

@@ -8,6 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
   libglm-dev libyaml-cpp-dev libopenimageio-dev   # renderer core: math, scenes, images
   libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
+  libnanoflann-dev                                # k-nearest photons (caustics)
   libopenmpi-dev openmpi-bin                      # distribution over MPI
   qtbase5-dev libqt5charts5-dev                   # the viewer (prism view)
   libgtest-dev                                    # tests

@@ -3,11 +3,15 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <utility>
 
+#include "caustics/PhotonGather.h"
+#include "caustics/PhotonTracer.h"
 #include "scene/Scene.h"
 #include "slave/JobQueue.h"
 #include "slave/TileWorkerPool.h"
@@ -36,6 +40,74 @@ class Outbox {
  private:
   std::mutex mutex_;
   std::vector<wire::TileResultMessage> tiles_;
+};
+
+// The caustic side of a slave: traces the photon shares the master asks for (on a thread of its
+// own, so the main thread keeps its heartbeat going) and holds the photon map of the current
+// pass for the tiles that need it.
+class PhotonWork {
+ public:
+  PhotonWork(const Scene& scene, int threads) : scene_(scene), threads_(threads) {}
+
+  void start(const wire::PhotonJobMessage& job) {
+    if (running_.valid()) running_.wait();  // the master asks again only after a pass is done
+    if (!tracer_) {
+      const CausticSettings& c = scene_.causticSettings();
+      tracer_ = std::make_unique<PhotonTracer>(scene_, c.photons, c.maxBounces);
+    }
+    running_ = std::async(std::launch::async, [this, job] {
+      const auto start = Clock::now();
+      wire::PhotonShareMessage share{job.pass, job.first, job.count, {}, 0.0, {}};
+      share.photons =
+          tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats);
+      share.seconds = secondsSince(start);
+      return share;
+    });
+  }
+
+  // The finished share, once there is one.
+  std::optional<wire::PhotonShareMessage> finished() {
+    if (!running_.valid() ||
+        running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      return std::nullopt;
+    }
+    return running_.get();
+  }
+
+  void acceptMap(wire::PhotonMapMessage&& message) {
+    auto map = std::make_shared<const PhotonMap>(std::move(message.photons));
+    mapPass_ = message.pass;
+    caustics_ = std::make_shared<const PhotonGather>(std::move(map), message.gather);
+    passes_.clear();
+  }
+
+  // The render pass a tile job names; throws when it needs a photon map this rank lacks.
+  std::shared_ptr<const RenderPass> pass(uint32_t index, uint8_t terms) {
+    const bool caustics = terms & wire::kTermCaustics;
+    if (caustics && (!caustics_ || mapPass_ != index)) {
+      throw std::runtime_error("tile of pass " + std::to_string(index) +
+                               " needs a photon map this rank has not received");
+    }
+    std::shared_ptr<const RenderPass>& cached = passes_[terms];
+    if (!cached || cached->index != index) {
+      cached = std::make_shared<const RenderPass>(
+          RenderPass{index, (terms & wire::kTermDirect) != 0, caustics ? caustics_ : nullptr});
+    }
+    return cached;
+  }
+
+  void wait() {
+    if (running_.valid()) running_.wait();
+  }
+
+ private:
+  const Scene& scene_;
+  int threads_;
+  std::unique_ptr<PhotonTracer> tracer_;
+  std::future<wire::PhotonShareMessage> running_;
+  uint32_t mapPass_ = 0;
+  std::shared_ptr<const CausticEstimator> caustics_;
+  std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
 };
 
 // After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
@@ -88,23 +160,24 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   pool.start(
       [&] { return jobs.pop(); },
       [&](const TileJob& job, TileResult&& tile) { outbox.add(job.frame, std::move(tile)); });
+  PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores());
 
   const bool hang =
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
   const bool drop = options.fault.appliesTo(session.rank()) &&
                     options.fault.kind == FaultInjection::Kind::DropTiles;
   constexpr double kHeartbeatSeconds = 0.5;
-  uint64_t received = 0;
-  std::set<uint32_t> held;  // received, not yet returned
+  // The current frame. Frame ids only grow: a View (the viewer) or a job of a later frame (the
+  // passes of `prism render`) starts a new one, and work of earlier frames is stale.
+  uint32_t frame = 0;
+  std::shared_ptr<const RenderView> view;  // the viewer's; `prism render` uses the scene's
+  uint64_t received = 0;                   // jobs of this frame
+  std::set<uint32_t> held;                 // tiles of this frame received, not yet returned
   auto lastHeartbeat = Clock::now();
   bool shutdownReceived = false;
   bool masterSilent = false;
   auto lastHeard = Clock::now();
   int exitCode = 0;
-  // The viewer's current frame and what it renders; `prism render` sends no View and its jobs
-  // are all frame 0 with the scene's own camera.
-  uint32_t frame = 0;
-  std::shared_ptr<const RenderView> view;
   try {
     for (;;) {
       if (pool.failed()) break;
@@ -114,10 +187,13 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         held.erase(result.result.tileIndex);
         masterReachable = session.send(0, wire::encodeTileResult(result)) && masterReachable;
       }
+      if (std::optional<wire::PhotonShareMessage> share = photons.finished()) {
+        masterReachable = session.send(0, wire::encodePhotonShare(*share)) && masterReachable;
+      }
       // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets
       // the master spot tiles this rank lost.
       if (!hang && secondsSince(lastHeartbeat) > kHeartbeatSeconds) {
-        const wire::ProgressMessage progress{received, {held.begin(), held.end()}};
+        const wire::ProgressMessage progress{frame, received, {held.begin(), held.end()}};
         masterReachable = session.send(0, wire::encodeProgress(progress)) && masterReachable;
         lastHeartbeat = Clock::now();
       }
@@ -151,19 +227,34 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         view = std::make_shared<const RenderView>(std::move(next.view));
         jobs.clear();  // tiles of earlier frames nobody wants any more
         held.clear();
+        received = 0;
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonJob) {
+        if (!hang) photons.start(wire::decodePhotonJob(message));
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonMap) {
+        photons.acceptMap(wire::decodePhotonMap(message));
         continue;
       }
       if (message.type != wire::MessageType::TileJob) continue;
       const wire::TileJobMessage job = wire::decodeTileJob(message);
+      if (job.frame < frame) continue;  // a job of a frame already ended
+      if (job.frame > frame) {          // a new frame: its counts start afresh
+        frame = job.frame;
+        received = 0;
+        held.clear();
+      }
       ++received;
-      if (job.frame != frame) continue;  // a job of a frame already ended
       if (options.fault.appliesTo(session.rank()) &&
           options.fault.kind == FaultInjection::Kind::Crash) {
         std::_Exit(9);  // dies without MPI_Finalize, like a killed process
       }
       if (hang || (drop && received % 2 == 0)) continue;
       held.insert(job.tileIndex);
-      jobs.push({job.tileIndex, job.rect, job.frame, view});
+      jobs.push(
+          TileJob(job.tileIndex, job.rect, job.frame, view, photons.pass(job.pass, job.terms)));
     }
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({e.what()}));
@@ -171,6 +262,7 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   }
   jobs.clear();
   jobs.close();
+  photons.wait();
   try {
     pool.join();
   } catch (const std::exception& e) {

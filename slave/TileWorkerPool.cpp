@@ -36,12 +36,12 @@ void TileWorkerPool::start(JobSource source, JobResultHandler onResult) {
   for (int t = 0; t < threadCount_; ++t) {
     threads_.emplace_back([this, source, onResult] {
       try {
-        const TileRenderer renderer(scene_);
         while (const std::optional<TileJob> job = source()) {
-          // A view's renderer is a camera and a few numbers: cheap to make per tile.
-          onResult(*job, job->view
-                             ? TileRenderer(scene_, *job->view).render(job->tileIndex, job->rect)
-                             : renderer.render(job->tileIndex, job->rect));
+          // A renderer is a camera and a few numbers: cheap to make per tile.
+          const LightTerms terms = job->pass ? job->pass->terms() : LightTerms{};
+          const TileRenderer renderer =
+              job->view ? TileRenderer(scene_, *job->view, terms) : TileRenderer(scene_, terms);
+          onResult(*job, renderer.render(job->tileIndex, job->rect));
         }
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex_);

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "render/RenderPass.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
@@ -22,15 +23,17 @@ namespace prism {
 struct TileJob {
   TileJob() = default;
   TileJob(uint32_t tile, const TileRect& r, uint32_t f = 0,
-          std::shared_ptr<const RenderView> v = nullptr)
-      : tileIndex(tile), rect(r), frame(f), view(std::move(v)) {}
+          std::shared_ptr<const RenderView> v = nullptr,
+          std::shared_ptr<const RenderPass> p = nullptr)
+      : tileIndex(tile), rect(r), frame(f), view(std::move(v)), pass(std::move(p)) {}
 
   uint32_t tileIndex = 0;
   TileRect rect;
-  // The viewer's jobs: which frame they belong to and what it renders. Without a view the
+  // Which frame the job belongs to, and (the viewer) what it renders. Without a view the
   // tile is rendered with the scene's own camera and settings, as `prism render` does.
   uint32_t frame = 0;
   std::shared_ptr<const RenderView> view;
+  std::shared_ptr<const RenderPass> pass;  // the light terms; null: direct light only
 };
 
 class TileWorkerPool {

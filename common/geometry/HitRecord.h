@@ -9,6 +9,10 @@
 
 namespace prism {
 
+// Bits of SurfaceHit::caustic.
+inline constexpr uint8_t kCastsCaustics = 1;     // photons continue specularly from it
+inline constexpr uint8_t kReceivesCaustics = 2;  // photons are stored on it
+
 struct HitRecord {
   float t = 0.0f;
   uint32_t primitive = 0;  // a PrimitiveRef (see scene/PrimitiveRef.h)
@@ -22,6 +26,7 @@ struct SurfaceHit {
   Vec3 shadingNormal{0.0f};    // unit, interpolated for smooth meshes, same side as geometricNormal
   bool frontFace = true;       // the ray arrived from the side the surface normal points to
   MaterialId material = 0;
+  uint8_t caustic = 0;  // kCastsCaustics | kReceivesCaustics, resolved per object
 };
 
 }  // namespace prism

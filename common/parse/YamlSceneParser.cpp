@@ -30,13 +30,17 @@ namespace {
 
 using KeyTable = std::span<const std::string_view>;
 
-constexpr std::string_view kTopLevelKeys[] = {"camera",      "render",    "background", "ambient",
-                                              "environment", "materials", "lights",     "objects"};
+constexpr std::string_view kTopLevelKeys[] = {"camera",  "render",      "background",
+                                              "ambient", "environment", "materials",
+                                              "lights",  "objects",     "caustics"};
 constexpr std::string_view kCameraKeys[] = {"projection", "position", "look_at", "up",
                                             "fov",        "width",    "near"};
 constexpr std::string_view kRenderKeys[] = {"width",     "height",           "samples",
                                             "max_depth", "min_contribution", "seed",
                                             "exposure",  "triangle_test"};
+constexpr std::string_view kCausticsKeys[] = {"method", "photons",     "gather",      "max_radius",
+                                              "filter", "max_bounces", "progressive", "passes",
+                                              "alpha",  "radius",      "time_budget"};
 constexpr std::string_view kEnvironmentKeys[] = {"cubemap", "scale"};
 // In the OpenGL cube-map order of CubeMapDesc::faces: +X, -X, +Y, -Y, +Z, -Z.
 constexpr std::string_view kCubeMapKeys[] = {"px", "nx", "py", "ny", "pz", "nz"};
@@ -47,12 +51,13 @@ constexpr std::string_view kCheckerKeys[] = {"colors", "scale"};
 constexpr std::string_view kLightKeys[] = {"position", "intensity", "attenuation"};
 constexpr std::string_view kObjectKinds[] = {"sphere",   "plane",    "cone",
                                              "cylinder", "triangle", "mesh"};
-constexpr std::string_view kSphereKeys[] = {"center", "radius", "material"};
-constexpr std::string_view kPlaneKeys[] = {"point", "normal", "material"};
-constexpr std::string_view kConeKeys[] = {"base", "base_radius", "apex", "apex_radius", "material"};
-constexpr std::string_view kCylinderKeys[] = {"base", "apex", "radius", "material"};
-constexpr std::string_view kTriangleKeys[] = {"vertices", "normals", "material"};
-constexpr std::string_view kMeshKeys[] = {"file", "material", "transform"};
+constexpr std::string_view kSphereKeys[] = {"center", "radius", "material", "caustic"};
+constexpr std::string_view kPlaneKeys[] = {"point", "normal", "material", "caustic"};
+constexpr std::string_view kConeKeys[] = {"base",        "base_radius", "apex",
+                                          "apex_radius", "material",    "caustic"};
+constexpr std::string_view kCylinderKeys[] = {"base", "apex", "radius", "material", "caustic"};
+constexpr std::string_view kTriangleKeys[] = {"vertices", "normals", "material", "caustic"};
+constexpr std::string_view kMeshKeys[] = {"file", "material", "transform", "caustic"};
 constexpr std::string_view kTransformKeys[] = {"scale", "rotate", "translate"};
 
 constexpr std::pair<std::string_view, Projection> kProjections[] = {
@@ -60,6 +65,18 @@ constexpr std::pair<std::string_view, Projection> kProjections[] = {
 constexpr std::pair<std::string_view, TriangleTest> kTriangleTests[] = {
     {"moller-trumbore", TriangleTest::MollerTrumbore},
     {"plane-inside", TriangleTest::PlaneThenInside}};
+constexpr std::pair<std::string_view, CausticMethod> kCausticMethods[] = {
+    {"none", CausticMethod::None}, {"photon_map", CausticMethod::PhotonMap}};
+constexpr std::pair<std::string_view, PhotonFilter> kPhotonFilters[] = {
+    {"box", PhotonFilter::Box},
+    {"cone", PhotonFilter::Cone},
+    {"epanechnikov", PhotonFilter::Epanechnikov}};
+constexpr std::pair<std::string_view, CausticRole> kCausticRoles[] = {
+    {"auto", CausticRole::Auto},
+    {"cast", CausticRole::Cast},
+    {"receive", CausticRole::Receive},
+    {"both", CausticRole::Both},
+    {"off", CausticRole::Off}};
 
 // Deeper recursion than this risks the tracer's stack and never changes an image visibly.
 constexpr int64_t kMaxDepthLimit = 256;
@@ -474,6 +491,7 @@ class YamlSceneReader {
     if (const Entry* e = top.find("materials")) readMaterials(*e);
     if (const Entry* e = top.find("camera")) readCamera(*e);
     if (const Entry* e = top.find("render")) readRender(*e);
+    if (const Entry* e = top.find("caustics")) readCaustics(*e);
     if (const Entry* e = top.find("background")) scene_.background = color(*e);
     if (const Entry* e = top.find("ambient")) scene_.ambientLight = color(*e);
     if (const Entry* e = top.find("environment")) readEnvironment(*e);
@@ -533,6 +551,38 @@ class YamlSceneReader {
     if (const Entry* e = m.find("seed")) r.seed = unsignedInteger(*e);
     if (const Entry* e = m.find("exposure")) r.exposure = positive(*e);
     if (const Entry* e = m.find("triangle_test")) r.triangleTest = choice(*e, kTriangleTests);
+  }
+
+  void readCaustics(const Entry& section) {
+    const Mapping m = mapping(section, "caustics", kCausticsKeys);
+    CausticSettings& c = scene_.caustics;
+    constexpr int64_t kIntMax = std::numeric_limits<int>::max();
+    if (const Entry* e = m.find("method")) c.method = choice(*e, kCausticMethods);
+    if (const Entry* e = m.find("photons")) {
+      c.photons = unsignedInteger(*e);
+      if (c.photons == 0) fail(loc(*e), "'photons' must be at least 1");
+    }
+    if (const Entry* e = m.find("gather")) c.gather = static_cast<int>(integer(*e, 1, 100000));
+    if (const Entry* e = m.find("max_radius")) c.maxRadius = nonNegative(*e);
+    if (const Entry* e = m.find("filter")) c.filter = choice(*e, kPhotonFilters);
+    if (const Entry* e = m.find("max_bounces")) {
+      c.maxBounces = static_cast<int>(integer(*e, 1, kMaxDepthLimit));
+    }
+    if (const Entry* e = m.find("progressive")) c.progressive = boolean(*e);
+    if (const Entry* e = m.find("passes")) c.passes = static_cast<int>(integer(*e, 1, kIntMax));
+    if (const Entry* e = m.find("alpha")) {
+      c.alpha = number(*e);
+      if (!(c.alpha > 0.0f && c.alpha < 1.0f)) {
+        fail(loc(*e), "'alpha' must lie strictly between 0 and 1, found " + text(*e));
+      }
+    }
+    if (const Entry* e = m.find("radius")) c.radius = nonNegative(*e);
+    if (const Entry* e = m.find("time_budget")) c.timeBudgetSeconds = nonNegative(*e);
+  }
+
+  CausticRole causticRole(const Mapping& m) const {
+    const Entry* e = m.find("caustic");
+    return e ? choice(*e, kCausticRoles) : CausticRole::Auto;
   }
 
   void readEnvironment(const Entry& section) {
@@ -690,6 +740,7 @@ class YamlSceneReader {
     s.center = vec3(m.require("center"));
     s.radius = positive(m.require("radius"));
     s.material = material(m);
+    s.caustic = causticRole(m);
     scene_.spheres.push_back(s);
   }
 
@@ -700,6 +751,7 @@ class YamlSceneReader {
     p.point = vec3(m.require("point"));
     p.normal = direction(m.require("normal"));
     p.material = material(m);
+    p.caustic = causticRole(m);
     scene_.planes.push_back(p);
   }
 
@@ -722,6 +774,7 @@ class YamlSceneReader {
       fail(loc(m.require("base_radius")), "a cone needs 'base_radius' or 'apex_radius' above 0");
     }
     c.material = material(m);
+    c.caustic = causticRole(m);
     scene_.cones.push_back(c);
   }
 
@@ -734,6 +787,7 @@ class YamlSceneReader {
     checkAxis(m, c);
     c.baseRadius = c.apexRadius = positive(m.require("radius"));
     c.material = material(m);
+    c.caustic = causticRole(m);
     scene_.cones.push_back(c);
   }
 
@@ -766,6 +820,7 @@ class YamlSceneReader {
     }
     mesh.indices = {0, 1, 2};
     mesh.material = material(m);
+    mesh.caustic = causticRole(m);
     scene_.meshes.push_back(std::move(mesh));
   }
 
@@ -788,6 +843,7 @@ class YamlSceneReader {
     if (const Entry* e = m.find("transform")) applyTransform(*e, mesh);
     mesh.loc = m.loc;
     mesh.material = material(m);
+    mesh.caustic = causticRole(m);
     scene_.meshes.push_back(std::move(mesh));
   }
 
@@ -838,14 +894,15 @@ SceneDescription parseYamlScene(const std::string& text, const std::string& path
 
 const std::map<std::string, std::vector<std::string>>& yamlSceneKeys() {
   static const std::map<std::string, std::vector<std::string>> keys = {
-      {"top level", toStrings(kTopLevelKeys)}, {"camera", toStrings(kCameraKeys)},
-      {"render", toStrings(kRenderKeys)},      {"environment", toStrings(kEnvironmentKeys)},
-      {"cubemap", toStrings(kCubeMapKeys)},    {"materials", toStrings(kMaterialKeys)},
-      {"checker", toStrings(kCheckerKeys)},    {"lights", toStrings(kLightKeys)},
-      {"objects", toStrings(kObjectKinds)},    {"sphere", toStrings(kSphereKeys)},
-      {"plane", toStrings(kPlaneKeys)},        {"cone", toStrings(kConeKeys)},
-      {"cylinder", toStrings(kCylinderKeys)},  {"triangle", toStrings(kTriangleKeys)},
-      {"mesh", toStrings(kMeshKeys)},          {"transform", toStrings(kTransformKeys)},
+      {"top level", toStrings(kTopLevelKeys)},  {"camera", toStrings(kCameraKeys)},
+      {"render", toStrings(kRenderKeys)},       {"environment", toStrings(kEnvironmentKeys)},
+      {"caustics", toStrings(kCausticsKeys)},   {"cubemap", toStrings(kCubeMapKeys)},
+      {"materials", toStrings(kMaterialKeys)},  {"checker", toStrings(kCheckerKeys)},
+      {"lights", toStrings(kLightKeys)},        {"objects", toStrings(kObjectKinds)},
+      {"sphere", toStrings(kSphereKeys)},       {"plane", toStrings(kPlaneKeys)},
+      {"cone", toStrings(kConeKeys)},           {"cylinder", toStrings(kCylinderKeys)},
+      {"triangle", toStrings(kTriangleKeys)},   {"mesh", toStrings(kMeshKeys)},
+      {"transform", toStrings(kTransformKeys)},
   };
   return keys;
 }

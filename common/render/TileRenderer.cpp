@@ -6,19 +6,19 @@
 
 namespace prism {
 
-TileRenderer::TileRenderer(const Scene& scene)
+TileRenderer::TileRenderer(const Scene& scene, const LightTerms& terms)
     : scene_(scene),
       camera_(scene.camera()),
       seed_(scene.settings().seed),
-      integrator_(scene),
+      integrator_(scene, terms),
       sampler_(scene.settings().samplesPerPixel) {}
 
-TileRenderer::TileRenderer(const Scene& scene, const RenderView& view)
+TileRenderer::TileRenderer(const Scene& scene, const RenderView& view, const LightTerms& terms)
     : scene_(scene),
       camera_(view.camera, view.width, view.height),
       seed_(view.seed),
       debugView_(view.debugView),
-      integrator_(scene),
+      integrator_(scene, terms),
       sampler_(view.samplesPerPixel) {}
 
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {

@@ -12,10 +12,11 @@ namespace prism {
 
 class TileRenderer {
  public:
-  explicit TileRenderer(const Scene& scene);
+  // terms: which light the tiles add up (direct, caustics), see render/RenderPass.h.
+  explicit TileRenderer(const Scene& scene, const LightTerms& terms = {});
   // The viewer: the view's camera, image size, samples, seed and debug view replace the
   // scene's own.
-  TileRenderer(const Scene& scene, const RenderView& view);
+  TileRenderer(const Scene& scene, const RenderView& view, const LightTerms& terms = {});
 
   TileResult render(uint32_t tileIndex, const TileRect& rect) const;
 

@@ -2,16 +2,13 @@
 
 #include "render/MaterialEval.h"
 #include "render/Optics.h"
+#include "render/SpecularSplit.h"
 
 namespace prism {
 namespace {
 
 float attenuationFactor(const Attenuation& a, float distance) {
   return 1.0f / (a.constant + a.linear * distance + a.quadratic * distance * distance);
-}
-
-bool isBlack(const Color& c) {
-  return c.x <= 0.0f && c.y <= 0.0f && c.z <= 0.0f;
 }
 
 }  // namespace
@@ -53,46 +50,34 @@ Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc&
 Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
                                   RayCounters& counters) const {
   HitRecord hit;
-  if (!scene_.intersect(ray, hit)) return scene_.escapedRadiance(ray.direction);
+  if (!scene_.intersect(ray, hit)) {
+    return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
+  }
 
   const SurfaceHit s = scene_.surface(ray, hit);
   const MaterialDesc& m = scene_.materials()[s.material];
   const Color albedo = diffuseAlbedo(m, s.position);
   const Vec3 toViewer = -ray.direction;
 
-  Color result = m.ambient * scene_.ambientLight();
-  if (!isBlack(albedo) || !isBlack(m.specular)) {
-    result += directLighting(s, m, albedo, toViewer, counters);
+  Color result(0.0f);
+  if (terms_.direct) {
+    result = m.ambient * scene_.ambientLight();
+    if (!isBlack(albedo) || !isBlack(m.specular)) {
+      result += directLighting(s, m, albedo, toViewer, counters);
+    }
+  }
+  if (terms_.caustics && (s.caustic & kReceivesCaustics) && !isBlack(albedo)) {
+    result += albedo * kInvPi * terms_.caustics->irradiance(s.position, s.geometricNormal);
   }
 
   const RenderSettings& settings = scene_.settings();
   if (depth >= settings.maxDepth) return result;
 
-  // Split the specular weights: Fresnel moves part of the transmittance into reflection, and
-  // total internal reflection moves all of it.
-  Color reflectWeight = m.reflectance;
-  Color transmitWeight = m.transmittance;
-  std::optional<Vec3> refracted;
-  if (!isBlack(transmitWeight)) {
-    const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
-    refracted = refract(ray.direction, s.shadingNormal, eta);
-    if (!refracted) {
-      reflectWeight += transmitWeight;
-      transmitWeight = Color(0.0f);
-    } else if (m.fresnel) {
-      const float f = fresnelDielectric(glm::dot(toViewer, s.shadingNormal), eta);
-      reflectWeight += f * transmitWeight;
-      transmitWeight *= 1.0f - f;
-    }
-  }
+  const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
 
   const Color reflectContribution = weight * reflectWeight;
   if (maxComponent(reflectContribution) > settings.minContribution) {
-    Vec3 direction = reflect(ray.direction, s.shadingNormal);
-    // A smooth normal can reflect below the true surface; mirror about the geometry instead.
-    if (glm::dot(direction, s.geometricNormal) <= 0.0f) {
-      direction = reflect(ray.direction, s.geometricNormal);
-    }
+    const Vec3 direction = reflectedDirection(s, ray.direction);
     Ray reflected{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};
     ++counters.secondary;
     result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters);

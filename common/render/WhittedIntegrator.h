@@ -1,16 +1,26 @@
 // Whitted-style recursive ray tracing with Phong shading: ambient, Lambert diffuse, Phong
 // highlights and hard shadows from point lights, plus mirror reflection and refraction with
-// Fresnel and total internal reflection, to render.max_depth bounces.
+// Fresnel and total internal reflection, to render.max_depth bounces; caustics come from a
+// CausticEstimator and are added on receiving surfaces as Lambertian radiance, albedo/π · E.
 #pragma once
 
+#include "caustics/CausticEstimator.h"
 #include "render/RayCounters.h"
 #include "scene/Scene.h"
 
 namespace prism {
 
+// Which parts of the light a render adds up. Progressive caustics render the direct part once
+// and the caustic part once per pass, then sum them.
+struct LightTerms {
+  bool direct = true;                          // ambient, lights through shadow rays, environment
+  const CausticEstimator* caustics = nullptr;  // caustic irradiance on receivers, if any
+};
+
 class WhittedIntegrator {
  public:
-  explicit WhittedIntegrator(const Scene& scene) : scene_(scene) {}
+  explicit WhittedIntegrator(const Scene& scene, const LightTerms& terms = {})
+      : scene_(scene), terms_(terms) {}
 
   // Radiance arriving along ray (unit direction). depth counts bounces so far; weight is the
   // product of reflection/transmission weights that scales this ray's contribution to the pixel.
@@ -21,6 +31,7 @@ class WhittedIntegrator {
                        const Vec3& toViewer, RayCounters& counters) const;
 
   const Scene& scene_;
+  LightTerms terms_;
 };
 
 }  // namespace prism

@@ -38,4 +38,17 @@ Ray Camera::generateRay(float x, float y) const {
   return ray;
 }
 
+std::optional<Vec2> Camera::project(const Vec3& p) const {
+  const Vec3 d = p - position_;
+  float sx = glm::dot(d, right_), sy = glm::dot(d, up_);
+  if (projection_ == Projection::Perspective) {
+    const float z = glm::dot(d, forward_);
+    if (!(z > 0.0f)) return std::nullopt;
+    sx /= z;
+    sy /= z;
+  }
+  return Vec2((sx / halfWidth_ + 1.0f) * 0.5f / invWidth_,
+              (1.0f - sy / halfHeight_) * 0.5f / invHeight_);
+}
+
 }  // namespace prism

@@ -2,6 +2,8 @@
 // image x runs along the camera's right vector, image y down its up vector.
 #pragma once
 
+#include <optional>
+
 #include "math/Ray.h"
 #include "scene/SceneDescription.h"
 
@@ -13,6 +15,9 @@ class Camera {
 
   // A unit-direction ray through the image-plane point (x, y), in pixels.
   Ray generateRay(float x, float y) const;
+  // The image-plane point, in pixels, that world point p projects to; nothing when p lies
+  // behind the camera.
+  std::optional<Vec2> project(const Vec3& p) const;
 
  private:
   Projection projection_;

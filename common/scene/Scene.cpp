@@ -5,9 +5,45 @@
 #include "scene/PrimitiveRef.h"
 
 namespace prism {
+namespace {
+
+bool anyPositive(const Color& c) {
+  return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f;
+}
+
+// The caustic bits of an object: what its role asks for, limited by what its material can do
+// only under Auto (a forced role is taken at its word).
+uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
+  const bool specular = anyPositive(m.reflectance) || anyPositive(m.transmittance);
+  const bool diffuse = m.checker.has_value() || anyPositive(m.diffuse);
+  switch (role) {
+    case CausticRole::Auto:
+      return static_cast<uint8_t>((specular ? kCastsCaustics : 0) |
+                                  (diffuse ? kReceivesCaustics : 0));
+    case CausticRole::Cast:
+      return kCastsCaustics;
+    case CausticRole::Receive:
+      return kReceivesCaustics;
+    case CausticRole::Both:
+      return kCastsCaustics | kReceivesCaustics;
+    case CausticRole::Off:
+      return 0;
+  }
+  return 0;
+}
+
+CasterBounds boundingSphere(const Aabb& b) {
+  CasterBounds c;
+  c.center = b.center();
+  c.radius = 0.5f * glm::length(b.extent());
+  return c;
+}
+
+}  // namespace
 
 Scene::Scene(const SceneDescription& d)
     : settings_(d.render),
+      caustics_(d.caustics),
       camera_(d.camera, d.render.width, d.render.height),
       background_(d.background),
       ambientLight_(d.ambientLight),
@@ -23,19 +59,38 @@ Scene::Scene(const SceneDescription& d)
   std::vector<Cone> cones;
   std::vector<Aabb> bounds;
   std::vector<uint32_t> refs;
+  std::vector<uint8_t> sphereCaustic, coneCaustic;
+  const auto materialOf = [&](MaterialId id) -> const MaterialDesc& {
+    return materials_[id < materials_.size() ? id : 0];
+  };
   for (const SphereDesc& s : d.spheres) {
     refs.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, spheres.size()));
     spheres.push_back({s.center, s.radius, s.material});
     bounds.push_back(spheres.back().bounds());
+    sphereCaustic.push_back(causticFlags(s.caustic, materialOf(s.material)));
+    if (sphereCaustic.back() & kCastsCaustics) {
+      CasterBounds c;
+      c.center = s.center;
+      c.radius = s.radius;
+      casters_.push_back(c);
+    }
   }
   for (const ConeDesc& c : d.cones) {
     refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
     cones.emplace_back(c);
     bounds.push_back(cones.back().bounds());
+    coneCaustic.push_back(causticFlags(c.caustic, materialOf(c.material)));
+    if (coneCaustic.back() & kCastsCaustics) casters_.push_back(boundingSphere(bounds.back()));
   }
   for (uint32_t m = 0; m < d.meshes.size(); ++m) {
     const MeshDesc& mesh = d.meshes[m];
-    meshes_.push_back({mesh.normals, mesh.indices, mesh.material});
+    const uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
+    meshes_.push_back({mesh.normals, mesh.indices, mesh.material, caustic});
+    if (caustic & kCastsCaustics) {
+      Aabb meshBounds;
+      for (const Vec3& p : mesh.positions) meshBounds.extend(p);
+      if (!meshBounds.empty()) casters_.push_back(boundingSphere(meshBounds));
+    }
     for (uint32_t f = 0; f < mesh.triangleCount(); ++f) {
       const Vec3& a = mesh.positions[mesh.indices[3 * f]];
       const Vec3& b = mesh.positions[mesh.indices[3 * f + 1]];
@@ -48,7 +103,16 @@ Scene::Scene(const SceneDescription& d)
   for (const PlaneDesc& p : d.planes) {
     const Vec3 n = glm::normalize(p.normal);
     planes_.push_back({n, glm::dot(n, p.point), p.material});
+    planeCaustic_.push_back(causticFlags(p.caustic, materialOf(p.material)));
+    if (planeCaustic_.back() & kCastsCaustics) {
+      CasterBounds c;
+      c.plane = true;
+      c.normal = planes_.back().normal;
+      c.offset = planes_.back().offset;
+      casters_.push_back(c);
+    }
   }
+  for (const Aabb& b : bounds) bounds_.extend(b);
 
   bvh_.build(bounds);
   leafRefs_.reserve(refs.size());
@@ -63,10 +127,12 @@ Scene::Scene(const SceneDescription& d)
       case PrimitiveKind::Sphere:
         leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, spheres_.size()));
         spheres_.push_back(spheres[index]);
+        sphereCaustic_.push_back(sphereCaustic[index]);
         break;
       case PrimitiveKind::Cone:
         leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones_.size()));
         cones_.push_back(cones[index]);
+        coneCaustic_.push_back(coneCaustic[index]);
         break;
       case PrimitiveKind::Plane:
         break;  // planes are unbounded and never enter the BVH
@@ -169,19 +235,23 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
         if (glm::dot(geometric, shading) < 0.0f) geometric = -geometric;
       }
       s.material = mesh.material;
+      s.caustic = mesh.caustic;
       break;
     }
     case PrimitiveKind::Sphere:
       geometric = shading = spheres_[index].normalAt(s.position);
       s.material = spheres_[index].material;
+      s.caustic = sphereCaustic_[index];
       break;
     case PrimitiveKind::Cone:
       geometric = shading = cones_[index].normalAt(s.position);
       s.material = cones_[index].material();
+      s.caustic = coneCaustic_[index];
       break;
     case PrimitiveKind::Plane:
       geometric = shading = planes_[index].normal;
       s.material = planes_[index].material;
+      s.caustic = planeCaustic_[index];
       break;
   }
   // Orient both normals towards the incoming ray; remember which side was hit for refraction.

@@ -18,6 +18,15 @@
 
 namespace prism {
 
+// A caustic caster as the photon emitter sees it: a bounding sphere, or an infinite plane.
+struct CasterBounds {
+  bool plane = false;
+  Vec3 center{0.0f};  // sphere
+  float radius = 0.0f;
+  Vec3 normal{0.0f};  // plane: dot(normal, x) == offset
+  float offset = 0.0f;
+};
+
 struct SceneBuildStats {
   size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
   BvhBuildStats bvh;
@@ -41,22 +50,29 @@ class Scene {
 
   const Camera& camera() const { return camera_; }
   const RenderSettings& settings() const { return settings_; }
+  const CausticSettings& causticSettings() const { return caustics_; }
   const std::vector<MaterialDesc>& materials() const { return materials_; }
   const std::vector<PointLightDesc>& lights() const { return lights_; }
   const Color& ambientLight() const { return ambientLight_; }
   const SceneBuildStats& buildStats() const { return stats_; }
+  // Objects whose caustic role includes casting, and whose material can send photons on.
+  const std::vector<CasterBounds>& causticCasters() const { return casters_; }
+  // Bounds of every bounded primitive (planes excluded).
+  const Aabb& bounds() const { return bounds_; }
 
  private:
   struct MeshShading {
     std::vector<Vec3> normals;  // empty: flat shading
     std::vector<uint32_t> indices;
     MaterialId material;
+    uint8_t caustic;
   };
 
   template <bool kAnyHit>
   bool intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const;
 
   RenderSettings settings_;
+  CausticSettings caustics_;
   Camera camera_;
   Color background_;
   Color ambientLight_;
@@ -68,6 +84,9 @@ class Scene {
   std::vector<Cone> cones_;
   std::vector<Plane> planes_;
   std::vector<MeshShading> meshes_;
+  std::vector<uint8_t> sphereCaustic_, coneCaustic_, planeCaustic_;  // parallel to the arrays
+  std::vector<CasterBounds> casters_;
+  Aabb bounds_;
   std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry
   Bvh bvh_;
   SceneBuildStats stats_;

@@ -66,11 +66,17 @@ struct MaterialDesc {
 
 using MaterialId = uint32_t;
 
+// An object's part in caustics. Auto: casts when its material reflects or transmits
+// specularly, receives when it has a diffuse albedo. Cast/Receive restrict it to one role,
+// Both forces both, Off takes it out of caustics entirely (photons that reach it are absorbed).
+enum class CausticRole : uint8_t { Auto, Cast, Receive, Both, Off };
+
 struct SphereDesc {
   Vec3 center{0.0f};
   float radius = 1.0f;
   MaterialId material = 0;
   FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
 };
 
 struct PlaneDesc {
@@ -78,6 +84,7 @@ struct PlaneDesc {
   Vec3 normal{0.0f, 1.0f, 0.0f};  // unit length after parsing
   MaterialId material = 0;
   FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
 };
 
 // An open (uncapped) truncated cone between two circles; a cylinder when the radii are equal.
@@ -88,6 +95,7 @@ struct ConeDesc {
   float apexRadius = 0.0f;
   MaterialId material = 0;
   FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
 };
 
 // A triangle mesh in world space. normals is empty (flat shading) or parallel to positions
@@ -99,6 +107,7 @@ struct MeshDesc {
   std::vector<uint32_t> indices;  // three per triangle
   MaterialId material = 0;
   FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
 
   size_t triangleCount() const { return indices.size() / 3; }
 };
@@ -123,10 +132,31 @@ struct RenderSettings {
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
+enum class CausticMethod { None, PhotonMap };
+// Density estimation kernels over the gathered disc (see caustics/DensityKernel.h).
+enum class PhotonFilter { Box, Cone, Epanechnikov };
+
+// How caustics are computed; see docs/caustics.md.
+struct CausticSettings {
+  CausticMethod method = CausticMethod::None;
+  uint64_t photons = 200000;  // emitted per pass, over all lights
+  int gather = 100;           // k nearest photons per estimate (non-progressive mode)
+  float maxRadius = 0.0f;     // cap on the gather radius; 0: automatic from the casters' size
+  PhotonFilter filter = PhotonFilter::Cone;
+  int maxBounces = 16;  // specular bounces a photon may take before it is dropped
+  // Progressive photon mapping (Knaus & Zwicker 2011): passes with a shrinking fixed radius.
+  bool progressive = false;
+  int passes = 16;
+  float alpha = 0.7f;            // radius shrink: r²(i+1) = r²(i)·(i + alpha)/(i + 1)
+  float radius = 0.0f;           // first pass's radius; 0: automatic (mean k-NN distance)
+  double timeBudgetSeconds = 0;  // stop starting passes after this long; 0: no limit
+};
+
 struct SceneDescription {
   std::string sourcePath;
   CameraDesc camera;
   RenderSettings render;
+  CausticSettings caustics;
   Color background{0.0f};    // radiance of rays that escape, when there is no cube map
   Color ambientLight{0.0f};  // ambient radiance, scaled by each material's ambient colour
   std::optional<CubeMapDesc> environment;

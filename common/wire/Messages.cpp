@@ -97,6 +97,12 @@ const char* messageTypeName(MessageType type) {
       return "Progress";
     case MessageType::View:
       return "View";
+    case MessageType::PhotonJob:
+      return "PhotonJob";
+    case MessageType::PhotonShare:
+      return "PhotonShare";
+    case MessageType::PhotonMap:
+      return "PhotonMap";
   }
   return "unknown";
 }
@@ -166,20 +172,27 @@ SceneDescription decodeScene(const Message& message) {
 
 std::vector<uint8_t> encodeTileJob(const TileJobMessage& job) {
   return encodeWith(MessageType::TileJob, [&](ByteWriter& w) {
-    const auto& [frame, tileIndex, rect] = job;
+    const auto& [frame, tileIndex, rect, pass, terms] = job;
     w.writeU32(frame);
     w.writeU32(tileIndex);
     writeRect(w, rect);
+    w.writeU32(pass);
+    w.writeU8(terms);
   });
 }
 
 TileJobMessage decodeTileJob(const Message& message) {
   return decodePayload(message, MessageType::TileJob, [](ByteReader& r) {
     TileJobMessage job;
-    auto& [frame, tileIndex, rect] = job;
+    auto& [frame, tileIndex, rect, pass, terms] = job;
     frame = r.readU32();
     tileIndex = r.readU32();
     rect = readRect(r);
+    pass = r.readU32();
+    terms = r.readU8();
+    if (terms == 0 || terms > (kTermDirect | kTermCaustics)) {
+      throw WireError("invalid light terms " + std::to_string(terms));
+    }
     return job;
   });
 }
@@ -263,7 +276,8 @@ void decodeShutdown(const Message& message) {
 
 std::vector<uint8_t> encodeProgress(const ProgressMessage& progress) {
   return encodeWith(MessageType::Progress, [&](ByteWriter& w) {
-    const auto& [jobsReceived, heldTiles] = progress;
+    const auto& [frame, jobsReceived, heldTiles] = progress;
+    w.writeU32(frame);
     w.writeU64(jobsReceived);
     w.writeU32s(heldTiles);
   });
@@ -272,7 +286,8 @@ std::vector<uint8_t> encodeProgress(const ProgressMessage& progress) {
 ProgressMessage decodeProgress(const Message& message) {
   return decodePayload(message, MessageType::Progress, [](ByteReader& r) {
     ProgressMessage progress;
-    auto& [jobsReceived, heldTiles] = progress;
+    auto& [frame, jobsReceived, heldTiles] = progress;
+    frame = r.readU32();
     jobsReceived = r.readU64();
     heldTiles = r.readU32s();
     return progress;
@@ -318,6 +333,139 @@ ViewMessage decodeView(const Message& message) {
         return m;
     }
     throw WireError("invalid debug view " + std::to_string(rawView));
+  });
+}
+
+namespace {
+
+constexpr size_t kPhotonBytes = 28;
+
+void writePhotons(ByteWriter& w, const std::vector<Photon>& photons) {
+  w.writeCount(photons.size());
+  for (const Photon& p : photons) {
+    w.writeVec3(p.position);
+    w.writeVec3(p.power);
+    w.writeU16(p.direction[0]);
+    w.writeU16(p.direction[1]);
+  }
+}
+
+bool finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::vector<Photon> readPhotons(ByteReader& r) {
+  const size_t count = r.readCount(kPhotonBytes);
+  std::vector<Photon> photons(count);
+  for (size_t i = 0; i < count; ++i) {
+    Photon& p = photons[i];
+    p.position = r.readVec3();
+    p.power = r.readVec3();
+    p.direction[0] = r.readU16();
+    p.direction[1] = r.readU16();
+    if (!finite(p.position) || !finite(p.power) || p.power.x < 0.0f || p.power.y < 0.0f ||
+        p.power.z < 0.0f) {
+      throw WireError("photon " + std::to_string(i) + " has a non-finite position or a power " +
+                      "that is negative or not finite");
+    }
+  }
+  return photons;
+}
+
+}  // namespace
+
+std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job) {
+  return encodeWith(MessageType::PhotonJob, [&](ByteWriter& w) {
+    const auto& [pass, first, count] = job;
+    w.writeU32(pass);
+    w.writeU64(first);
+    w.writeU64(count);
+  });
+}
+
+PhotonJobMessage decodePhotonJob(const Message& message) {
+  return decodePayload(message, MessageType::PhotonJob, [](ByteReader& r) {
+    PhotonJobMessage job;
+    auto& [pass, first, count] = job;
+    pass = r.readU32();
+    first = r.readU64();
+    count = r.readU64();
+    if (first + count < first) throw WireError("photon range overflows");
+    return job;
+  });
+}
+
+std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share) {
+  return encodeWith(MessageType::PhotonShare, [&](ByteWriter& w) {
+    const auto& [pass, first, count, stats, seconds, photons] = share;
+    const auto& [emitted, stored, missed, absorbed] = stats;
+    w.writeU32(pass);
+    w.writeU64(first);
+    w.writeU64(count);
+    w.writeU64(emitted);
+    w.writeU64(stored);
+    w.writeU64(missed);
+    w.writeU64(absorbed);
+    w.writeF64(seconds);
+    writePhotons(w, photons);
+  });
+}
+
+PhotonShareMessage decodePhotonShare(const Message& message) {
+  return decodePayload(message, MessageType::PhotonShare, [](ByteReader& r) {
+    PhotonShareMessage share;
+    auto& [pass, first, count, stats, seconds, photons] = share;
+    auto& [emitted, stored, missed, absorbed] = stats;
+    pass = r.readU32();
+    first = r.readU64();
+    count = r.readU64();
+    emitted = r.readU64();
+    stored = r.readU64();
+    missed = r.readU64();
+    absorbed = r.readU64();
+    seconds = r.readF64();
+    photons = readPhotons(r);
+    if (photons.size() != stored) {
+      throw WireError("carries " + std::to_string(photons.size()) + " photons but reports " +
+                      std::to_string(stored) + " stored");
+    }
+    return share;
+  });
+}
+
+std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
+  return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
+    const auto& [pass, gather, photons] = map;
+    const auto& [fixedRadius, k, radius, filter] = gather;
+    w.writeU32(pass);
+    w.writeBool(fixedRadius);
+    w.writeI32(k);
+    w.writeF32(radius);
+    w.writeU32(static_cast<uint32_t>(filter));
+    writePhotons(w, photons);
+  });
+}
+
+PhotonMapMessage decodePhotonMap(const Message& message) {
+  return decodePayload(message, MessageType::PhotonMap, [](ByteReader& r) {
+    PhotonMapMessage map;
+    auto& [pass, gather, photons] = map;
+    auto& [fixedRadius, k, radius, filter] = gather;
+    pass = r.readU32();
+    fixedRadius = r.readBool();
+    k = r.readI32();
+    radius = r.readF32();
+    const uint32_t rawFilter = r.readU32();
+    if (rawFilter > static_cast<uint32_t>(PhotonFilter::Epanechnikov)) {
+      throw WireError("invalid photon filter " + std::to_string(rawFilter));
+    }
+    filter = static_cast<PhotonFilter>(rawFilter);
+    if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius)) {
+      throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +
+                      std::to_string(radius) + ")");
+    }
+    photons = readPhotons(r);
+    return map;
   });
 }
 

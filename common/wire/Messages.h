@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "caustics/Photon.h"
+#include "caustics/PhotonGather.h"
+#include "caustics/PhotonTracer.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"
@@ -17,7 +20,8 @@
 namespace prism::wire {
 
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
-inline constexpr uint16_t kVersion = 2;         // 2: the View message
+// 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
+inline constexpr uint16_t kVersion = 3;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -29,7 +33,10 @@ enum class MessageType : uint16_t {
   Shutdown = 5,
   Error = 6,
   Progress = 7,
-  View = 8
+  PhotonJob = 8,
+  PhotonShare = 9,
+  PhotonMap = 10,
+  View = 11
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -52,10 +59,41 @@ inline Message decodeMessage(const std::vector<uint8_t>& bytes) {
   return decodeMessage(bytes.data(), bytes.size());
 }
 
+// Bits of TileJobMessage::terms: what the tile adds up (see render/WhittedIntegrator.h).
+inline constexpr uint8_t kTermDirect = 1;
+inline constexpr uint8_t kTermCaustics = 2;  // with the photon map of `pass`
+
 struct TileJobMessage {
   uint32_t frame = 0;
   uint32_t tileIndex = 0;
   TileRect rect;
+  uint32_t pass = 0;
+  uint8_t terms = kTermDirect;
+};
+
+// Master to slave: trace photons [first, first + count) of a pass and send them back.
+struct PhotonJobMessage {
+  uint32_t pass = 0;
+  uint64_t first = 0;
+  uint64_t count = 0;
+};
+
+// Slave to master: the photons it stored for a PhotonJob, in photon-index order.
+struct PhotonShareMessage {
+  uint32_t pass = 0;
+  uint64_t first = 0;
+  uint64_t count = 0;
+  PhotonTraceStats stats;
+  double seconds = 0;
+  std::vector<Photon> photons;
+};
+
+// Master to slave: every photon of a pass, and how to gather from them; tiles of that pass
+// with kTermCaustics use it.
+struct PhotonMapMessage {
+  uint32_t pass = 0;
+  PhotonGatherSettings gather;
+  std::vector<Photon> photons;
 };
 
 struct TileResultMessage {
@@ -76,6 +114,7 @@ struct ErrorMessage {
 // it still holds (queued or rendering). Jobs and results travel in order between two ranks,
 // so a tile sent among the first jobsReceived jobs that is neither held nor delivered was lost.
 struct ProgressMessage {
+  uint32_t frame = 0;  // the frame the counts belong to; they restart with each frame
   uint64_t jobsReceived = 0;
   std::vector<uint32_t> heldTiles;
 };
@@ -109,6 +148,14 @@ ProgressMessage decodeProgress(const Message& message);
 
 std::vector<uint8_t> encodeView(const ViewMessage& view);
 ViewMessage decodeView(const Message& message);
+std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job);
+PhotonJobMessage decodePhotonJob(const Message& message);
+
+std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share);
+PhotonShareMessage decodePhotonShare(const Message& message);
+
+std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
+PhotonMapMessage decodePhotonMap(const Message& message);
 
 std::vector<uint8_t> encodeShutdown();
 // Checks that message is a Shutdown with an empty payload.

@@ -28,6 +28,37 @@ bool isKnown(TriangleTest t) {
   return false;
 }
 
+bool isKnown(CausticMethod m) {
+  switch (m) {
+    case CausticMethod::None:
+    case CausticMethod::PhotonMap:
+      return true;
+  }
+  return false;
+}
+
+bool isKnown(PhotonFilter f) {
+  switch (f) {
+    case PhotonFilter::Box:
+    case PhotonFilter::Cone:
+    case PhotonFilter::Epanechnikov:
+      return true;
+  }
+  return false;
+}
+
+bool isKnown(CausticRole role) {
+  switch (role) {
+    case CausticRole::Auto:
+    case CausticRole::Cast:
+    case CausticRole::Receive:
+    case CausticRole::Both:
+    case CausticRole::Off:
+      return true;
+  }
+  return false;
+}
+
 template <typename Enum>
 void writeEnum(ByteWriter& w, Enum value) {
   w.writeU32(static_cast<uint32_t>(value));
@@ -133,6 +164,44 @@ RenderSettings readRender(ByteReader& r) {
   }
   if (maxDepth < 0) throw WireError("invalid max depth " + std::to_string(maxDepth));
   return s;
+}
+
+void writeCaustics(ByteWriter& w, const CausticSettings& c) {
+  const auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha,
+               radius, timeBudgetSeconds] = c;
+  writeEnum(w, method);
+  w.writeU64(photons);
+  w.writeI32(gather);
+  w.writeF32(maxRadius);
+  writeEnum(w, filter);
+  w.writeI32(maxBounces);
+  w.writeBool(progressive);
+  w.writeI32(passes);
+  w.writeF32(alpha);
+  w.writeF32(radius);
+  w.writeF64(timeBudgetSeconds);
+}
+
+CausticSettings readCaustics(ByteReader& r) {
+  CausticSettings c;
+  auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha, radius,
+         timeBudgetSeconds] = c;
+  method = readEnum<CausticMethod>(r, "caustic method");
+  photons = r.readU64();
+  gather = r.readI32();
+  maxRadius = r.readF32();
+  filter = readEnum<PhotonFilter>(r, "photon filter");
+  maxBounces = r.readI32();
+  progressive = r.readBool();
+  passes = r.readI32();
+  alpha = r.readF32();
+  radius = r.readF32();
+  timeBudgetSeconds = r.readF64();
+  if (gather <= 0 || maxBounces <= 0 || passes <= 0 || !(maxRadius >= 0.0f) || !(radius >= 0.0f) ||
+      !(alpha > 0.0f && alpha < 1.0f)) {
+    throw WireError("invalid caustic settings");
+  }
+  return c;
 }
 
 void writeImage(ByteWriter& w, const ImageRgb& image) {
@@ -250,81 +319,89 @@ PointLightDesc readLight(ByteReader& r) {
 }
 
 void writeSphere(ByteWriter& w, const SphereDesc& s) {
-  const auto& [center, radius, material, loc] = s;
+  const auto& [center, radius, material, loc, caustic] = s;
   w.writeVec3(center);
   w.writeF32(radius);
   w.writeU32(material);
+  writeEnum(w, caustic);
   writeLoc(w, loc);
 }
 
 SphereDesc readSphere(ByteReader& r) {
   SphereDesc s;
-  auto& [center, radius, material, loc] = s;
+  auto& [center, radius, material, loc, caustic] = s;
   center = r.readVec3();
   radius = r.readF32();
   material = r.readU32();
+  caustic = readEnum<CausticRole>(r, "caustic role");
   loc = readLoc(r);
   return s;
 }
 
 void writePlane(ByteWriter& w, const PlaneDesc& p) {
-  const auto& [point, normal, material, loc] = p;
+  const auto& [point, normal, material, loc, caustic] = p;
   w.writeVec3(point);
   w.writeVec3(normal);
   w.writeU32(material);
+  writeEnum(w, caustic);
   writeLoc(w, loc);
 }
 
 PlaneDesc readPlane(ByteReader& r) {
   PlaneDesc p;
-  auto& [point, normal, material, loc] = p;
+  auto& [point, normal, material, loc, caustic] = p;
   point = r.readVec3();
   normal = r.readVec3();
   material = r.readU32();
+  caustic = readEnum<CausticRole>(r, "caustic role");
   loc = readLoc(r);
   return p;
 }
 
 void writeCone(ByteWriter& w, const ConeDesc& c) {
-  const auto& [base, baseRadius, apex, apexRadius, material, loc] = c;
+  const auto& [base, baseRadius, apex, apexRadius, material, loc, caustic] = c;
   w.writeVec3(base);
   w.writeF32(baseRadius);
   w.writeVec3(apex);
   w.writeF32(apexRadius);
   w.writeU32(material);
+  writeEnum(w, caustic);
   writeLoc(w, loc);
 }
 
 ConeDesc readCone(ByteReader& r) {
   ConeDesc c;
-  auto& [base, baseRadius, apex, apexRadius, material, loc] = c;
+  auto& [base, baseRadius, apex, apexRadius, material, loc, caustic] = c;
   base = r.readVec3();
   baseRadius = r.readF32();
   apex = r.readVec3();
   apexRadius = r.readF32();
   material = r.readU32();
+  caustic = readEnum<CausticRole>(r, "caustic role");
   loc = readLoc(r);
   return c;
 }
 
 void writeMesh(ByteWriter& w, const MeshDesc& m) {
-  const auto& [source, positions, normals, indices, material, loc] = m;
+  const auto& [source, positions, normals, indices, material, loc, caustic] = m;
   w.writeString(source);
   w.writeVec3s(positions);
   w.writeVec3s(normals);
   w.writeU32s(indices);
   w.writeU32(material);
+  writeEnum(w, caustic);
   writeLoc(w, loc);
 }
 
 MeshDesc readMesh(ByteReader& r) {
   MeshDesc m;
-  auto& [source, positions, normals, indices, material, loc] = m;
+  auto& [source, positions, normals, indices, material, loc, caustic] = m;
   source = r.readString();
   positions = r.readVec3s();
   normals = r.readVec3s();
   indices = r.readU32s();
   material = r.readU32();
+  caustic = readEnum<CausticRole>(r, "caustic role");
   loc = readLoc(r);
   return m;
 }
@@ -366,11 +443,12 @@ void checkMaterials(const std::vector<Desc>& items, const char* kind, size_t mat
 }  // namespace
 
 void writeScene(ByteWriter& w, const SceneDescription& scene) {
-  const auto& [sourcePath, camera, render, background, ambientLight, environment, materials, lights,
-               spheres, planes, cones, meshes] = scene;
+  const auto& [sourcePath, camera, render, caustics, background, ambientLight, environment,
+               materials, lights, spheres, planes, cones, meshes] = scene;
   w.writeString(sourcePath);
   writeCamera(w, camera);
   writeRender(w, render);
+  writeCaustics(w, caustics);
   w.writeVec3(background);
   w.writeVec3(ambientLight);
   w.writeBool(environment.has_value());
@@ -385,11 +463,12 @@ void writeScene(ByteWriter& w, const SceneDescription& scene) {
 
 SceneDescription readScene(ByteReader& r) {
   SceneDescription scene;
-  auto& [sourcePath, camera, render, background, ambientLight, environment, materials, lights,
-         spheres, planes, cones, meshes] = scene;
+  auto& [sourcePath, camera, render, caustics, background, ambientLight, environment, materials,
+         lights, spheres, planes, cones, meshes] = scene;
   sourcePath = r.readString();
   camera = readCamera(r);
   render = readRender(r);
+  caustics = readCaustics(r);
   background = r.readVec3();
   ambientLight = r.readVec3();
   if (r.readBool()) environment = readCubeMap(r);

@@ -137,5 +137,41 @@ TEST_F(DistributedRender, BadOptionIsReportedOnceNotByEveryRank) {
       << run.output;
 }
 
+// ---- caustics -------------------------------------------------------------------------------
+
+// Photons are traced across the ranks (each its share of the photon indices, from per-photon
+// streams) and the map is sent to every slave, so the caustic image must be bit-identical to
+// the single-process one for any rank count, in classic and in progressive mode.
+const std::string kCausticScene = std::string(PRISM_TEST_DATA_DIR) + "/scenes/caustic-small.yaml";
+
+class DistributedCaustics : public DistributedRender,
+                            public ::testing::WithParamInterface<std::tuple<int, const char*>> {};
+
+TEST_P(DistributedCaustics, PixelsAreBitIdenticalToTheSingleProcessRender) {
+  const auto [ranks, mode] = GetParam();
+  const std::string scene = kCausticScene + " " + mode;
+  const test::ProcessRun single =
+      test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const test::ProcessRun run =
+      test::runPrismMpi(ranks, "render " + scene + " -o " + path("mpi.exr") + " --tile-size 8");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_NE(run.output.find("caustics  photon map"), std::string::npos) << run.output;
+  if (ranks > 1) {
+    EXPECT_NE(run.output.find("photons traced by rank"), std::string::npos) << run.output;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(RanksModes, DistributedCaustics,
+                         ::testing::Combine(::testing::Values(1, 2, 3),
+                                            ::testing::Values("", "--progressive --passes 3")),
+                         [](const auto& info) {
+                           return "ranks" + std::to_string(std::get<0>(info.param)) +
+                                  (std::string(std::get<1>(info.param)).empty() ? "_classic"
+                                                                                : "_progressive");
+                         });
+
 }  // namespace
 }  // namespace prism

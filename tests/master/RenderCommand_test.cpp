@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "PrismProcess.h"
@@ -113,6 +114,71 @@ TEST_F(RenderCommandTest, InvalidOptionValueIsAUsageError) {
 TEST(RenderCommand, DefaultOutputIsTheSceneNameAsPng) {
   EXPECT_EQ(defaultOutputPath("scenes/default.yaml"), "default.png");
   EXPECT_EQ(defaultOutputPath("/x/y/teapot.nff"), "teapot.png");
+}
+
+// ---- caustics -------------------------------------------------------------------------------
+
+const std::string kCausticScene = std::string(PRISM_TEST_DATA_DIR) + "/scenes/caustic-small.yaml";
+
+TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonImage) {
+  const ProcessRun run = runPrism("render " + kCausticScene + " -o " + path("c.exr") +
+                                  " --photon-image " + path("photons.png") + " --threads 2");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("caustics  photon map: 20.0 k photons x 1 pass"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("28 B per photon"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("gather 40 nearest within"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("kd-tree"), std::string::npos) << run.output;
+  ASSERT_TRUE(fs::exists(path("photons.png")));
+  const ImageRgb photons = readImage(path("photons.png"));
+  EXPECT_EQ(photons.width, 40);
+  EXPECT_EQ(photons.height, 30);
+  size_t lit = 0;
+  for (const Color& c : photons.pixels) lit += maxComponent(c) > 0.0f;
+  EXPECT_GT(lit, 10u) << "the photon image shows no photons";
+
+  const ProcessRun progressive =
+      runPrism("render " + kCausticScene + " -o " + path("p.exr") + " --progressive --passes 2");
+  ASSERT_EQ(progressive.exitCode, 0) << progressive.output;
+  EXPECT_NE(progressive.output.find("photon map (progressive): 20.0 k photons x 2 passes"),
+            std::string::npos)
+      << progressive.output;
+  EXPECT_NE(progressive.output.find("gather radius"), std::string::npos) << progressive.output;
+}
+
+// Caustics on a scene with no caster: a warning, no photon cost, and the very same pixels as
+// a render without caustics.
+TEST_F(RenderCommandTest, CausticsWithoutACasterWarnAndRenderTheSameImage) {
+  const std::string scene = kSceneDir + "lambert-plane.yaml";
+  const ProcessRun plain = runPrism("render " + scene + " -q -o " + path("plain.exr"));
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  const ProcessRun caustic =
+      runPrism("render " + scene + " -o " + path("caustic.exr") +
+               " --caustics photon-map --photon-image " + path("photons.png"));
+  ASSERT_EQ(caustic.exitCode, 0) << caustic.output;
+  EXPECT_NE(caustic.output.find("warning: caustics asked for, but no light reaches a caustic "
+                                "caster"),
+            std::string::npos)
+      << caustic.output;
+  EXPECT_NE(caustic.output.find("no light reaches a caster: no photons traced"), std::string::npos)
+      << caustic.output;
+  const ImageRgb a = readImage(path("plain.exr")), b = readImage(path("caustic.exr"));
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)), 0);
+}
+
+TEST_F(RenderCommandTest, CausticOptionsAreListedAndChecked) {
+  const ProcessRun help = runPrism("render --help");
+  for (const char* option : {"--caustics", "--photons", "--gather", "--gather-radius",
+                             "--progressive", "--passes", "--time-budget", "--photon-image"}) {
+    EXPECT_NE(help.output.find(option), std::string::npos) << option;
+  }
+  for (const char* bad : {"--photons 0", "--gather 0", "--gather-radius -1", "--passes 0",
+                          "--caustics sideways", "--time-budget 0"}) {
+    const ProcessRun run = runPrism("render " + kCausticScene + " -o " + path("x.exr") + " " + bad);
+    EXPECT_NE(run.exitCode, 0) << bad << "\n" << run.output;
+    EXPECT_FALSE(fs::exists(path("x.exr"))) << bad;
+  }
 }
 
 }  // namespace

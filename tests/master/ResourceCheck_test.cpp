@@ -27,6 +27,30 @@ TEST(ResourceCheck, AcceptsOrdinaryImages) {
   EXPECT_NO_THROW(checkRenderFits(s, 16ull << 30));
 }
 
+// 10^12 photons at 96 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree) is
+// 9.6e13 bytes = 87.3 TiB: refused on a 16 GiB machine before anything is traced.
+TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
+  CausticSettings c;
+  c.method = CausticMethod::PhotonMap;
+  c.photons = 1000000000000ull;
+  EXPECT_EQ(photonMemoryBytes(c), 96000000000000ull);
+  try {
+    checkCausticsFit(c, 16ull << 30);
+    FAIL() << "expected a refusal";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("87.3 TiB"), std::string::npos) << message;
+    EXPECT_NE(message.find("16.0 GiB"), std::string::npos) << message;
+    EXPECT_NE(message.find("--photons"), std::string::npos) << message;
+  }
+  c.photons = 10000000;  // 10 M photons: under 1 GiB
+  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+  c.method = CausticMethod::None;  // no photon map, no memory, whatever the count says
+  c.photons = 1000000000000ull;
+  EXPECT_EQ(photonMemoryBytes(c), 0u);
+  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+}
+
 TEST(ResourceCheck, FormatsBytesInBinaryUnits) {
   EXPECT_EQ(formatBytes(512), "512 B");
   EXPECT_EQ(formatBytes(1536), "1.5 KiB");

@@ -189,6 +189,68 @@ TEST(YamlSceneParser, FullSceneReadsEveryKey) {
 
   ASSERT_EQ(s.meshes.size(), 3u);
   EXPECT_EQ(s.triangleCount(), 4u);
+
+  EXPECT_EQ(s.caustics.method, CausticMethod::PhotonMap);
+  EXPECT_EQ(s.caustics.photons, 12345u);
+  EXPECT_EQ(s.caustics.gather, 50);
+  EXPECT_FLOAT_EQ(s.caustics.maxRadius, 0.2f);
+  EXPECT_EQ(s.caustics.filter, PhotonFilter::Epanechnikov);
+  EXPECT_EQ(s.caustics.maxBounces, 9);
+  EXPECT_TRUE(s.caustics.progressive);
+  EXPECT_EQ(s.caustics.passes, 7);
+  EXPECT_FLOAT_EQ(s.caustics.alpha, 0.6f);
+  EXPECT_FLOAT_EQ(s.caustics.radius, 0.05f);
+  EXPECT_DOUBLE_EQ(s.caustics.timeBudgetSeconds, 2.5);
+
+  EXPECT_EQ(s.spheres[0].caustic, CausticRole::Cast);
+  EXPECT_EQ(s.planes[0].caustic, CausticRole::Receive);
+  EXPECT_EQ(s.cones[0].caustic, CausticRole::Auto);  // not given
+  EXPECT_EQ(s.cones[1].caustic, CausticRole::Both);
+  EXPECT_EQ(s.cones[2].caustic, CausticRole::Off);  // the cylinder
+  EXPECT_EQ(s.meshes[0].caustic, CausticRole::Both);
+  EXPECT_EQ(s.meshes[1].caustic, CausticRole::Auto);
+  EXPECT_EQ(s.meshes[2].caustic, CausticRole::Receive);
+}
+
+TEST(YamlSceneParser, CausticsDefaultToNone) {
+  const SceneDescription s = parse("objects:\n  - sphere: {center: [0, 0, 0], radius: 1}\n");
+  const CausticSettings defaults;
+  EXPECT_EQ(s.caustics.method, CausticMethod::None);
+  EXPECT_EQ(s.caustics.photons, defaults.photons);
+  EXPECT_EQ(s.caustics.gather, defaults.gather);
+  EXPECT_EQ(s.caustics.filter, PhotonFilter::Cone);
+  EXPECT_FALSE(s.caustics.progressive);
+  EXPECT_FLOAT_EQ(s.caustics.alpha, 0.7f);
+  EXPECT_EQ(s.spheres[0].caustic, CausticRole::Auto);
+}
+
+TEST(YamlSceneParser, EveryCausticRoleAndFilterParses) {
+  const std::pair<const char*, CausticRole> roles[] = {{"auto", CausticRole::Auto},
+                                                       {"cast", CausticRole::Cast},
+                                                       {"receive", CausticRole::Receive},
+                                                       {"both", CausticRole::Both},
+                                                       {"off", CausticRole::Off}};
+  for (const auto& [name, role] : roles) {
+    const SceneDescription s = parse(
+        std::string("objects:\n  - plane: {point: [0, 0, 0], normal: [0, 1, 0], caustic: ") + name +
+        "}\n  - cylinder: {base: [0, 0, 0], apex: [0, 1, 0], radius: 1, caustic: " + name +
+        "}\n  - mesh: {file: ../meshes/quad.obj, caustic: " + name + "}\n");
+    EXPECT_EQ(s.planes[0].caustic, role) << name;
+    EXPECT_EQ(s.cones[0].caustic, role) << name;
+    EXPECT_EQ(s.meshes[0].caustic, role) << name;
+  }
+  const std::pair<const char*, PhotonFilter> filters[] = {
+      {"box", PhotonFilter::Box},
+      {"cone", PhotonFilter::Cone},
+      {"epanechnikov", PhotonFilter::Epanechnikov}};
+  for (const auto& [name, filter] : filters) {
+    EXPECT_EQ(parse(std::string("caustics: {filter: ") + name + "}\n").caustics.filter, filter);
+  }
+  EXPECT_EQ(parse("caustics: {method: none}\n").caustics.method, CausticMethod::None);
+  // alpha just inside its open interval, and an explicit zero radius (automatic)
+  const SceneDescription s = parse("caustics: {alpha: 0.001, radius: 0, max_radius: 0}\n");
+  EXPECT_FLOAT_EQ(s.caustics.alpha, 0.001f);
+  EXPECT_EQ(s.caustics.radius, 0.0f);
 }
 
 TEST(YamlSceneParser, ColoursAreScalarsOrTriples) {
@@ -542,6 +604,18 @@ const BadScene kBadScenes[] = {
     {"max_depth_negative.yaml", 2, 14, "'max_depth' must be at least 0, found -1"},
     {"negative_seed.yaml", 2, 9, "'seed' must not be negative"},
     {"camera_same_point.yaml", 3, 12, "'position' and 'look_at' are the same point"},
+    // caustics
+    {"unknown_caustic_method.yaml", 2, 11,
+     "unknown method 'photons' (expected none or photon_map)"},
+    {"unknown_photon_filter.yaml", 2, 11,
+     "unknown filter 'gaussian' (expected box, cone or epanechnikov)"},
+    {"unknown_caustic_role.yaml", 2, 53,
+     "unknown caustic 'emit' (expected auto, cast, receive, both or off)"},
+    {"unknown_caustics_key.yaml", 2, 3, "unknown caustics key 'photon_count'"},
+    {"alpha_out_of_range.yaml", 3, 10, "'alpha' must lie strictly between 0 and 1, found 1.5"},
+    {"photons_zero.yaml", 2, 12, "'photons' must be at least 1"},
+    {"gather_zero.yaml", 2, 11, "'gather' must be at least 1, found 0"},
+    {"negative_time_budget.yaml", 2, 16, "'time_budget' must not be negative, found -1"},
     {"up_parallel.yaml", 1, 1, "'up' is parallel to the view direction"},
     // references
     {"unknown_material.yaml", 5, 54, "unknown material 'glas' (defined: floor, glass)"},

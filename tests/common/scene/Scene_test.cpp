@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace prism {
 namespace {
 
@@ -96,6 +98,140 @@ TEST(Scene, ReportsWhatItBuilt) {
   EXPECT_GE(s.bvh.nodeCount, 1u);
   EXPECT_GT(s.bvh.memoryBytes, 0u);
   EXPECT_GT(s.geometryBytes, 0u);
+}
+
+// ---- caustic roles -------------------------------------------------------------------------
+
+// Materials for the role tests: 0 glass (no diffuse), 1 diffuse, 2 mirror with some diffuse,
+// 3 black (neither specular nor diffuse).
+SceneDescription roleScene() {
+  SceneDescription d;
+  MaterialDesc glass;
+  glass.diffuse = Color(0.0f);
+  glass.transmittance = Color(1.0f);
+  MaterialDesc diffuse;
+  diffuse.diffuse = Color(0.5f);
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.2f);
+  mirror.reflectance = Color(0.7f);
+  MaterialDesc black;
+  black.diffuse = Color(0.0f);
+  d.materials = {glass, diffuse, mirror, black};
+  return d;
+}
+
+// The caustic bits of whatever a ray straight down from (x, 10, z) hits first.
+uint8_t causticBitsBelow(const Scene& scene, float x, float z) {
+  const Ray ray{Vec3(x, 10.0f, z), Vec3(0, -1, 0)};
+  HitRecord hit;
+  EXPECT_TRUE(scene.intersect(ray, hit)) << x << ", " << z;
+  return scene.surface(ray, hit).caustic;
+}
+
+TEST(SceneCaustics, AutoRoleFollowsTheMaterial) {
+  SceneDescription d = roleScene();
+  // Four spheres in a row along x, one per material, all with the automatic role.
+  for (uint32_t m = 0; m < 4; ++m) d.spheres.push_back({{3.0f * m, 0, 0}, 1.0f, m, {}});
+  const Scene scene(d);
+  EXPECT_EQ(causticBitsBelow(scene, 0, 0), kCastsCaustics);     // glass casts only
+  EXPECT_EQ(causticBitsBelow(scene, 3, 0), kReceivesCaustics);  // diffuse receives only
+  EXPECT_EQ(causticBitsBelow(scene, 6, 0), kCastsCaustics | kReceivesCaustics);  // both
+  EXPECT_EQ(causticBitsBelow(scene, 9, 0), 0);                                   // black: neither
+  // Two casters (glass and mirror), with their exact bounding spheres.
+  const auto& casters = scene.causticCasters();
+  ASSERT_EQ(casters.size(), 2u);
+  EXPECT_FALSE(casters[0].plane);
+  EXPECT_EQ(casters[0].center, Vec3(0, 0, 0));
+  EXPECT_FLOAT_EQ(casters[0].radius, 1.0f);
+  EXPECT_EQ(casters[1].center, Vec3(6, 0, 0));
+}
+
+TEST(SceneCaustics, CheckerCountsAsDiffuse) {
+  SceneDescription d = roleScene();
+  d.materials[3].checker = CheckerDesc{};
+  d.spheres.push_back({{0, 0, 0}, 1.0f, 3, {}});
+  EXPECT_EQ(causticBitsBelow(Scene(d), 0, 0), kReceivesCaustics);
+}
+
+TEST(SceneCaustics, ForcedRolesAreTakenAtTheirWord) {
+  SceneDescription d = roleScene();
+  d.spheres.push_back({{0, 0, 0}, 1.0f, 0, {}, CausticRole::Receive});  // glass that receives
+  d.spheres.push_back({{3, 0, 0}, 1.0f, 1, {}, CausticRole::Cast});     // diffuse that casts
+  d.spheres.push_back({{6, 0, 0}, 1.0f, 3, {}, CausticRole::Both});     // black, both
+  d.spheres.push_back({{9, 0, 0}, 1.0f, 2, {}, CausticRole::Off});      // mirror, off
+  const Scene scene(d);
+  EXPECT_EQ(causticBitsBelow(scene, 0, 0), kReceivesCaustics);
+  EXPECT_EQ(causticBitsBelow(scene, 3, 0), kCastsCaustics);
+  EXPECT_EQ(causticBitsBelow(scene, 6, 0), kCastsCaustics | kReceivesCaustics);
+  EXPECT_EQ(causticBitsBelow(scene, 9, 0), 0);
+  const auto& casters = scene.causticCasters();
+  ASSERT_EQ(casters.size(), 2u);
+  EXPECT_EQ(casters[0].center, Vec3(3, 0, 0));
+  EXPECT_EQ(casters[1].center, Vec3(6, 0, 0));
+}
+
+TEST(SceneCaustics, EveryPrimitiveKindResolvesItsRole) {
+  SceneDescription d = roleScene();
+  d.planes.push_back({{0, -2, 0}, {0, 1, 0}, 1, {}});  // diffuse floor: receives
+  ConeDesc cone;  // a glass cylinder of radius 1 along z from z = -1 to z = 1 at x = 4
+  cone.base = {4, 0, -1};
+  cone.apex = {4, 0, 1};
+  cone.baseRadius = cone.apexRadius = 1.0f;
+  cone.material = 0;
+  cone.caustic = CausticRole::Both;
+  d.cones.push_back(cone);
+  MeshDesc mesh;  // a mirror triangle at y = 1 around x = 8
+  mesh.positions = {{7, 1, -1}, {9, 1, -1}, {8, 1, 2}};
+  mesh.indices = {0, 2, 1};
+  mesh.material = 2;
+  d.meshes.push_back(mesh);
+  const Scene scene(d);
+  EXPECT_EQ(causticBitsBelow(scene, -5, 0), kReceivesCaustics);
+  EXPECT_EQ(causticBitsBelow(scene, 4.5f, 0), kCastsCaustics | kReceivesCaustics);
+  EXPECT_EQ(causticBitsBelow(scene, 8, 0), kCastsCaustics | kReceivesCaustics);
+
+  // Casters: the cone and the mesh by the bounding spheres of their boxes. The cylinder's box is
+  // [3,5]×[-1,1]×[-1,1]: centre (4,0,0), half-diagonal √3. The triangle's is [7,9]×[1,1]×[-1,2]:
+  // centre (8,1,0.5), half-diagonal √(1 + 2.25) = √3.25.
+  const auto& casters = scene.causticCasters();
+  ASSERT_EQ(casters.size(), 2u);
+  EXPECT_NEAR(glm::length(casters[0].center - Vec3(4, 0, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(casters[0].radius, std::sqrt(3.0f), 1e-5f);
+  EXPECT_NEAR(glm::length(casters[1].center - Vec3(8, 1, 0.5f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(casters[1].radius, std::sqrt(3.25f), 1e-5f);
+}
+
+TEST(SceneCaustics, CastingPlaneIsAnUnboundedCaster) {
+  SceneDescription d = roleScene();
+  d.planes.push_back({{0, 2, 0}, {0, 2, 0}, 2, {}});  // mirror plane y = 2, normal not unit
+  const Scene scene(d);
+  ASSERT_EQ(scene.causticCasters().size(), 1u);
+  const CasterBounds& c = scene.causticCasters()[0];
+  EXPECT_TRUE(c.plane);
+  EXPECT_EQ(c.normal, Vec3(0, 1, 0));
+  EXPECT_FLOAT_EQ(c.offset, 2.0f);
+}
+
+TEST(SceneCaustics, NoCasterWhenEverythingIsOffOrDiffuse) {
+  SceneDescription d = roleScene();
+  d.spheres.push_back({{0, 0, 0}, 1.0f, 0, {}, CausticRole::Off});
+  d.spheres.push_back({{3, 0, 0}, 1.0f, 1, {}});
+  d.planes.push_back({{0, -2, 0}, {0, 1, 0}, 2, {}, CausticRole::Receive});
+  const Scene scene(d);
+  EXPECT_TRUE(scene.causticCasters().empty());
+  EXPECT_EQ(causticBitsBelow(scene, 0, 0), 0);
+  EXPECT_EQ(causticBitsBelow(scene, -5, 0), kReceivesCaustics);
+}
+
+TEST(SceneCaustics, SettingsArriveUnchanged) {
+  SceneDescription d = roleScene();
+  d.caustics.method = CausticMethod::PhotonMap;
+  d.caustics.photons = 1234;
+  d.caustics.alpha = 0.5f;
+  const Scene scene(d);
+  EXPECT_EQ(scene.causticSettings().method, CausticMethod::PhotonMap);
+  EXPECT_EQ(scene.causticSettings().photons, 1234u);
+  EXPECT_FLOAT_EQ(scene.causticSettings().alpha, 0.5f);
 }
 
 }  // namespace

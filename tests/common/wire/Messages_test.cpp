@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 
@@ -143,10 +144,15 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad[0] = 'Q';
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
-  bad = header(kMagic, 1, 6, 0, fnv1a64(nullptr, 0));
-  expectWireError([&] { decodeMessage(bad); }, "message version 1, this build speaks 2");
+  // 1: before photon messages; 2: before the View message.
+  for (uint16_t version : {1, 2, 4}) {
+    bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
+    expectWireError([&] { decodeMessage(bad); },
+                    "message version " + std::to_string(version) + ", this build speaks 3");
+  }
 
-  for (uint16_t type : {0, 9, 0xFFFF}) {
+  // 8, 9 and 10 are the photon messages, 11 the View; 12 is the first unused type.
+  for (uint16_t type : {0, 12, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -229,7 +235,9 @@ TEST(Messages, TrailingPayloadBytesAreRejected) {
     w.writeU32(0);
     w.writeU32(0);
     for (int v : {0, 0, 4, 4}) w.writeI32(v);
-    w.writeU8(0);
+    w.writeU32(0);           // pass
+    w.writeU8(kTermDirect);  // terms
+    w.writeU8(0);            // one byte too many
   });
   expectWireError([&] { decodeTileJob(job); }, "TileJob message: unexpected trailing data");
   const Message shutdown = handMade(MessageType::Shutdown, [](ByteWriter& w) { w.writeU8(0); });
@@ -256,9 +264,10 @@ TEST(Messages, TileTimeMustBeFiniteAndNonNegative) {
 }
 
 TEST(Messages, ProgressRoundTripsAndRejectsCorruption) {
-  const ProgressMessage progress{12345678901ull, {3, 1, 4, 1, 5}};
+  const ProgressMessage progress{7, 12345678901ull, {3, 1, 4, 1, 5}};
   std::vector<uint8_t> bytes = encodeProgress(progress);
   const ProgressMessage back = decodeProgress(decodeMessage(bytes));
+  EXPECT_EQ(back.frame, 7u);
   EXPECT_EQ(back.jobsReceived, progress.jobsReceived);
   EXPECT_EQ(back.heldTiles, progress.heldTiles);
   EXPECT_EQ(decodeProgress(decodeMessage(encodeProgress({}))).heldTiles.size(), 0u);
@@ -306,6 +315,207 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   EXPECT_THROW(decodeView(decodeMessage(encodeShutdown())), WireError);
 }
 
+// ---- caustic passes -------------------------------------------------------------------------
+
+TEST(Messages, PhotonTypeNames) {
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonJob), "PhotonJob");
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonShare), "PhotonShare");
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonMap), "PhotonMap");
+}
+
+TEST(Messages, TileJobCarriesItsPassAndLightTerms) {
+  for (uint8_t terms : {kTermDirect, kTermCaustics, uint8_t(kTermDirect | kTermCaustics)}) {
+    TileJobMessage job{9, 4, {0, 16, 8, 8}};
+    job.pass = 0xDEADBEEF;
+    job.terms = terms;
+    const TileJobMessage back = decodeTileJob(decodeMessage(encodeTileJob(job)));
+    EXPECT_EQ(back.frame, 9u);
+    EXPECT_EQ(back.tileIndex, 4u);
+    EXPECT_EQ(back.pass, 0xDEADBEEFu);
+    EXPECT_EQ(back.terms, terms);
+  }
+  EXPECT_EQ(TileJobMessage{}.terms, kTermDirect);  // a plain tile is direct light
+}
+
+TEST(Messages, TileJobWithoutLightTermsIsRejected) {
+  for (uint8_t terms : {0, 4, 0xFF}) {
+    TileJobMessage job{0, 0, {0, 0, 4, 4}};
+    job.terms = terms;
+    const Message m = decodeMessage(encodeTileJob(job));
+    expectWireError([&] { decodeTileJob(m); },
+                    "TileJob message: invalid light terms " + std::to_string(terms));
+  }
+}
+
+// Photons with awkward bit patterns: a denormal power, -0 and large coordinates, every
+// direction code at its extremes.
+std::vector<Photon> samplePhotons() {
+  std::vector<Photon> photons(4);
+  photons[0].position = {1.5f, -2.25f, 1e30f};
+  photons[0].power = {0.125f, 1e-40f, 3.0f};
+  photons[0].direction[0] = 0;
+  photons[0].direction[1] = 0xFFFF;
+  photons[1].position = {-0.0f, 0.0f, -1e-30f};
+  photons[1].power = {0.0f, 0.0f, 0.0f};
+  photons[1].setDirection(glm::normalize(Vec3(0.3f, -0.9f, -0.1f)));
+  photons[2].position = {7, 8, 9};
+  photons[2].power = {1e20f, 2e-3f, 0.5f};
+  photons[2].direction[0] = 0x8000;
+  photons[2].direction[1] = 0x7FFF;
+  photons[3] = photons[2];
+  photons[3].position.x = 3.0f;
+  return photons;
+}
+
+void expectSamePhotons(const std::vector<Photon>& a, const std::vector<Photon>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&a[i], &b[i], sizeof(Photon)), 0) << "photon " << i;
+  }
+}
+
+TEST(Messages, PhotonJobRoundTrips) {
+  const PhotonJobMessage job{17, 0x123456789ull, 4096};
+  const PhotonJobMessage back = decodePhotonJob(decodeMessage(encodePhotonJob(job)));
+  EXPECT_EQ(back.pass, 17u);
+  EXPECT_EQ(back.first, 0x123456789ull);
+  EXPECT_EQ(back.count, 4096u);
+  expectWireError(
+      [] {
+        decodePhotonJob(decodeMessage(encodePhotonJob({0, UINT64_MAX - 1, 2})));
+      },
+      "photon range overflows");
+}
+
+TEST(Messages, PhotonShareRoundTripsBitExact) {
+  PhotonShareMessage share;
+  share.pass = 3;
+  share.first = 1000;
+  share.count = 500;
+  share.photons = samplePhotons();
+  share.stats = {500, share.photons.size(), 321, 175};
+  share.seconds = 0.0078125;
+  const std::vector<uint8_t> bytes = encodePhotonShare(share);
+  const PhotonShareMessage back = decodePhotonShare(decodeMessage(bytes));
+  EXPECT_EQ(back.pass, 3u);
+  EXPECT_EQ(back.first, 1000u);
+  EXPECT_EQ(back.count, 500u);
+  EXPECT_EQ(back.stats.emitted, 500u);
+  EXPECT_EQ(back.stats.stored, 4u);
+  EXPECT_EQ(back.stats.missed, 321u);
+  EXPECT_EQ(back.stats.absorbed, 175u);
+  EXPECT_EQ(back.seconds, share.seconds);
+  expectSamePhotons(back.photons, share.photons);
+  EXPECT_EQ(encodePhotonShare(back), bytes);
+
+  // 28 bytes a photon on the wire too: four photons more cost exactly 4·28 bytes.
+  PhotonShareMessage more = share;
+  more.photons.insert(more.photons.end(), share.photons.begin(), share.photons.end());
+  more.stats.stored = more.photons.size();
+  EXPECT_EQ(encodePhotonShare(more).size() - bytes.size(), 4 * sizeof(Photon));
+}
+
+TEST(Messages, PhotonShareMustCarryTheStoredCount) {
+  PhotonShareMessage share;
+  share.photons = samplePhotons();
+  share.stats.stored = 3;
+  expectWireError([&] { decodePhotonShare(decodeMessage(encodePhotonShare(share))); },
+                  "carries 4 photons but reports 3 stored");
+}
+
+TEST(Messages, PhotonMapRoundTripsBitExact) {
+  PhotonMapMessage map;
+  map.pass = 12;
+  map.gather = {true, 37, 0.015625f, PhotonFilter::Epanechnikov};
+  map.photons = samplePhotons();
+  const std::vector<uint8_t> bytes = encodePhotonMap(map);
+  const PhotonMapMessage back = decodePhotonMap(decodeMessage(bytes));
+  EXPECT_EQ(back.pass, 12u);
+  EXPECT_TRUE(back.gather.fixedRadius);
+  EXPECT_EQ(back.gather.k, 37);
+  EXPECT_EQ(std::bit_cast<uint32_t>(back.gather.radius), std::bit_cast<uint32_t>(0.015625f));
+  EXPECT_EQ(back.gather.filter, PhotonFilter::Epanechnikov);
+  expectSamePhotons(back.photons, map.photons);
+  EXPECT_EQ(encodePhotonMap(back), bytes);
+
+  map.photons.clear();  // a pass that stored nothing is still a valid map
+  EXPECT_TRUE(decodePhotonMap(decodeMessage(encodePhotonMap(map))).photons.empty());
+}
+
+TEST(Messages, PhotonsWithCorruptPowerOrPositionAreRejected) {
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  const auto corrupt = [](const std::function<void(Photon&)>& spoil) {
+    PhotonMapMessage map;
+    map.gather = {false, 10, 0.5f, PhotonFilter::Cone};
+    map.photons = samplePhotons();
+    spoil(map.photons[2]);
+    return decodeMessage(encodePhotonMap(map));
+  };
+  const std::function<void(Photon&)> spoils[] = {
+      [](Photon& p) { p.power.y = -0.5f; },   [](Photon& p) { p.power.z = -1e-40f; },
+      [&](Photon& p) { p.power.x = nan; },    [&](Photon& p) { p.power.x = inf; },
+      [&](Photon& p) { p.position.z = nan; }, [&](Photon& p) { p.position.y = -inf; }};
+  for (const auto& spoil : spoils) {
+    const Message m = corrupt(spoil);
+    expectWireError([&] { decodePhotonMap(m); }, "PhotonMap message: photon 2 has a non-finite");
+  }
+  // The share uses the same photon reader.
+  PhotonShareMessage share;
+  share.photons = samplePhotons();
+  share.photons[0].power.x = -1.0f;
+  share.stats.stored = share.photons.size();
+  expectWireError([&] { decodePhotonShare(decodeMessage(encodePhotonShare(share))); },
+                  "photon 0 has a non-finite position or a power that is negative");
+}
+
+TEST(Messages, PhotonMapGatherSettingsAreChecked) {
+  PhotonMapMessage map;
+  map.photons = samplePhotons();
+  for (int k : {0, -1, INT32_MIN}) {
+    map.gather = {false, k, 0.5f, PhotonFilter::Box};
+    const Message m = decodeMessage(encodePhotonMap(map));
+    expectWireError([&] { decodePhotonMap(m); }, "invalid gather settings (k " + std::to_string(k));
+  }
+  for (float radius : {0.0f, -1.0f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    map.gather = {true, 5, radius, PhotonFilter::Box};
+    const Message m = decodeMessage(encodePhotonMap(map));
+    expectWireError([&] { decodePhotonMap(m); }, "invalid gather settings");
+  }
+  for (uint32_t filter : {3u, 0xFFFFFFFFu}) {
+    map.gather = {false, 5, 0.5f, static_cast<PhotonFilter>(filter)};
+    const Message m = decodeMessage(encodePhotonMap(map));
+    expectWireError([&] { decodePhotonMap(m); }, "invalid photon filter " + std::to_string(filter));
+  }
+}
+
+TEST(Messages, PhotonMessagesRejectEveryTruncationAndTheWrongType) {
+  PhotonMapMessage map;
+  map.gather = {false, 10, 0.5f, PhotonFilter::Cone};
+  map.photons = samplePhotons();
+  const std::vector<uint8_t> good = encodePhotonMap(map);
+  for (size_t length = 0; length < good.size(); ++length) {
+    EXPECT_THROW(decodePhotonMap(decodeMessage(good.data(), length)), WireError) << length;
+  }
+  const Message job = decodeMessage(encodePhotonJob({1, 2, 3}));
+  expectWireError([&] { decodePhotonMap(job); }, "expected a PhotonMap message, got PhotonJob");
+  expectWireError([&] { decodePhotonShare(job); }, "expected a PhotonShare message, got PhotonJob");
+  expectWireError([&] { decodePhotonJob(decodeMessage(good)); },
+                  "expected a PhotonJob message, got PhotonMap");
+}
+
+// A corrupted photon count must fail on the size check, before anything is allocated.
+TEST(Messages, PhotonMapWithAHugePhotonCountThrowsWithoutAllocating) {
+  const Message m = handMade(MessageType::PhotonMap, [](ByteWriter& w) {
+    w.writeU32(0);
+    w.writeBool(false);
+    w.writeI32(10);
+    w.writeF32(0.5f);
+    w.writeU32(1);
+    w.writeU64(uint64_t{1} << 60);
+  });
+  expectWireError([&] { decodePhotonMap(m); }, "corrupt element count 1152921504606846976");
+}
+
 TEST(Messages, MessageStructsMatchTheCodec) {
 #if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
   const char* update =
@@ -313,11 +523,14 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(TileRect), 16u) << update;
   EXPECT_EQ(sizeof(RayCounters), 24u) << update;
   EXPECT_EQ(sizeof(TileResult), 80u) << update;
-  EXPECT_EQ(sizeof(TileJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
+  EXPECT_EQ(sizeof(PhotonJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
+  EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 88u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
-  EXPECT_EQ(sizeof(ProgressMessage), 32u) << update;
+  EXPECT_EQ(sizeof(ProgressMessage), 40u) << update;
   EXPECT_EQ(sizeof(RenderView), 128u) << update;
   EXPECT_EQ(sizeof(ViewMessage), 136u) << update;
 #else

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <filesystem>
+#include <functional>
 
 #include "parse/SceneLoader.h"
 #include "wire/Messages.h"
@@ -20,6 +22,17 @@ SceneDescription fullScene() {
       Projection::Orthographic, {1, 2, 3}, {-1, 0.5f, -0.0f}, {0, 0, 1}, 60.5f, 4.5f, 0.125f,
       {"everything.yaml", 2, 3}};
   d.render = {321, 203, 16, 7, 0.01f, 12345678901234ull, 2.5f, TriangleTest::PlaneThenInside};
+  d.caustics = {CausticMethod::PhotonMap,
+                0x1'0000'0007ull,
+                37,
+                0.0625f,
+                PhotonFilter::Epanechnikov,
+                9,
+                true,
+                33,
+                0.55f,
+                1e-40f,
+                12.5};
   d.background = {0.1f, 0.2f, 0.3f};
   d.ambientLight = {0.05f, 0.06f, 1e-40f};
 
@@ -60,11 +73,12 @@ SceneDescription fullScene() {
 
   d.lights = {{{0, 5, 0}, {100, 90, 80}, {1, 0.5f, 0.25f}, {"everything.yaml", 30, 5}},
               {{-3, 4, 2}, {1, 2, 3}, {0, 0, 2}, {"everything.yaml", 31, 5}}};
-  d.spheres = {{{0, 1, 0}, 0.75f, 1, {"everything.yaml", 40, 5}},
-               {{2, 1, -1}, 0.25f, 0, {"", 0, 0}}};
-  d.planes = {{{0, -0.5f, 0}, {0, 1, 0.25f}, 1, {"everything.yaml", 41, 5}}};
-  d.cones = {{{2, 0, 0}, 1.0f, {2, 2, 0}, 0.5f, 1, {"everything.yaml", 42, 5}},
-             {{-2, 0, 0}, 0.25f, {-2, 3, 0}, 0.25f, 0, {"everything.yaml", 43, 5}}};
+  d.spheres = {{{0, 1, 0}, 0.75f, 1, {"everything.yaml", 40, 5}, CausticRole::Cast},
+               {{2, 1, -1}, 0.25f, 0, {"", 0, 0}, CausticRole::Off}};
+  d.planes = {{{0, -0.5f, 0}, {0, 1, 0.25f}, 1, {"everything.yaml", 41, 5}, CausticRole::Receive}};
+  d.cones = {
+      {{2, 0, 0}, 1.0f, {2, 2, 0}, 0.5f, 1, {"everything.yaml", 42, 5}, CausticRole::Both},
+      {{-2, 0, 0}, 0.25f, {-2, 3, 0}, 0.25f, 0, {"everything.yaml", 43, 5}, CausticRole::Off}};
 
   MeshDesc smooth;
   smooth.source = "meshes/quad.obj";
@@ -73,12 +87,14 @@ SceneDescription fullScene() {
   smooth.indices = {0, 1, 2, 0, 2, 3};
   smooth.material = 1;
   smooth.loc = {"everything.yaml", 44, 5};
+  smooth.caustic = CausticRole::Both;
   MeshDesc flat;
   flat.source = "triangle";
   flat.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
   flat.indices = {2, 1, 0};
   flat.material = 0;
   flat.loc = {"everything.yaml", 50, 7};
+  flat.caustic = CausticRole::Receive;
   d.meshes = {smooth, flat};
   return d;
 }
@@ -157,6 +173,19 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_SAME_FLOAT(a.render.exposure, b.render.exposure);
   EXPECT_EQ(a.render.triangleTest, b.render.triangleTest);
 
+  EXPECT_EQ(a.caustics.method, b.caustics.method);
+  EXPECT_EQ(a.caustics.photons, b.caustics.photons);
+  EXPECT_EQ(a.caustics.gather, b.caustics.gather);
+  EXPECT_SAME_FLOAT(a.caustics.maxRadius, b.caustics.maxRadius);
+  EXPECT_EQ(a.caustics.filter, b.caustics.filter);
+  EXPECT_EQ(a.caustics.maxBounces, b.caustics.maxBounces);
+  EXPECT_EQ(a.caustics.progressive, b.caustics.progressive);
+  EXPECT_EQ(a.caustics.passes, b.caustics.passes);
+  EXPECT_SAME_FLOAT(a.caustics.alpha, b.caustics.alpha);
+  EXPECT_SAME_FLOAT(a.caustics.radius, b.caustics.radius);
+  EXPECT_EQ(std::bit_cast<uint64_t>(a.caustics.timeBudgetSeconds),
+            std::bit_cast<uint64_t>(b.caustics.timeBudgetSeconds));
+
   EXPECT_SAME_VEC3(a.background, b.background);
   EXPECT_SAME_VEC3(a.ambientLight, b.ambientLight);
 
@@ -206,6 +235,7 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     EXPECT_SAME_VEC3(a.spheres[i].center, b.spheres[i].center);
     EXPECT_SAME_FLOAT(a.spheres[i].radius, b.spheres[i].radius);
     EXPECT_EQ(a.spheres[i].material, b.spheres[i].material);
+    EXPECT_EQ(a.spheres[i].caustic, b.spheres[i].caustic);
     expectSameLoc(a.spheres[i].loc, b.spheres[i].loc);
   }
 
@@ -214,6 +244,7 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     EXPECT_SAME_VEC3(a.planes[i].point, b.planes[i].point);
     EXPECT_SAME_VEC3(a.planes[i].normal, b.planes[i].normal);
     EXPECT_EQ(a.planes[i].material, b.planes[i].material);
+    EXPECT_EQ(a.planes[i].caustic, b.planes[i].caustic);
     expectSameLoc(a.planes[i].loc, b.planes[i].loc);
   }
 
@@ -224,6 +255,7 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     EXPECT_SAME_VEC3(a.cones[i].apex, b.cones[i].apex);
     EXPECT_SAME_FLOAT(a.cones[i].apexRadius, b.cones[i].apexRadius);
     EXPECT_EQ(a.cones[i].material, b.cones[i].material);
+    EXPECT_EQ(a.cones[i].caustic, b.cones[i].caustic);
     expectSameLoc(a.cones[i].loc, b.cones[i].loc);
   }
 
@@ -234,6 +266,7 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     expectSameVec3s(a.meshes[i].normals, b.meshes[i].normals);
     EXPECT_EQ(a.meshes[i].indices, b.meshes[i].indices);
     EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+    EXPECT_EQ(a.meshes[i].caustic, b.meshes[i].caustic);
     expectSameLoc(a.meshes[i].loc, b.meshes[i].loc);
   }
 }
@@ -263,14 +296,15 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(PointLightDesc), 80u) << update;
   EXPECT_EQ(sizeof(CheckerDesc), 28u) << update;
   EXPECT_EQ(sizeof(MaterialDesc), 176u) << update;
-  EXPECT_EQ(sizeof(SphereDesc), 64u) << update;
-  EXPECT_EQ(sizeof(PlaneDesc), 72u) << update;
-  EXPECT_EQ(sizeof(ConeDesc), 80u) << update;
-  EXPECT_EQ(sizeof(MeshDesc), 152u) << update;
+  EXPECT_EQ(sizeof(SphereDesc), 72u) << update;
+  EXPECT_EQ(sizeof(PlaneDesc), 80u) << update;
+  EXPECT_EQ(sizeof(ConeDesc), 88u) << update;
+  EXPECT_EQ(sizeof(MeshDesc), 160u) << update;
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 40u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 736u) << update;
+  EXPECT_EQ(sizeof(CausticSettings), 56u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 792u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -291,6 +325,32 @@ TEST(SceneCodec, UnknownEnumValuesAreRejected) {
   d = fullScene();
   d.render.triangleTest = static_cast<TriangleTest>(-1);
   expectWireError(d, "invalid triangle test 4294967295");
+  d = fullScene();
+  d.caustics.method = static_cast<CausticMethod>(2);
+  expectWireError(d, "invalid caustic method 2");
+  d = fullScene();
+  d.caustics.filter = static_cast<PhotonFilter>(3);
+  expectWireError(d, "invalid photon filter 3");
+  d = fullScene();
+  d.spheres[1].caustic = static_cast<CausticRole>(5);
+  expectWireError(d, "invalid caustic role 5");
+  d = fullScene();
+  d.meshes[0].caustic = static_cast<CausticRole>(255);
+  expectWireError(d, "invalid caustic role 255");
+}
+
+TEST(SceneCodec, CausticSettingsThatCannotRunAreRejected) {
+  const std::function<void(CausticSettings&)> spoils[] = {
+      [](CausticSettings& c) { c.gather = 0; },   [](CausticSettings& c) { c.maxBounces = 0; },
+      [](CausticSettings& c) { c.passes = -3; },  [](CausticSettings& c) { c.maxRadius = -1; },
+      [](CausticSettings& c) { c.radius = NAN; }, [](CausticSettings& c) { c.alpha = 0.0f; },
+      [](CausticSettings& c) { c.alpha = 1.0f; }, [](CausticSettings& c) { c.alpha = NAN; },
+  };
+  for (const auto& spoil : spoils) {
+    SceneDescription d = fullScene();
+    spoil(d.caustics);
+    expectWireError(d, "invalid caustic settings");
+  }
 }
 
 TEST(SceneCodec, MeshesThatWouldReadOutOfBoundsAreRejected) {
@@ -364,8 +424,8 @@ TEST(SceneCodec, HugeCorruptedCountThrowsWithoutAllocating) {
   d.meshes.resize(1);
   std::vector<uint8_t> bytes = payloadOf(d);
   // The empty mesh ends the payload: source (4-byte length), positions count (8), normals count
-  // (8), indices count (8), material (4), loc (4 + 4 + 4).
-  const size_t positionsCount = bytes.size() - 44 + 4;
+  // (8), indices count (8), material (4), caustic role (4), loc (4 + 4 + 4).
+  const size_t positionsCount = bytes.size() - 48 + 4;
   ASSERT_EQ(std::count(bytes.begin() + positionsCount, bytes.begin() + positionsCount + 8, 0), 8);
   bytes[positionsCount + 7] = 0x10;  // 2^60
   try {

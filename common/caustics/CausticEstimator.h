@@ -1,0 +1,17 @@
+// The one question the eye-ray integrator asks a caustics method: how much caustic irradiance
+// arrives at this point of a receiving surface. Photon mapping answers it now; caustic mapping
+// answers it behind the same interface, so either can be switched in.
+#pragma once
+
+#include "math/Vec.h"
+
+namespace prism {
+
+class CausticEstimator {
+ public:
+  virtual ~CausticEstimator() = default;
+  // Irradiance in W/m² per channel arriving at position on the side normal faces (unit normal).
+  virtual Color irradiance(const Vec3& position, const Vec3& normal) const = 0;
+};
+
+}  // namespace prism

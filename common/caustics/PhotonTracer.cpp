@@ -1,0 +1,171 @@
+#include "caustics/PhotonTracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "math/Random.h"
+#include "render/MaterialEval.h"
+#include "render/SpecularSplit.h"
+
+namespace prism {
+namespace {
+
+// Keeps photon streams apart from the pixel streams, which are keyed by (x, y).
+constexpr uint64_t kPhotonStreamBase = 0x5048'4f54'0000'0000ULL;  // "PHOT"
+
+float mean(const Color& c) {
+  return (c.x + c.y + c.z) / 3.0f;
+}
+
+// The light's falloff relative to inverse-square at distance d: 1 for physical lights. Photon
+// density falls as 1/d² by itself; this factor makes other falloffs agree with direct light.
+float falloffRelativeToInverseSquare(const Attenuation& a, float d) {
+  return 1.0f / (a.constant / (d * d) + a.linear / d + a.quadratic);
+}
+
+}  // namespace
+
+PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
+    : scene_(scene), maxBounces_(maxBounces) {
+  const std::vector<CasterBounds>& casters = scene.causticCasters();
+  if (casters.empty() || photons == 0) return;
+  std::vector<double> flux;
+  for (size_t i = 0; i < scene.lights().size(); ++i) {
+    const PointLightDesc& light = scene.lights()[i];
+    ProjectionMap map(light.position, casters);
+    const double f = map.coveredSolidAngle() * std::max(0.0f, mean(light.intensity));
+    if (map.empty() || !(f > 0.0)) continue;
+    plans_.push_back({i, std::move(map), 0, 0, Color(0.0f)});
+    flux.push_back(f);
+  }
+  if (plans_.empty()) return;
+
+  // Photon counts in proportion to flux; the remainder goes to the largest fractions.
+  double totalFlux = 0.0;
+  for (double f : flux) totalFlux += f;
+  std::vector<std::pair<double, size_t>> fractions;
+  uint64_t assigned = 0;
+  for (size_t j = 0; j < plans_.size(); ++j) {
+    const double exact = static_cast<double>(photons) * flux[j] / totalFlux;
+    plans_[j].count = static_cast<uint64_t>(std::floor(exact));
+    assigned += plans_[j].count;
+    fractions.push_back({exact - std::floor(exact), j});
+  }
+  std::stable_sort(fractions.begin(), fractions.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (size_t i = 0; assigned < photons; ++i, ++assigned) ++plans_[fractions[i].second].count;
+
+  uint64_t first = 0;
+  for (PhotonLightPlan& plan : plans_) {
+    plan.first = first;
+    first += plan.count;
+    if (plan.count > 0) {
+      const PointLightDesc& light = scene.lights()[plan.light];
+      plan.powerPerPhoton = light.intensity * static_cast<float>(plan.map.coveredSolidAngle() /
+                                                                 static_cast<double>(plan.count));
+    }
+  }
+  total_ = first;
+}
+
+PhotonTraceStats PhotonTracer::trace(uint32_t pass, uint64_t first, uint64_t count,
+                                     std::vector<Photon>& out) const {
+  PhotonTraceStats stats;
+  const uint64_t end = std::min(first + count, total_);
+  auto plan = plans_.begin();
+  for (uint64_t i = first; i < end; ++i) {
+    while (i >= plan->first + plan->count) ++plan;
+    tracePhoton(pass, i, *plan, out, stats);
+  }
+  return stats;
+}
+
+void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightPlan& plan,
+                               std::vector<Photon>& out, PhotonTraceStats& stats) const {
+  ++stats.emitted;
+  Pcg32 rng = Pcg32::forKey(scene_.settings().seed, index, kPhotonStreamBase + pass);
+  const PointLightDesc& light = scene_.lights()[plan.light];
+  const float u0 = rng.nextFloat(), u1 = rng.nextFloat(), u2 = rng.nextFloat();
+  Ray ray{light.position, plan.map.sample(u0, u1, u2)};
+  Color power = plan.powerPerPhoton;
+
+  for (int bounce = 0;; ++bounce) {
+    HitRecord hit;
+    if (!scene_.intersect(ray, hit)) {
+      ++(bounce == 0 ? stats.missed : stats.absorbed);
+      return;
+    }
+    if (bounce == 0) power *= falloffRelativeToInverseSquare(light.attenuation, hit.t);
+    const SurfaceHit s = scene_.surface(ray, hit);
+    if (bounce > 0 && (s.caustic & kReceivesCaustics)) {
+      Photon photon;
+      photon.position = s.position;
+      photon.power = power;
+      photon.setDirection(ray.direction);
+      out.push_back(photon);
+      ++stats.stored;
+    }
+    if (!(s.caustic & kCastsCaustics) || bounce >= maxBounces_) {  // bounce 0: not a caster
+      ++(bounce == 0 ? stats.missed : stats.absorbed);
+      return;
+    }
+    const MaterialDesc& m = scene_.materials()[s.material];
+    const SpecularSplit split = splitSpecular(m, s, ray.direction);
+    float reflectP = std::max(0.0f, mean(split.reflectWeight));
+    float transmitP = split.refracted ? std::max(0.0f, mean(split.transmitWeight)) : 0.0f;
+    const float sum = reflectP + transmitP;
+    if (sum > 1.0f) {
+      reflectP /= sum;
+      transmitP /= sum;
+    }
+    const float u = rng.nextFloat();
+    Vec3 direction;
+    if (u < reflectP) {
+      power *= split.reflectWeight / reflectP;
+      direction = reflectedDirection(s, ray.direction);
+    } else if (u < reflectP + transmitP) {
+      power *= split.transmitWeight / transmitP;
+      direction = *split.refracted;
+    } else {
+      ++stats.absorbed;  // by roulette, at a caster
+      return;
+    }
+    ray = Ray{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};
+  }
+}
+
+std::vector<Photon> tracePhotons(const PhotonTracer& tracer, uint32_t pass, uint64_t first,
+                                 uint64_t count, int threads, PhotonTraceStats* stats) {
+  constexpr uint64_t kChunk = 4096;
+  const uint64_t chunks = (count + kChunk - 1) / kChunk;
+  std::vector<std::vector<Photon>> results(chunks);
+  std::vector<PhotonTraceStats> chunkStats(chunks);
+  std::atomic<uint64_t> next{0};
+  const auto work = [&] {
+    for (uint64_t c = next++; c < chunks; c = next++) {
+      const uint64_t begin = first + c * kChunk;
+      chunkStats[c] =
+          tracer.trace(pass, begin, std::min(kChunk, first + count - begin), results[c]);
+    }
+  };
+  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+  n = static_cast<unsigned>(std::min<uint64_t>(std::max(n, 1u), std::max<uint64_t>(chunks, 1)));
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+
+  size_t total = 0;
+  for (const auto& r : results) total += r.size();
+  std::vector<Photon> photons;
+  photons.reserve(total);
+  for (uint64_t c = 0; c < chunks; ++c) {
+    photons.insert(photons.end(), results[c].begin(), results[c].end());
+    if (stats) *stats += chunkStats[c];
+  }
+  return photons;
+}
+
+}  // namespace prism

@@ -1,0 +1,81 @@
+// Traces caustic photons: from each point light, only towards caustic casters (through its
+// projection map), through specular reflection and refraction, and stores each one at the first
+// receiving surface it meets after at least one specular bounce. Direct light is never stored;
+// shadow rays compute it, and they are blocked by every object, transparent or not, so light
+// that passes through a caster reaches receivers only as photons: nothing is counted twice or
+// lost (see docs/caustics.md).
+//
+// At each specular surface Russian roulette picks reflection (probability = the mean of the
+// reflect weights), refraction (the mean of the transmit weights) or absorption; the surviving
+// photon's power is multiplied by weight / probability, so colourless glass and mirrors leave it
+// unchanged and the estimate stays unbiased.
+//
+// Photon i of pass p draws from its own random stream keyed by (seed, i, p): the photons traced
+// do not depend on how the index range is split between threads or ranks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "caustics/Photon.h"
+#include "caustics/ProjectionMap.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+struct PhotonTraceStats {
+  uint64_t emitted = 0;
+  uint64_t stored = 0;  // photon records written (a photon may land on several receivers)
+  // Every emitted photon ends as one of these two: emitted == missed + absorbed.
+  uint64_t missed = 0;    // met no caster first (left the scene, or hit a non-caster)
+  uint64_t absorbed = 0;  // reached a caster, then ended: stored on a receiver that does not
+                          // cast, absorbed by roulette, escaped, or out of bounces
+  PhotonTraceStats& operator+=(const PhotonTraceStats& o) {
+    emitted += o.emitted;
+    stored += o.stored;
+    missed += o.missed;
+    absorbed += o.absorbed;
+    return *this;
+  }
+};
+
+// One light's share of the photons of a pass.
+struct PhotonLightPlan {
+  size_t light = 0;  // index into Scene::lights()
+  ProjectionMap map;
+  uint64_t first = 0, count = 0;  // photon indices [first, first + count)
+  Color powerPerPhoton{0.0f};     // W
+};
+
+class PhotonTracer {
+ public:
+  // Plans the emission of `photons` photons per pass over the scene's lights, in proportion to
+  // each light's flux towards the casters.
+  PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces);
+
+  // False when no light can reach a caster: then there is nothing to trace.
+  bool hasWork() const { return total_ > 0; }
+  uint64_t photonsPerPass() const { return total_; }
+  const std::vector<PhotonLightPlan>& plans() const { return plans_; }
+
+  // Traces photons [first, first + count) of pass `pass`, appending the stored ones to out in
+  // photon-index order.
+  PhotonTraceStats trace(uint32_t pass, uint64_t first, uint64_t count,
+                         std::vector<Photon>& out) const;
+
+ private:
+  void tracePhoton(uint32_t pass, uint64_t index, const PhotonLightPlan& plan,
+                   std::vector<Photon>& out, PhotonTraceStats& stats) const;
+
+  const Scene& scene_;
+  int maxBounces_;
+  uint64_t total_ = 0;
+  std::vector<PhotonLightPlan> plans_;
+};
+
+// trace() over `threads` threads (0: every available core). The photons come back in index
+// order whatever the thread count.
+std::vector<Photon> tracePhotons(const PhotonTracer& tracer, uint32_t pass, uint64_t first,
+                                 uint64_t count, int threads, PhotonTraceStats* stats = nullptr);
+
+}  // namespace prism

@@ -1,0 +1,187 @@
+#include "master/CausticPasses.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "caustics/PhotonGather.h"
+#include "master/PhotonPass.h"
+#include "slave/TileWorkerPool.h"
+#include "util/Stopwatch.h"
+
+namespace prism {
+namespace {
+
+// Adds one frame's work to the run's totals.
+void addFrame(FrameResult& total, const FrameResult& f, bool first) {
+  if (first) {
+    total = f;
+    return;
+  }
+  total.rays += f.rays;
+  total.tileCount += f.tileCount;
+  total.seconds += f.seconds;
+  total.busyThreadSeconds += f.busyThreadSeconds;
+  total.reissuedTiles += f.reissuedTiles;
+  for (size_t r = 0; r < total.workers.size() && r < f.workers.size(); ++r) {
+    WorkerStats& w = total.workers[r];
+    const WorkerStats& o = f.workers[r];
+    w.tiles += o.tiles;
+    w.rays += o.rays;
+    w.busySeconds += o.busySeconds;
+    w.duplicates += o.duplicates;
+    w.lostTiles += o.lostTiles;
+    w.retired = w.retired || o.retired;
+    if (o.threads > 0) w.threads = o.threads;
+    if (o.buildSeconds > 0.0) w.buildSeconds = o.buildSeconds;
+  }
+}
+
+void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
+  c.trace += p.trace;
+  c.traceSeconds += p.traceSeconds;
+  c.buildSeconds += p.buildSeconds;
+  c.distributeSeconds += p.distributeSeconds;
+  c.mapBytes = std::max(c.mapBytes, p.mapBytes);
+  c.sentBytes += p.sentBytes;
+  if (c.photonsByRank.size() < p.photonsByRank.size())
+    c.photonsByRank.resize(p.photonsByRank.size());
+  for (size_t r = 0; r < p.photonsByRank.size(); ++r) c.photonsByRank[r] += p.photonsByRank[r];
+}
+
+}  // namespace
+
+float automaticMaxRadius(const Scene& scene) {
+  float largest = 0.0f;
+  for (const CasterBounds& c : scene.causticCasters()) {
+    if (!c.plane) largest = std::max(largest, c.radius);
+  }
+  if (largest > 0.0f) return 0.1f * largest;
+  const Aabb& b = scene.bounds();
+  const float size = b.empty() ? 0.0f : glm::length(b.extent());
+  return size > 0.0f ? 0.01f * size : 0.01f;
+}
+
+float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
+  constexpr size_t kProbes = 256;
+  const size_t n = map.size();
+  if (n == 0) return maxRadius;
+  std::vector<PhotonNeighbour> neighbours;
+  double sum = 0.0;
+  size_t probes = 0;
+  for (size_t i = 0; i < std::min(n, kProbes); ++i) {
+    const Photon& p = map.photons()[i * n / std::min(n, kProbes)];
+    sum += std::sqrt(map.nearest(p.position, k, maxRadius * maxRadius, neighbours));
+    ++probes;
+  }
+  return static_cast<float>(sum / static_cast<double>(probes));
+}
+
+CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
+                                ClusterRoster& roster, const PassProgress& progress) {
+  const CausticSettings& settings = scene.causticSettings();
+  CausticFrame out;
+  CausticRunStats& stats = out.caustics;
+  stats.method = settings.method;
+  stats.progressive = settings.progressive;
+  stats.k = settings.gather;
+  options.roster = &roster;
+  uint32_t frameId = options.frameId;
+
+  const auto frame = [&](std::shared_ptr<const RenderPass> pass, const std::string& label) {
+    options.pass = std::move(pass);
+    options.frameId = frameId++;
+    options.progress = [&](size_t done, size_t total) {
+      if (progress) progress(label, done, total);
+    };
+    return renderFrame(scene, options, cluster);
+  };
+
+  std::unique_ptr<PhotonTracer> tracer;
+  if (settings.method == CausticMethod::PhotonMap) {
+    tracer = std::make_unique<PhotonTracer>(scene, settings.photons, settings.maxBounces);
+    stats.noCasters = !tracer->hasWork();
+    stats.photonsPerPass = tracer->photonsPerPass();
+  }
+  if (!tracer || !tracer->hasWork()) {  // nothing to trace: a plain frame, no photon cost
+    FrameResult f = frame(nullptr, "render");
+    out.image = f.image;
+    addFrame(out.frames, f, true);
+    return out;
+  }
+
+  // Resolved here: the photon shares are sized by thread counts.
+  const int threads = options.threads > 0 ? options.threads : availableCores();
+  const float maxRadius =
+      settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
+  const auto photonPass = [&](uint32_t pass, const std::string& label) {
+    if (progress) progress(label + " photons", 0, 1);
+    PhotonPassStats p;
+    auto map = tracePhotonPass(*tracer, pass, threads, cluster, roster, options.leaseSeconds, p);
+    addPhotonStats(stats, p);
+    ++stats.passes;
+    return std::make_pair(std::move(map), p);
+  };
+
+  if (!settings.progressive) {
+    auto [map, p] = photonPass(0, "trace");
+    const PhotonGatherSettings gather{false, settings.gather, maxRadius, settings.filter};
+    PhotonPassStats sent;
+    sendPhotonMap(*map, 0, gather, cluster, roster, sent);
+    addPhotonStats(stats, sent);
+    stats.firstRadius = stats.lastRadius = maxRadius;
+    auto pass = std::make_shared<const RenderPass>(
+        RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
+    FrameResult f = frame(pass, "render");
+    stats.gatherRenderSeconds += f.seconds;
+    out.image = f.image;
+    addFrame(out.frames, f, true);
+    out.lastMap = map;
+    return out;
+  }
+
+  // Progressive: the direct frame, then caustic-only passes 1, 2, ...
+  FrameResult direct =
+      frame(std::make_shared<const RenderPass>(RenderPass{0, true, nullptr}), "direct light");
+  addFrame(out.frames, direct, true);
+  ImageRgb causticSum(direct.image.width, direct.image.height);
+  const auto causticStart = SteadyClock::now();
+  float radius = settings.radius;
+  int done = 0;
+  for (int i = 1; i <= settings.passes; ++i) {
+    if (i > 1 && settings.timeBudgetSeconds > 0.0 &&
+        secondsSince(causticStart) >= settings.timeBudgetSeconds) {
+      break;
+    }
+    const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
+    auto [map, p] = photonPass(static_cast<uint32_t>(i), label);
+    if (i == 1) {
+      if (!(radius > 0.0f)) radius = automaticProgressiveRadius(*map, settings.gather, maxRadius);
+      stats.firstRadius = radius;
+    } else {
+      // r²(i) = r²(i−1)·(i − 1 + α)/i
+      radius *= std::sqrt((static_cast<float>(i - 1) + settings.alpha) / static_cast<float>(i));
+    }
+    stats.lastRadius = radius;
+    const PhotonGatherSettings gather{true, settings.gather, radius, settings.filter};
+    PhotonPassStats sent;
+    sendPhotonMap(*map, static_cast<uint32_t>(i), gather, cluster, roster, sent);
+    addPhotonStats(stats, sent);
+    auto pass = std::make_shared<const RenderPass>(RenderPass{
+        static_cast<uint32_t>(i), false, std::make_shared<const PhotonGather>(map, gather)});
+    FrameResult f = frame(pass, label);
+    stats.gatherRenderSeconds += f.seconds;
+    for (size_t px = 0; px < causticSum.pixels.size(); ++px)
+      causticSum.pixels[px] += f.image.pixels[px];
+    addFrame(out.frames, f, false);
+    out.lastMap = map;
+    ++done;
+  }
+  out.image = direct.image;
+  const float scale = 1.0f / static_cast<float>(std::max(done, 1));
+  for (size_t px = 0; px < out.image.pixels.size(); ++px) {
+    out.image.pixels[px] += causticSum.pixels[px] * scale;
+  }
+  return out;
+}
+
+}  // namespace prism

@@ -1,0 +1,62 @@
+// Renders a frame with its caustics: the passes a scene's caustic settings call for, each
+// with its photon map traced across the ranks (master/PhotonPass.h), summed into one image.
+//   none, or no caster any light can reach: one pass of direct light, no photons at all;
+//   photon map:  one photon pass, then one frame with direct light and k-NN caustics;
+//   progressive: one frame of direct light, then caustic-only passes, each with fresh photons
+//                and a fixed gather radius that shrinks as r²(i+1) = r²(i)·(i + α)/(i + 1)
+//                (Knaus & Zwicker 2011); the image is the direct frame plus the mean of the
+//                caustic frames.
+// Every pass draws from its own photon streams, so the image is bit-identical for any rank
+// count, thread count or tile size (a time budget makes the pass count, and so the image,
+// depend on speed).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "caustics/PhotonMap.h"
+#include "caustics/PhotonTracer.h"
+#include "master/FrameRenderer.h"
+
+namespace prism {
+
+struct CausticRunStats {
+  CausticMethod method = CausticMethod::None;
+  bool progressive = false;
+  bool noCasters = false;  // photon mapping was asked for but no light reaches a caster
+  uint64_t photonsPerPass = 0;
+  int passes = 0;  // photon passes traced
+  PhotonTraceStats trace;
+  double traceSeconds = 0.0, buildSeconds = 0.0, distributeSeconds = 0.0;
+  double gatherRenderSeconds = 0.0;  // frames that gathered photons
+  size_t mapBytes = 0;               // largest photon map (photons + kd-tree)
+  size_t sentBytes = 0;              // photon maps sent to slaves
+  int k = 0;
+  float firstRadius = 0.0f, lastRadius = 0.0f;  // gather radius (progressive) or k-NN cap
+  std::vector<uint64_t> photonsByRank;
+};
+
+struct CausticFrame {
+  ImageRgb image;
+  FrameResult frames;  // every frame of the run added together (tiles, rays, busy time)
+  CausticRunStats caustics;
+  std::shared_ptr<const PhotonMap> lastMap;  // for the photon debug image
+};
+
+// (stage label, done, total), from the coordinating thread.
+using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
+
+CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
+                                ClusterRoster& roster, const PassProgress& progress = {});
+
+// The k-NN gather radius cap when the scene leaves it at 0: a tenth of the largest bounded
+// caster's bounding radius, or a hundredth of the scene's size when only planes cast.
+float automaticMaxRadius(const Scene& scene);
+
+// The first progressive radius when the scene leaves it at 0: the mean distance from a spread
+// of stored photons to their k-th nearest neighbour, capped at maxRadius.
+float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius);
+
+}  // namespace prism

@@ -1,0 +1,250 @@
+// renderWithCaustics end to end in one process: an index-1 "glass" sphere must render exactly
+// like the direct light it lets through (its light arrives only as photons), in classic and
+// progressive mode; progressive error falls with passes at the rate PPPM theory gives; and the
+// image does not depend on threads or tiles.
+#include "master/CausticPasses.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace prism {
+namespace {
+
+constexpr float kIntensity = 100.0f, kLightHeight = 4.0f, kAlbedo = 0.8f;
+
+// The scene of PhotonTracerEnergy (tests/common/caustics/PhotonTracer_test.cpp), seen from
+// straight above by an orthographic camera 1.2 wide, centred on the axis: every pixel looks
+// through the sphere at the floor inside its shadow (radius 2.31). Direct light there is blocked
+// by the sphere (shadow rays stop at every object), so the radiance is the caustic alone and
+// must equal the direct-light radiance ρ/π · I·h/d³.
+SceneDescription indexOneView(int size) {
+  SceneDescription d;
+  MaterialDesc clear;
+  clear.diffuse = Color(0.0f);
+  clear.transmittance = Color(1.0f);
+  clear.ior = 1.0f;
+  MaterialDesc floor;
+  floor.diffuse = Color(kAlbedo);
+  d.materials = {clear, floor};
+  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}});
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  PointLightDesc light;
+  light.position = {0, kLightHeight, 0};
+  light.intensity = Color(kIntensity);
+  d.lights.push_back(light);
+  d.camera.projection = Projection::Orthographic;
+  d.camera.position = {0, 10, 0};
+  d.camera.lookAt = {0, 0, 0};
+  d.camera.up = {0, 0, -1};
+  d.camera.width = 1.2f;
+  d.render.width = d.render.height = size;
+  d.render.samplesPerPixel = 1;
+  d.caustics.method = CausticMethod::PhotonMap;
+  return d;
+}
+
+// ρ/π · E_direct at the floor point under pixel (x, y). Pixels are 1.2/size wide; the sample
+// jitter inside one moves E by at most |∇E/E|·½·pixel ≈ 3x/d² · 0.6/size: < 0.1 % here.
+double expectedRadiance(const Camera& camera, int x, int y) {
+  const Ray ray = camera.generateRay(x + 0.5f, y + 0.5f);
+  const Vec3 p = ray.at(-ray.origin.y / ray.direction.y);
+  const double d2 = kLightHeight * kLightHeight + p.x * p.x + p.z * p.z;
+  return kAlbedo / 3.14159265358979323846 * kIntensity * kLightHeight / (d2 * std::sqrt(d2));
+}
+
+// Relative RMS and mean error of the green channel over the image.
+struct ImageError {
+  double rms = 0, mean = 0;
+};
+
+ImageError relativeError(const ImageRgb& image, const Camera& camera) {
+  ImageError e;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const double r = image.at(x, y).y / expectedRadiance(camera, x, y) - 1.0;
+      e.rms += r * r;
+      e.mean += r;
+    }
+  }
+  const double n = static_cast<double>(image.width) * image.height;
+  e.rms = std::sqrt(e.rms / n);
+  e.mean /= n;
+  return e;
+}
+
+CausticFrame render(const SceneDescription& d, int threads = 2, int tileSize = 0) {
+  const Scene scene(d);
+  FrameOptions options;
+  options.threads = threads;
+  options.tileSize = tileSize;
+  ClusterRoster roster(1);
+  return renderWithCaustics(scene, options, nullptr, roster);
+}
+
+TEST(CausticPasses, ClassicIndexOneSphereRendersLikeTheDirectLight) {
+  SceneDescription d = indexOneView(24);
+  d.caustics.photons = 300000;
+  d.caustics.gather = 400;
+  d.caustics.filter = PhotonFilter::Epanechnikov;
+  const CausticFrame f = render(d);
+  // Per pixel, an Epanechnikov k-NN estimate has σ_rel = √(πr²∫K² / k) = √(4/(3k)) = 5.8 %.
+  // Pixels closer than the gather diameter (≈ 0.16) share photons, so the 576 pixels hold about
+  // 1.44 / (π·0.078²) ≈ 75 independent estimates: the RMS over the image should be 5.8 % (within
+  // ~10 %), the mean within 3·5.8 %/√75 = 2 %. Measured: RMS 5.7 %, mean −1.1 %.
+  const Camera camera(d.camera, 24, 24);
+  const ImageError e = relativeError(f.image, camera);
+  EXPECT_LT(e.rms, 0.08);
+  EXPECT_LT(std::abs(e.mean), 0.025);
+  for (int y = 0; y < 24; ++y) {
+    for (int x = 0; x < 24; ++x) {  // 4σ per pixel
+      EXPECT_NEAR(f.image.at(x, y).y / expectedRadiance(camera, x, y), 1.0, 4 * 0.058)
+          << x << "," << y;
+    }
+  }
+  RecordProperty("rms_relative_error", std::to_string(e.rms));
+  EXPECT_EQ(f.caustics.passes, 1);
+  EXPECT_FALSE(f.caustics.noCasters);
+  EXPECT_EQ(f.caustics.photonsPerPass, 300000u);
+  ASSERT_TRUE(f.lastMap);
+  EXPECT_EQ(f.lastMap->size(), f.caustics.trace.stored);
+}
+
+// Progressive photon mapping (Knaus & Zwicker 2011) with r²_{i+1} = r²_i (i + α)/(i + 1), so
+// r²_i ∝ i^{α−1} for large i. Pass i's estimate has variance ∝ 1/(N r²_i) ∝ i^{1−α} and bias
+// ∝ r²_i ∝ i^{α−1} (the curvature of E over the disc). The mean of P passes then has
+//   variance (1/P²) Σ i^{1−α} ∝ P^{−α}  →  RMSE slope −α/2 = −0.35 for α = 0.7,
+//   bias (1/P) Σ i^{α−1} ∝ P^{α−1}     →  slope −(1 − α) = −0.3.
+// Here E is smooth (its curvature bias is ~ r²/h² ≈ 0.06 % of E against a first-pass noise of
+// ~10 %), so the variance term rules and the log-log slope of the RMS error over passes 1, 2, 4,
+// 8, 16 should be near −0.35. Measured: RMS 11.0, 8.4, 6.1, 4.5, 3.7 % for 1, 2, 4, 8, 16 passes,
+// slope −0.41. Each RMS comes from ~35 independent estimates (pixels within a gather diameter
+// share photons), so it is uncertain by ~±12 % and the fitted slope by ~±0.06: the bounds
+// [−0.6, −0.2] are about 3σ around theory and exclude no convergence (slope 0). The radius
+// schedule itself is checked exactly, pass count by pass count.
+TEST(CausticPasses, ProgressiveErrorFallsWithPassesAtThePppmRate) {
+  SceneDescription d = indexOneView(24);
+  d.caustics.progressive = true;
+  d.caustics.photons = 50000;
+  d.caustics.radius = 0.1f;
+  d.caustics.alpha = 0.7f;
+  const Camera camera(d.camera, 24, 24);
+  std::vector<double> logPasses, logError;
+  for (int passes : {1, 2, 4, 8, 16}) {
+    d.caustics.passes = passes;
+    const CausticFrame f = render(d);
+    EXPECT_EQ(f.caustics.passes, passes);
+    const ImageError e = relativeError(f.image, camera);
+    EXPECT_FLOAT_EQ(f.caustics.firstRadius, 0.1f);
+    // r²_P = r²_1 Π_{i=1}^{P−1} (i + α)/(i + 1)
+    double r2 = 0.01;
+    for (int i = 1; i < passes; ++i) r2 *= (i + 0.7) / (i + 1.0);
+    EXPECT_NEAR(f.caustics.lastRadius, std::sqrt(r2), 1e-5) << passes;
+    EXPECT_LT(std::abs(e.mean), 0.03) << passes;  // no bias beyond the noise
+    logPasses.push_back(std::log(passes));
+    logError.push_back(std::log(e.rms));
+  }
+  // Least-squares slope of log error against log passes.
+  const double n = static_cast<double>(logPasses.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < logPasses.size(); ++i) {
+    mx += logPasses[i] / n;
+    my += logError[i] / n;
+  }
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < logPasses.size(); ++i) {
+    sxy += (logPasses[i] - mx) * (logError[i] - my);
+    sxx += (logPasses[i] - mx) * (logPasses[i] - mx);
+  }
+  const double slope = sxy / sxx;
+  EXPECT_LT(slope, -0.2);
+  EXPECT_GT(slope, -0.6);
+  EXPECT_LT(std::exp(logError.back()), 0.6 * std::exp(logError.front()));  // theory: 0.38
+  RecordProperty("log_log_slope", std::to_string(slope));
+}
+
+bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
+}
+
+// A glass ball and a mirror cylinder on a floor, seen in perspective: every kind of path.
+SceneDescription mixedCausticScene(bool progressive) {
+  SceneDescription d = indexOneView(33);
+  d.materials[0].ior = 1.5f;
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.1f);
+  mirror.reflectance = Color(0.9f);
+  d.materials.push_back(mirror);
+  ConeDesc cylinder;
+  cylinder.base = {1.5f, 0, 0};
+  cylinder.apex = {1.5f, 1, 0};
+  cylinder.baseRadius = cylinder.apexRadius = 0.5f;
+  cylinder.material = 2;
+  d.cones.push_back(cylinder);
+  d.camera.projection = Projection::Perspective;
+  d.camera.position = {0, 5, 6};
+  d.render.height = 21;
+  d.caustics.photons = 20000;
+  d.caustics.gather = 30;
+  d.caustics.progressive = progressive;
+  d.caustics.passes = 3;
+  return d;
+}
+
+TEST(CausticPasses, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
+  for (bool progressive : {false, true}) {
+    const SceneDescription d = mixedCausticScene(progressive);
+    const CausticFrame reference = render(d, 1, 8);
+    EXPECT_GT(reference.caustics.trace.stored, 1000u);
+    for (const auto& [threads, tile] : {std::pair{2, 5}, std::pair{3, 16}, std::pair{4, 64}}) {
+      const CausticFrame other = render(d, threads, tile);
+      EXPECT_TRUE(bitIdentical(reference.image, other.image))
+          << (progressive ? "progressive" : "classic") << ", " << threads << " threads, tile "
+          << tile;
+      EXPECT_EQ(other.caustics.trace.stored, reference.caustics.trace.stored);
+    }
+  }
+}
+
+TEST(CausticPasses, SceneWithoutACasterRendersDirectLightOnlyAndTracesNothing) {
+  SceneDescription d = indexOneView(16);
+  d.spheres.clear();
+  const CausticFrame with = render(d);
+  EXPECT_TRUE(with.caustics.noCasters);
+  EXPECT_EQ(with.caustics.passes, 0);
+  EXPECT_EQ(with.caustics.trace.emitted, 0u);
+  EXPECT_FALSE(with.lastMap);
+  d.caustics.method = CausticMethod::None;
+  const CausticFrame without = render(d);
+  EXPECT_FALSE(without.caustics.noCasters);
+  EXPECT_TRUE(bitIdentical(with.image, without.image));
+}
+
+TEST(CausticPasses, AutomaticRadii) {
+  SceneDescription d = indexOneView(8);
+  d.spheres.push_back({{5, 1, 0}, 2.5f, 0, {}});
+  EXPECT_FLOAT_EQ(automaticMaxRadius(Scene(d)), 0.25f);  // a tenth of the largest caster
+  // Only a casting plane: a hundredth of the bounded objects' extent (the diffuse sphere's box,
+  // 2 × 2 × 2: diagonal 2√3).
+  SceneDescription planes;
+  MaterialDesc mirror;
+  mirror.reflectance = Color(1.0f);
+  planes.materials = {mirror, MaterialDesc{}};
+  planes.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  planes.spheres.push_back({{0, 3, 0}, 1.0f, 1, {}});
+  EXPECT_NEAR(automaticMaxRadius(Scene(planes)), 0.02f * std::sqrt(3.0f), 1e-6f);
+
+  // The first progressive radius: the mean distance to the k-th neighbour. Photons on a line
+  // with unit spacing: the 2nd nearest of each interior photon (itself first) is 1 away.
+  std::vector<Photon> line(300);
+  for (size_t i = 0; i < line.size(); ++i) line[i].position = {static_cast<float>(i), 0, 0};
+  const PhotonMap map(std::move(line));
+  EXPECT_NEAR(automaticProgressiveRadius(map, 2, 10.0f), 1.0f, 1e-6f);
+  EXPECT_NEAR(automaticProgressiveRadius(map, 2, 0.5f), 0.5f, 1e-6f);  // capped
+  EXPECT_EQ(automaticProgressiveRadius(PhotonMap({}), 2, 0.5f), 0.5f);
+}
+
+}  // namespace
+}  // namespace prism
