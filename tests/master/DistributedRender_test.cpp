@@ -164,6 +164,25 @@ TEST_P(DistributedCaustics, PixelsAreBitIdenticalToTheSingleProcessRender) {
   }
 }
 
+// A slave that hangs never sends its photon share: after the lease rank 0 retires it, traces
+// its share itself, and the frames go on without it. The photons are the same, so the pixels
+// are too.
+TEST_F(DistributedRender, HungSlavesPhotonShareIsTracedByRankZeroWithTheSamePixels) {
+  const std::string scene = kCausticScene + " --progressive --passes 2";
+  const test::ProcessRun single =
+      test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const test::ProcessRun run =
+      test::runPrismMpi(3, "render " + scene + " -o " + path("hang.exr") +
+                               " --tile-size 8 --lease-timeout 1 --inject-fault hang:2");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("hang.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+  // Rank 2 traced nothing; ranks 0 and 1 traced every photon of both passes between them.
+  EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
+}
+
 INSTANTIATE_TEST_SUITE_P(RanksModes, DistributedCaustics,
                          ::testing::Combine(::testing::Values(1, 2, 3),
                                             ::testing::Values("", "--progressive --passes 3")),
