@@ -17,6 +17,7 @@
 #include <QSplitter>
 #include <QStatusBar>
 #include <QVBoxLayout>
+#include <algorithm>
 
 #include "gui/FrameView.h"
 #include "gui/SpeedupCsv.h"
@@ -40,6 +41,8 @@ MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
   setWindowTitle("Prism — " + sceneName);
   settings_.camera = scene.camera;
   settings_.samplesPerPixel = scene.render.samplesPerPixel;
+  settings_.caustics = scene.caustics.method;
+  settings_.photonsPerPass = scene.caustics.photons;
 
   view_ = new FrameView(frame_, exposure_, this);
   stats_ = new StatsPanel(this);
@@ -109,14 +112,71 @@ QWidget* MainWindow::buildSidePanel() {
   debugLayout->addWidget(normalsButton_);
   layout->addWidget(debug);
 
-  // Extension point for the caustics work: the caustics method switch (none / photon map /
-  // caustic map), the photon budget and the blur toggle (b) go in a group here.
+  layout->addWidget(buildCausticsGroup(panel));
 
   auto* statsGroup = new QGroupBox("Statistics", panel);
   auto* statsLayout = new QVBoxLayout(statsGroup);
   statsLayout->addWidget(stats_);
   layout->addWidget(statsGroup, 1);
   return panel;
+}
+
+QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
+  // Caustic mapping (and its blur toggle, b) joins these when it exists.
+  auto* group = new QGroupBox("Caustics", parent);
+  auto* form = new QFormLayout(group);
+  noCausticsButton_ = new QRadioButton("none", group);
+  photonMapButton_ = new QRadioButton("photon map (progressive)", group);
+  noCausticsButton_->setObjectName("causticsNone");
+  photonMapButton_->setObjectName("causticsPhotonMap");
+  photonMapButton_->setToolTip(
+      "Every full pass traces its own photons and gathers them with a shrinking radius; the "
+      "averaged passes are progressive photon mapping");
+  (settings_.caustics == CausticMethod::PhotonMap ? photonMapButton_ : noCausticsButton_)
+      ->setChecked(true);
+  auto* buttons = new QButtonGroup(group);
+  buttons->addButton(noCausticsButton_);
+  buttons->addButton(photonMapButton_);
+  connect(noCausticsButton_, &QRadioButton::toggled, this, [this](bool on) {
+    if (on) setCausticMethod(CausticMethod::None);
+  });
+  connect(photonMapButton_, &QRadioButton::toggled, this, [this](bool on) {
+    if (on) setCausticMethod(CausticMethod::PhotonMap);
+  });
+  form->addRow(noCausticsButton_);
+  form->addRow(photonMapButton_);
+  photons_ = new QSpinBox(group);
+  photons_->setObjectName("photonsPerPass");
+  constexpr int kMaxPhotons = 20'000'000;  // far beyond an interactive pass on a laptop
+  photons_->setRange(1000, kMaxPhotons);
+  photons_->setSingleStep(10000);
+  photons_->setGroupSeparatorShown(true);
+  photons_->setValue(static_cast<int>(
+      std::clamp<uint64_t>(settings_.photonsPerPass, 1000, static_cast<uint64_t>(kMaxPhotons))));
+  settings_.photonsPerPass = static_cast<uint64_t>(photons_->value());
+  photons_->setKeyboardTracking(false);  // a new view when the number is entered, not per digit
+  photons_->setToolTip("Photons emitted towards the caustic casters in each full pass");
+  connect(photons_, qOverload<int>(&QSpinBox::valueChanged), this,
+          [this](int photons) { setPhotonsPerPass(static_cast<uint64_t>(photons)); });
+  connect(photons_, &QSpinBox::editingFinished, this, [this] { view_->setFocus(); });
+  form->addRow("photons / pass", photons_);
+  return group;
+}
+
+void MainWindow::setCausticMethod(CausticMethod method) {
+  if (settings_.caustics == method) return;
+  settings_.caustics = method;
+  (method == CausticMethod::PhotonMap ? photonMapButton_ : noCausticsButton_)->setChecked(true);
+  viewChanged();
+}
+
+void MainWindow::setPhotonsPerPass(uint64_t photons) {
+  photons = std::clamp<uint64_t>(photons, static_cast<uint64_t>(photons_->minimum()),
+                                 static_cast<uint64_t>(photons_->maximum()));
+  if (settings_.photonsPerPass == photons) return;
+  settings_.photonsPerPass = photons;
+  if (photons_->value() != static_cast<int>(photons)) photons_->setValue(static_cast<int>(photons));
+  if (settings_.caustics == CausticMethod::PhotonMap) viewChanged();  // otherwise nothing changes
 }
 
 void MainWindow::buildMenus() {

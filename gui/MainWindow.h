@@ -43,6 +43,10 @@ class MainWindow : public QMainWindow {
   // Sends the current camera and settings as a new view.
   void viewChanged();
 
+  // The caustics switch and photon budget of the side panel; a change is a new view.
+  void setCausticMethod(CausticMethod method);
+  void setPhotonsPerPass(uint64_t photons);
+
   const ViewSettings& viewSettings() const { return settings_; }
   const FrameAccumulator& frame() const { return frame_; }
   FrameView* frameView() const { return view_; }
@@ -66,6 +70,7 @@ class MainWindow : public QMainWindow {
 
  private:
   QWidget* buildSidePanel();
+  QWidget* buildCausticsGroup(QWidget* parent);
   void buildMenus();
   void setDebugView(DebugView view);
   void updateStatusBar();
@@ -80,6 +85,9 @@ class MainWindow : public QMainWindow {
   QSpinBox* spp_;
   QRadioButton* imageButton_;
   QRadioButton* normalsButton_;
+  QRadioButton* noCausticsButton_;
+  QRadioButton* photonMapButton_;
+  QSpinBox* photons_;
   QAction* tilesAction_;
   QLabel* status_;
   int fullPassesDone_ = 0;

@@ -13,6 +13,7 @@
 #include <cmath>
 
 #include "gui/FrameView.h"
+#include "master/ResourceCheck.h"
 
 using namespace QtCharts;
 
@@ -27,6 +28,25 @@ QString siRate(double perSecond) {
 
 QString milliseconds(double seconds) {
   return seconds > 0.0 ? QString::number(seconds * 1e3, 'f', 1) + " ms" : QString("—");
+}
+
+// The photon lines of the summary: empty without photon mapping.
+QString photonLines(const PhotonLiveStats& p) {
+  if (p.method != CausticMethod::PhotonMap) return {};
+  if (p.noCasters) return "\nphotons      none: no light reaches a caustic caster";
+  if (p.passes == 0) return "\nphotons      waiting for the first full pass";
+  return QString("\nphotons/s    %1photons/s (%2 per pass)\n")
+             .arg(siRate(p.photonsPerSecond))
+             .arg(p.photonsPerPass) +
+         QString("stored       %1 photons, map %2, pass %3 of this view\n")
+             .arg(p.stored)
+             .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes))))
+             .arg(p.passes) +
+         QString("photon pass  trace %1, kd-tree %2, send %3\n")
+             .arg(milliseconds(p.traceSeconds))
+             .arg(milliseconds(p.buildSeconds))
+             .arg(milliseconds(p.distributeSeconds)) +
+         QString("gather r     %1 (progressive)").arg(p.radius, 0, 'g', 4);
 }
 
 }  // namespace
@@ -163,7 +183,8 @@ void StatsPanel::showStats(const LiveStats& s) {
       QString("speedup      %1 on %2 threads, efficiency %3")
           .arg(speedup, 0, 'f', 2)
           .arg(s.totalThreads)
-          .arg(efficiency, 0, 'f', 2));
+          .arg(efficiency, 0, 'f', 2) +
+      photonLines(s.photons));
   if (speedup > 0.0 && s.totalThreads > 0) {
     liveSpeedup_->replace(QList<QPointF>{QPointF(s.totalThreads, speedup)});
     liveEfficiency_->replace(QList<QPointF>{QPointF(s.totalThreads, efficiency)});

@@ -2,7 +2,8 @@
 // second, a row per rank (threads, tiles, busy time, rays, stale tiles dropped) and the
 // speedup/efficiency chart. The chart shows a loaded speedup CSV (one point per process count,
 // with the ideal line) and this run's own point: Σ busy thread-seconds / wall time of the last
-// full pass, over its render threads.
+// full pass, over its render threads. With photon mapping: photons/s, the photons stored, the
+// map's size, the photon pass's trace/build/send times and the gather radius.
 #pragma once
 
 #include <QWidget>

@@ -104,6 +104,13 @@ class MoveBenchmark : public QObject {
 void printSummary(const LiveStats& s, std::ostream& out) {
   out << "viewer     " << s.passesDone << " full passes of the last view, frame " << s.frame
       << "\n";
+  const PhotonLiveStats& p = s.photons;
+  if (p.method == CausticMethod::PhotonMap && p.passes > 0) {
+    out << "photons    " << p.passes << " passes of " << p.photonsPerPass
+        << ", the last: " << p.stored << " stored, trace " << 1e3 * p.traceSeconds << " ms ("
+        << p.photonsPerSecond << " photons/s), kd-tree " << 1e3 * p.buildSeconds << " ms, send "
+        << 1e3 * p.distributeSeconds << " ms, gather radius " << p.radius << "\n";
+  }
   for (const RankStats& r : s.ranks) {
     out << "rank " << r.rank << "     " << r.threads << " threads, " << r.tiles << " tiles, busy "
         << r.busySeconds << " thread-s, " << r.rays.total() << " rays, " << r.staleTiles

@@ -61,6 +61,11 @@ float automaticMaxRadius(const Scene& scene) {
   return size > 0.0f ? 0.01f * size : 0.01f;
 }
 
+float nextProgressiveRadius(float previous, int pass, float alpha) {
+  // r²(i) = r²(i−1)·(i − 1 + α)/i
+  return previous * std::sqrt((static_cast<float>(pass - 1) + alpha) / static_cast<float>(pass));
+}
+
 float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
   constexpr size_t kProbes = 256;
   const size_t n = map.size();
@@ -158,8 +163,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
       if (!(radius > 0.0f)) radius = automaticProgressiveRadius(*map, settings.gather, maxRadius);
       stats.firstRadius = radius;
     } else {
-      // r²(i) = r²(i−1)·(i − 1 + α)/i
-      radius *= std::sqrt((static_cast<float>(i - 1) + settings.alpha) / static_cast<float>(i));
+      radius = nextProgressiveRadius(radius, i, settings.alpha);
     }
     stats.lastRadius = radius;
     const PhotonGatherSettings gather{true, settings.gather, radius, settings.filter};

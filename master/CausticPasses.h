@@ -59,4 +59,8 @@ float automaticMaxRadius(const Scene& scene);
 // of stored photons to their k-th nearest neighbour, capped at maxRadius.
 float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius);
 
+// The progressive gather radius of pass `pass` ≥ 2, given pass − 1's:
+// r²(pass) = r²(pass − 1)·(pass − 1 + α)/pass.
+float nextProgressiveRadius(float previous, int pass, float alpha);
+
 }  // namespace prism

@@ -75,10 +75,12 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
       ->group("");
 }
 
-// Caustics options: `render` only for now (the viewer renders direct light).
-void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
-  const char* caustics = "Caustics (override the scene's 'caustics' section)";
-  render
+constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics' section)";
+
+// The caustics options `render` and `view` share: the method and the photon budget.
+void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
+  const char* caustics = kCausticsGroup;
+  command
       ->add_option("--caustics", v.causticMethod,
                    "Caustics method: none or photon-map (default: the scene's)")
       ->transform(CLI::CheckedTransformer(
@@ -87,11 +89,18 @@ void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues&
           CLI::ignore_case))
       ->option_text("none|photon-map")
       ->group(caustics);
-  render
+  command
       ->add_option("--photons", v.photons,
                    "Photons emitted per pass towards the caustic casters (implies photon-map)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40))
       ->group(caustics);
+}
+
+// The caustics options of `render` only: the viewer always refines progressively, with the
+// scene's gather settings.
+void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
+  const char* caustics = kCausticsGroup;
+  addCausticMethodOptions(render, v);
   render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
       ->check(CLI::Range(1, 100000))
       ->group(caustics);
@@ -138,6 +147,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
       "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
       "N normals, n image, q quits, h or F1 shows every key. See docs/viewer.md.");
   addSceneOptions(view, o.render, v);
+  addCausticMethodOptions(view, v);
   view->add_option("--preview-scale", o.previewScale,
                    "After a camera change, first render 1/N of each side at 1 spp (default 4; "
                    "1: no preview)")
@@ -175,9 +185,9 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--seed")) options.seed = overrides.seed;
   if (given("--exposure")) options.exposure = overrides.exposure;
   if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
-  if (!command->get_option_no_throw("--caustics")) return;  // `view` has no caustics options
   if (given("--caustics")) options.causticMethod = overrides.causticMethod;
   if (given("--photons")) options.photons = overrides.photons;
+  if (!command->get_option_no_throw("--gather")) return;  // `view` has only the two above
   if (given("--gather")) options.gather = overrides.gather;
   if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
   if (given("--progressive")) options.progressive = true;

@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "master/Framebuffer.h"
+#include "master/TileJobWire.h"
 #include "master/TilePlan.h"
 #include "slave/TileWorkerPool.h"
 #include "transport/MpiSession.h"
@@ -167,13 +168,7 @@ void serviceSlaves(MpiSession& cluster, FrameState& state, int prefetch) {
     while (state.outstanding(rank) < static_cast<size_t>(prefetch)) {
       const std::optional<TileJob> job = state.nextJobFor(rank);
       if (!job) break;
-      wire::TileJobMessage message{job->frame, job->tileIndex, job->rect, 0, wire::kTermDirect};
-      if (job->pass) {
-        message.pass = job->pass->index;
-        message.terms = static_cast<uint8_t>((job->pass->direct ? wire::kTermDirect : 0) |
-                                             (job->pass->caustics ? wire::kTermCaustics : 0));
-      }
-      if (!cluster.send(rank, wire::encodeTileJob(message))) {
+      if (!cluster.send(rank, wire::encodeTileJob(tileJobMessage(*job)))) {
         state.retire(rank);  // MPI knows it is gone: its tiles go back at once
         break;
       }

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "caustics/PhotonGather.h"
+#include "master/CausticPasses.h"
+#include "master/PhotonPass.h"
+#include "master/TileJobWire.h"
 #include "master/TilePlan.h"
 #include "math/Random.h"
 #include "transport/MpiSession.h"
@@ -26,6 +30,14 @@ struct LiveRenderer::Event {
   int rank = 0;
   std::shared_ptr<const TileResult> result;
   double seconds = 0.0;
+};
+
+// The next pass to render, chosen under the lock; its frame id is taken already.
+struct LiveRenderer::PassPlan {
+  int index = 0;
+  uint32_t frame = 0;
+  uint64_t viewId = 0;
+  ViewSettings view;
 };
 
 struct LiveRenderer::Pass {
@@ -58,7 +70,10 @@ LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, MpiSe
       ranks_(cluster ? cluster->size() : 1),
       pool_(scene, options.threads),
       start_(SteadyClock::now()),
-      lastStats_(start_) {
+      lastStats_(start_),
+      roster_(ranks_),
+      maxRadius_(scene.causticSettings().maxRadius > 0.0f ? scene.causticSettings().maxRadius
+                                                          : automaticMaxRadius(scene)) {
   stats_.resize(static_cast<size_t>(ranks_));
   for (int r = 0; r < ranks_; ++r) stats_[r].rank = r;
   stats_[kLocalWorker].threads = pool_.threadCount();
@@ -85,21 +100,24 @@ void LiveRenderer::stop() {
   changed_.notify_all();
 }
 
-void LiveRenderer::beginPassLocked(int index, std::vector<PassInfo>& started) {
+void LiveRenderer::beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
+                                   std::vector<PassInfo>& started) {
   const RenderSettings& settings = scene_.settings();
+  const int index = plan.index;
   PassInfo info;
-  info.frame = nextFrame_++;
-  info.viewId = viewId_;
+  info.frame = plan.frame;
+  info.viewId = plan.viewId;
   info.pass = index;
   info.scale = index == 0 ? std::max(options_.previewScale, 1) : 1;
   auto view = std::make_shared<RenderView>();
-  view->camera = view_.camera;
+  view->camera = plan.view.camera;
   view->width = std::max(1, settings.width / info.scale);
   view->height = std::max(1, settings.height / info.scale);
-  view->samplesPerPixel = index == 0 ? 1 : view_.samplesPerPixel;
+  view->samplesPerPixel = index == 0 ? 1 : plan.view.samplesPerPixel;
   view->seed = passSeed(settings.seed, index);
-  view->debugView = view_.debugView;
+  view->debugView = plan.view.debugView;
   info.view = view;
+  info.light = std::move(light);
   int threads = 0;
   for (const RankStats& r : stats_) {
     if (!r.retired) threads += r.threads > 0 ? r.threads : pool_.threadCount();
@@ -116,7 +134,8 @@ void LiveRenderer::beginPassLocked(int index, std::vector<PassInfo>& started) {
   started.push_back(std::move(info));
 }
 
-void LiveRenderer::startNextPassLocked(std::vector<PassInfo>& started) {
+std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
+  int index = 0;
   if (pendingView_) {
     view_ = *pendingView_;
     pendingView_.reset();
@@ -125,10 +144,72 @@ void LiveRenderer::startNextPassLocked(std::vector<PassInfo>& started) {
     live_.passesDone = 0;
     live_.previewLatencySeconds = 0.0;
     live_.firstFullSeconds = 0.0;
-    beginPassLocked(options_.previewScale > 1 ? 0 : 1, started);
+    live_.photons = {};
+    live_.photons.method = view_.caustics;
+    pass_.reset();  // the old view's tiles are stale from now on, even while photons trace
+    index = options_.previewScale > 1 ? 0 : 1;
   } else if (pass_ && pass_->finished && pass_->info.pass < options_.maxPasses) {
-    beginPassLocked(pass_->info.pass + 1, started);
+    index = pass_->info.pass + 1;
+  } else {
+    return std::nullopt;
   }
+  return PassPlan{index, nextFrame_++, viewId_, view_};
+}
+
+std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {
+  // The preview and the debug views show no caustics.
+  if (plan.index == 0 || plan.view.caustics != CausticMethod::PhotonMap ||
+      plan.view.debugView != DebugView::Image) {
+    return nullptr;
+  }
+  const CausticSettings& c = scene_.causticSettings();
+  const uint64_t budget = plan.view.photonsPerPass > 0 ? plan.view.photonsPerPass : c.photons;
+  if (!tracer_ || tracerBudget_ != budget) {
+    tracer_ = std::make_unique<PhotonTracer>(scene_, budget, c.maxBounces);
+    tracerBudget_ = budget;
+  }
+  if (!tracer_->hasWork()) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    live_.photons.noCasters = true;
+    return nullptr;  // like `prism render`: nothing to trace, a plain pass
+  }
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (int r = 1; r < ranks_; ++r) {
+      roster_.retired[r] = roster_.retired[r] || stats_[r].retired;
+      if (stats_[r].threads > 0) roster_.threads[r] = stats_[r].threads;
+    }
+  }
+  PhotonPassStats p;
+  auto map = tracePhotonPass(*tracer_, plan.frame, pool_.threadCount(), cluster_, roster_,
+                             options_.leaseSeconds, p);
+  const float radius =
+      plan.index == 1
+          ? (c.radius > 0.0f ? c.radius : automaticProgressiveRadius(*map, c.gather, maxRadius_))
+          : nextProgressiveRadius(radius_, plan.index, c.alpha);
+  radius_ = radius;
+  const PhotonGatherSettings gather{true, c.gather, radius, c.filter};
+  sendPhotonMap(*map, plan.frame, gather, cluster_, roster_, p);
+
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (int r = 1; r < ranks_; ++r) {
+    stats_[r].retired = stats_[r].retired || roster_.retired[r];
+    if (roster_.threads[r] > 0) stats_[r].threads = roster_.threads[r];
+  }
+  if (plan.viewId == viewId_) {
+    PhotonLiveStats& s = live_.photons;
+    s.photonsPerPass = tracer_->photonsPerPass();
+    ++s.passes;
+    s.stored = map->size();
+    s.mapBytes = p.mapBytes;
+    s.traceSeconds = p.traceSeconds;
+    s.buildSeconds = p.buildSeconds;
+    s.distributeSeconds = p.distributeSeconds;
+    s.photonsPerSecond = static_cast<double>(p.trace.emitted) / std::max(p.traceSeconds, 1e-6);
+    s.radius = radius;
+  }
+  return std::make_shared<const RenderPass>(
+      RenderPass{plan.frame, true, std::make_shared<const PhotonGather>(std::move(map), gather)});
 }
 
 std::optional<TileJob> LiveRenderer::nextLocalJob() {
@@ -140,7 +221,8 @@ std::optional<TileJob> LiveRenderer::nextLocalJob() {
         events_.push_back(
             {Event::Kind::Assigned, pass_->info.frame, *tile, kLocalWorker, nullptr, 0.0});
         changed_.notify_all();
-        return TileJob{*tile, pass_->info.tiles[*tile], pass_->info.frame, pass_->info.view};
+        return TileJob{*tile, pass_->info.tiles[*tile], pass_->info.frame, pass_->info.view,
+                       pass_->info.light};
       }
     }
     changed_.wait_for(lock, std::chrono::milliseconds(20));
@@ -199,8 +281,8 @@ void LiveRenderer::serviceSlaves() {
       while (pass_->scheduler.outstanding(rank) < static_cast<size_t>(options_.prefetch)) {
         const auto tile = pass_->scheduler.next(rank, now());
         if (!tile) break;
-        outgoing.push_back(
-            wire::encodeTileJob({pass_->info.frame, *tile, pass_->info.tiles[*tile]}));
+        outgoing.push_back(wire::encodeTileJob(tileJobMessage(TileJob{
+            *tile, pass_->info.tiles[*tile], pass_->info.frame, nullptr, pass_->info.light})));
         events_.push_back({Event::Kind::Assigned, pass_->info.frame, *tile, rank, nullptr, 0.0});
       }
     }
@@ -287,11 +369,19 @@ void LiveRenderer::run(LiveListener& listener) {
     for (;;) {
       std::vector<PassInfo> started;
       std::deque<Event> events;
+      std::optional<PassPlan> plan;
       {
         const std::lock_guard<std::mutex> lock(mutex_);
         if (stopped_ || pool_.failed()) break;
-        startNextPassLocked(started);
+        plan = nextPassLocked();
         events.swap(events_);
+      }
+      if (plan) {
+        // Photons are traced here, without the lock: the GUI thread can still ask for views.
+        std::shared_ptr<const RenderPass> light = passLight(*plan);
+        const std::lock_guard<std::mutex> lock(mutex_);
+        // A view asked for meanwhile wins; this pass is dropped before it starts.
+        if (!pendingView_ && plan->viewId == viewId_) beginPassLocked(*plan, light, started);
       }
       if (!started.empty()) changed_.notify_all();  // wakes render threads waiting for work
       // Events first: they belong to the pass before the one just started.

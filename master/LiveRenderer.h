@@ -9,8 +9,20 @@
 // makes). Each pass is its own frame on the wire (a new frame id); a new view ends the
 // current frame at once, and slaves drop its queued tiles.
 //
+// With photon-mapped caustics on (ViewSettings::caustics), every full-resolution pass i first
+// traces a photon pass of its own (master/PhotonPass.h, across the ranks) and gathers from it
+// with the progressive fixed radius r_i: r_1 from the scene's caustics.radius or, when that is
+// 0, automaticProgressiveRadius of pass 1's map; r²(i+1) = r²(i)·(i + α)/(i + 1). So the
+// average of passes 1..N that the window shows is progressive photon mapping with N passes
+// (Knaus & Zwicker 2011). Pass 1 with caustics is therefore not `prism render`'s k-NN image: it
+// is a single progressive pass, direct light plus the fixed-radius estimate of one photon map.
+// The photon pass number (which keys the photon streams and names the map on the wire) is the
+// pass's frame id, so it is unique per pass. The preview pass renders no caustics.
+//
 // run() is the coordinator: the only thread that calls MPI, the only thread that calls the
-// listener. setView() and stop() may be called from any thread.
+// listener, and the one that traces photons (a new view asked for meanwhile waits for that
+// photon pass to finish; its map is then dropped). setView() and stop() may be called from any
+// thread and never wait for photons.
 #pragma once
 
 #include <atomic>
@@ -22,8 +34,11 @@
 #include <optional>
 #include <vector>
 
+#include "caustics/PhotonTracer.h"
+#include "master/FrameRenderer.h"
 #include "master/TileScheduler.h"
 #include "render/RayCounters.h"
+#include "render/RenderPass.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
@@ -50,6 +65,8 @@ struct ViewSettings {
   CameraDesc camera;
   int samplesPerPixel = 1;  // per full-resolution pass
   DebugView debugView = DebugView::Image;
+  CausticMethod caustics = CausticMethod::None;  // photon map: one photon pass per full pass
+  uint64_t photonsPerPass = 0;                   // photon budget; 0: the scene's
 };
 
 struct PassInfo {
@@ -59,6 +76,24 @@ struct PassInfo {
   int scale = 1;                           // the pass's pixels are scale × scale display pixels
   std::shared_ptr<const RenderView> view;  // what the pass renders, at its own resolution
   std::vector<TileRect> tiles;             // in the pass's resolution
+  // The light terms its tiles add up (its photon map and gather radius); null: direct only.
+  std::shared_ptr<const RenderPass> light;
+};
+
+// The photon side of the current view (all zero without photon mapping).
+struct PhotonLiveStats {
+  CausticMethod method = CausticMethod::None;
+  bool noCasters = false;       // photon mapping is on but no light reaches a caster
+  uint64_t photonsPerPass = 0;  // budget: photons emitted per pass
+  int passes = 0;               // photon passes traced for the current view
+  // The last photon pass:
+  uint64_t stored = 0;             // photons in its map
+  size_t mapBytes = 0;             // photons + kd-tree
+  double traceSeconds = 0.0;       // wall time until every rank's share was in
+  double buildSeconds = 0.0;       // kd-tree
+  double distributeSeconds = 0.0;  // map sent to the slaves
+  double photonsPerSecond = 0.0;   // emitted / traceSeconds
+  float radius = 0.0f;             // its gather radius
 };
 
 struct RankStats {
@@ -83,6 +118,7 @@ struct LiveStats {
   int totalThreads = 0;                // over all live ranks
   double previewLatencySeconds = 0.0;  // setView() to its preview pass finished
   double firstFullSeconds = 0.0;       // setView() to its first full-resolution pass finished
+  PhotonLiveStats photons;
 };
 
 // Called on the coordinator thread only.
@@ -118,11 +154,14 @@ class LiveRenderer {
  private:
   struct Event;
   struct Pass;
+  struct PassPlan;
 
   std::optional<TileJob> nextLocalJob();
   void accept(uint32_t frame, TileResult&& tile, int rank);
-  void startNextPassLocked(std::vector<PassInfo>& started);
-  void beginPassLocked(int index, std::vector<PassInfo>& started);
+  std::optional<PassPlan> nextPassLocked();
+  std::shared_ptr<const RenderPass> passLight(const PassPlan& plan);
+  void beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
+                       std::vector<PassInfo>& started);
   void serviceSlaves();
   LiveStats statsLocked(double elapsedSeconds);
   double now() const { return secondsSince(start_); }
@@ -149,6 +188,13 @@ class LiveRenderer {
   LiveStats live_;
   RayCounters raysAtLastStats_;
   SteadyClock::time_point lastStats_;
+
+  // Coordinator thread only: the photon side.
+  ClusterRoster roster_;
+  std::unique_ptr<PhotonTracer> tracer_;  // planned for tracerBudget_ photons per pass
+  uint64_t tracerBudget_ = 0;
+  float maxRadius_;
+  float radius_ = 0.0f;  // the last photon pass's gather radius, for the next one's
 };
 
 }  // namespace prism

@@ -56,7 +56,8 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
 
   for (Share& share : shares) {
     if (share.rank == 0 || share.count == 0) continue;
-    if (!cluster->send(share.rank, wire::encodePhotonJob({pass, share.first, share.count}))) {
+    if (!cluster->send(share.rank, wire::encodePhotonJob({pass, share.first, share.count,
+                                                          tracer.photonsPerPass()}))) {
       roster.retired[share.rank] = true;  // gone: its share is traced here below
     }
   }

@@ -34,7 +34,9 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Mp
     }
     description = loadScene(options.render.scenePath);
     applyOverrides(options.render, description.render);
+    applyOverrides(options.render, description.caustics);  // --caustics, --photons
     checkRenderFits(description.render, physicalMemoryBytes());
+    checkCausticsFit(description.caustics, physicalMemoryBytes());
   } catch (const std::exception& e) {
     if (session) {
       std::vector<uint8_t> bytes = wire::encodeError({e.what()});

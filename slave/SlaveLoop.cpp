@@ -51,9 +51,10 @@ class PhotonWork {
 
   void start(const wire::PhotonJobMessage& job) {
     if (running_.valid()) running_.wait();  // the master asks again only after a pass is done
-    if (!tracer_) {
-      const CausticSettings& c = scene_.causticSettings();
-      tracer_ = std::make_unique<PhotonTracer>(scene_, c.photons, c.maxBounces);
+    // Planned with the master's budget (the viewer may change it), so photon powers agree.
+    if (!tracer_ || tracer_->photonsPerPass() != job.photonsPerPass) {
+      tracer_ = std::make_unique<PhotonTracer>(scene_, job.photonsPerPass,
+                                               scene_.causticSettings().maxBounces);
     }
     running_ = std::async(std::launch::async, [this, job] {
       const auto start = Clock::now();

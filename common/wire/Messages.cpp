@@ -376,21 +376,24 @@ std::vector<Photon> readPhotons(ByteReader& r) {
 
 std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job) {
   return encodeWith(MessageType::PhotonJob, [&](ByteWriter& w) {
-    const auto& [pass, first, count] = job;
+    const auto& [pass, first, count, photonsPerPass] = job;
     w.writeU32(pass);
     w.writeU64(first);
     w.writeU64(count);
+    w.writeU64(photonsPerPass);
   });
 }
 
 PhotonJobMessage decodePhotonJob(const Message& message) {
   return decodePayload(message, MessageType::PhotonJob, [](ByteReader& r) {
     PhotonJobMessage job;
-    auto& [pass, first, count] = job;
+    auto& [pass, first, count, photonsPerPass] = job;
     pass = r.readU32();
     first = r.readU64();
     count = r.readU64();
+    photonsPerPass = r.readU64();
     if (first + count < first) throw WireError("photon range overflows");
+    if (first + count > photonsPerPass) throw WireError("photon range exceeds the budget");
     return job;
   });
 }

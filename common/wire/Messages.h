@@ -21,7 +21,8 @@ namespace prism::wire {
 
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
-inline constexpr uint16_t kVersion = 3;
+// 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
+inline constexpr uint16_t kVersion = 4;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -72,10 +73,13 @@ struct TileJobMessage {
 };
 
 // Master to slave: trace photons [first, first + count) of a pass and send them back.
+// photonsPerPass is the budget the master's tracer was planned with: photon powers and the
+// split between lights depend on it, so the slave plans its tracer with the same budget.
 struct PhotonJobMessage {
   uint32_t pass = 0;
   uint64_t first = 0;
   uint64_t count = 0;
+  uint64_t photonsPerPass = 0;
 };
 
 // Slave to master: the photons it stored for a PhotonJob, in photon-index order.

@@ -6,6 +6,8 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QRadioButton>
+#include <QSpinBox>
 #include <QTableWidget>
 #include <QTest>
 #include <QtCharts/QLineSeries>
@@ -18,6 +20,7 @@
 #include "gui/StatsPanel.h"
 #include "image/ToneMap.h"
 #include "master/FrameRenderer.h"
+#include "master/ResourceCheck.h"
 #include "parse/SceneLoader.h"
 
 namespace prism {
@@ -241,6 +244,70 @@ TEST(MainWindow, StatsPanelReceivesPerRankNumbers) {
   ASSERT_EQ(panel.csvSpeedup()->count(), 2);
   EXPECT_EQ(panel.csvSpeedup()->at(1), QPointF(2.0, 1.6));
   EXPECT_EQ(panel.csvEfficiency()->at(1), QPointF(2.0, 0.8));
+}
+
+TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
+  LiveWindow live(PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml", 40, 30, 1, 2);
+  MainWindow& w = live.window();
+  auto* none = w.findChild<QRadioButton*>("causticsNone");
+  auto* photonMap = w.findChild<QRadioButton*>("causticsPhotonMap");
+  auto* photons = w.findChild<QSpinBox*>("photonsPerPass");
+  ASSERT_TRUE(none && photonMap && photons);
+  // The scene asks for photon mapping with 20000 photons: the panel starts there.
+  EXPECT_TRUE(photonMap->isChecked());
+  EXPECT_EQ(photons->value(), 20000);
+  EXPECT_EQ(w.viewSettings().caustics, CausticMethod::PhotonMap);
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  EXPECT_NE(w.frame().pass().light, nullptr);
+  ASSERT_TRUE(waitUntil([&] {
+    return w.statsPanel()->summaryText().contains("photons/s (20000 per pass)");
+  })) << w.statsPanel()->summaryText().toStdString();
+
+  const uint64_t view = w.viewId();
+  const uint32_t frame = w.frame().frame();
+  none->click();
+  EXPECT_EQ(w.viewSettings().caustics, CausticMethod::None);
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 1; }));
+  EXPECT_GT(w.frame().frame(), frame);
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  EXPECT_EQ(w.frame().pass().light, nullptr);
+  ASSERT_TRUE(waitUntil([&] { return !w.statsPanel()->summaryText().contains("photons/s"); }));
+
+  photons->setValue(5000);  // without photon mapping: nothing to re-render
+  EXPECT_EQ(w.viewSettings().photonsPerPass, 5000u);
+  QApplication::processEvents();
+  EXPECT_EQ(w.viewId(), view + 1);
+  photonMap->click();
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 2; }));
+  ASSERT_TRUE(waitUntil([&] {
+    return w.statsPanel()->summaryText().contains("photons/s (5000 per pass)");
+  })) << w.statsPanel()->summaryText().toStdString();
+  photons->setValue(6000);  // with it: a new view
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 3; }));
+
+  // Known photon numbers in, the same numbers out.
+  LiveStats s;
+  s.photons.method = CausticMethod::PhotonMap;
+  s.photons.photonsPerPass = 200000;
+  s.photons.passes = 3;
+  s.photons.stored = 12345;
+  s.photons.mapBytes = 3u << 20;
+  s.photons.traceSeconds = 0.25;
+  s.photons.buildSeconds = 0.0125;
+  s.photons.photonsPerSecond = 800000.0;
+  s.photons.radius = 0.0625f;
+  StatsPanel panel;
+  panel.showStats(s);
+  const QString text = panel.summaryText();
+  EXPECT_TRUE(text.contains("800.0 kphotons/s (200000 per pass)")) << text.toStdString();
+  EXPECT_TRUE(text.contains("12345 photons, map " + QString::fromStdString(formatBytes(3 << 20)) +
+                            ", pass 3 of this view"))
+      << text.toStdString();
+  EXPECT_TRUE(text.contains("trace 250.0 ms, kd-tree 12.5 ms")) << text.toStdString();
+  EXPECT_TRUE(text.contains("gather r     0.0625")) << text.toStdString();
+  s.photons.noCasters = true;
+  panel.showStats(s);
+  EXPECT_TRUE(panel.summaryText().contains("no light reaches a caustic caster"));
 }
 
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {

@@ -43,6 +43,35 @@ TEST_F(Viewer, TwoRanksUnderOffscreenRenderTheSameImageAsRender) {
   expectSameImage(path("view.exr"), path("render.exr"));
 }
 
+TEST_F(Viewer, TwoRanksRenderPhotonMappedPassesLikeOne) {
+  ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  const std::string scene = PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml";
+  const std::string args = " --max-passes 2 --exit-after-passes 2 --photons 8000 --save ";
+  const auto two = runPrismMpi(2, "view " + scene + args + path("two.exr"));
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  const auto at = two.output.find("rank 1 ");
+  ASSERT_NE(at, std::string::npos) << two.output;
+  EXPECT_GT(std::stoi(two.output.substr(two.output.find("threads, ", at) + 9)), 0) << two.output;
+  // The photon maps do not depend on the rank count, nor do the tiles: the same average.
+  const auto one = runPrism("view " + scene + args + path("one.exr"));
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  expectSameImage(path("two.exr"), path("one.exr"));
+  // Photon mapped, 2 passes of the --photons budget, and an image unlike --caustics none (where
+  // shadow rays see through the glass instead).
+  EXPECT_NE(two.output.find("photons    2 passes of 8000, the last: "), std::string::npos)
+      << two.output;
+  const auto none = runPrism("view " + scene + args + path("none.exr") + " --caustics none");
+  ASSERT_EQ(none.exitCode, 0) << none.output;
+  EXPECT_EQ(none.output.find("photons "), std::string::npos) << none.output;
+  const ImageRgb with = readImage(path("one.exr"));
+  const ImageRgb without = readImage(path("none.exr"));
+  size_t different = 0;
+  for (size_t i = 0; i < with.pixels.size(); ++i) {
+    different += glm::length(with.pixels[i] - without.pixels[i]) > 0.05f;
+  }
+  EXPECT_GT(different, with.pixels.size() / 50);
+}
+
 TEST_F(Viewer, NoDisplayIsAClearError) {
   const auto bare = test::runCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " +
                                      std::string(PRISM_EXECUTABLE) + " view " + kScene);

@@ -8,7 +8,13 @@
 #include <mutex>
 #include <thread>
 
+#include <cmath>
+#include <cstring>
+
+#include "caustics/PhotonGather.h"
+#include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
+#include "master/PhotonPass.h"
 #include "parse/SceneLoader.h"
 
 namespace prism {
@@ -177,6 +183,175 @@ TEST(LiveRenderer, ANewViewEndsTheFrameAndItsLateTilesAreDropped) {
   EXPECT_GE(stats.ranks[0].staleTiles, 1u);
   EXPECT_LT(stats.ranks[0].tiles, passes[0].tiles.size() + passes[1].tiles.size());
   EXPECT_EQ(stats.viewId, 2u);
+}
+
+// The viewer's photon-mapped passes, against maps and frames computed here from the building
+// blocks: tests/data/scenes/caustic-small.yaml (40×30, 20000 photons, k = 40, α = 0.7).
+SceneDescription causticScene() {
+  return loadScene(PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml");
+}
+
+const PhotonGather& gatherOf(const PassInfo& pass) {
+  const auto* gather = dynamic_cast<const PhotonGather*>(pass.light->caustics.get());
+  if (!gather) throw std::runtime_error("pass without a photon gather");
+  return *gather;
+}
+
+ImageRgb renderPassFrame(SceneDescription d, int pass, std::shared_ptr<const RenderPass> light) {
+  d.render.seed = LiveRenderer::passSeed(d.render.seed, pass);
+  const Scene scene(d);
+  FrameOptions options;
+  options.threads = 2;
+  options.pass = std::move(light);
+  return renderFrame(scene, options).image;
+}
+
+double imageSum(const ImageRgb& image) {
+  double sum = 0.0;
+  for (const Color& c : image.pixels) sum += c.x + c.y + c.z;
+  return sum;
+}
+
+TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
+  const SceneDescription d = causticScene();
+  const Scene scene(d);
+  const CausticSettings& c = d.caustics;
+  constexpr int kPasses = 3;
+  LiveOptions options;
+  options.threads = 2;
+  options.previewScale = 2;
+  options.maxPasses = kPasses;
+  LiveRenderer renderer(scene, options);
+  Recorder recorder;
+  std::thread coordinator([&] { renderer.run(recorder); });
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+  ASSERT_TRUE(recorder.waitForFinished(1 + kPasses));
+  renderer.stop();
+  coordinator.join();
+
+  const std::vector<PassInfo> passes = recorder.passes();
+  ASSERT_EQ(passes.size(), 1u + kPasses);
+  EXPECT_EQ(passes[0].pass, 0);
+  EXPECT_EQ(passes[0].light, nullptr);  // the preview: direct light only
+
+  // Pass i: the photon pass numbered by its frame id, the radius schedule of the scene.
+  const PhotonTracer tracer(scene, c.photons, c.maxBounces);
+  ClusterRoster roster;
+  float radius = 0.0f;
+  ImageRgb mean(d.render.width, d.render.height), expectedMean(d.render.width, d.render.height);
+  ImageRgb causticMean(d.render.width, d.render.height);
+  for (int i = 1; i <= kPasses; ++i) {
+    const PassInfo& pass = passes[static_cast<size_t>(i)];
+    ASSERT_EQ(pass.pass, i);
+    ASSERT_NE(pass.light, nullptr);
+    EXPECT_EQ(pass.light->index, pass.frame);
+    EXPECT_TRUE(pass.light->direct);
+    const PhotonGather& gather = gatherOf(pass);
+    PhotonPassStats stats;
+    const auto map = tracePhotonPass(tracer, pass.frame, 2, nullptr, roster, 30.0, stats);
+    ASSERT_EQ(gather.map().size(), map->size());
+    ASSERT_GT(map->size(), 1000u);
+    EXPECT_EQ(std::memcmp(gather.map().photons().data(), map->photons().data(),
+                          map->size() * sizeof(Photon)),
+              0);
+    radius =
+        i == 1 ? automaticProgressiveRadius(*map, c.gather, automaticMaxRadius(scene))
+               : radius * std::sqrt((static_cast<float>(i - 1) + c.alpha) / static_cast<float>(i));
+    EXPECT_TRUE(gather.settings().fixedRadius);
+    EXPECT_EQ(gather.settings().k, c.gather);
+    EXPECT_FLOAT_EQ(gather.settings().radius, radius) << "pass " << i;
+
+    // Its image: direct light with pass i's seed plus the fixed-radius estimate of map i.
+    const PhotonGatherSettings settings{true, c.gather, radius, c.filter};
+    const ImageRgb expected = renderPassFrame(
+        d, i,
+        std::make_shared<const RenderPass>(
+            RenderPass{pass.frame, true, std::make_shared<const PhotonGather>(map, settings)}));
+    const ImageRgb got = recorder.image(pass.frame);
+    ASSERT_EQ(got.pixels.size(), expected.pixels.size());
+    for (size_t px = 0; px < got.pixels.size(); ++px) {
+      ASSERT_EQ(got.pixels[px], expected.pixels[px]) << "pass " << i << " pixel " << px;
+    }
+    const ImageRgb direct = renderPassFrame(d, i, nullptr);
+    for (size_t px = 0; px < got.pixels.size(); ++px) {
+      mean.pixels[px] += got.pixels[px] / static_cast<float>(kPasses);
+      causticMean.pixels[px] += (got.pixels[px] - direct.pixels[px]) / static_cast<float>(kPasses);
+    }
+  }
+  EXPECT_LT(passes[1].frame, passes[2].frame);
+
+  // The caustic part of the average against `prism render --progressive --passes 3`: other
+  // photons (other pass numbers), the same estimator and radii, so the same light within noise.
+  SceneDescription progressive = d;
+  progressive.caustics.progressive = true;
+  progressive.caustics.passes = kPasses;
+  const Scene progressiveScene(progressive);
+  ClusterRoster renderRoster;
+  FrameOptions frameOptions;
+  frameOptions.threads = 2;
+  const CausticFrame reference =
+      renderWithCaustics(progressiveScene, frameOptions, nullptr, renderRoster);
+  EXPECT_EQ(reference.caustics.passes, kPasses);
+  const ImageRgb referenceDirect = renderFrame(scene, frameOptions).image;
+  double referenceCaustic = 0.0;
+  for (size_t px = 0; px < referenceDirect.pixels.size(); ++px) {
+    const Color c3 = reference.image.pixels[px] - referenceDirect.pixels[px];
+    referenceCaustic += c3.x + c3.y + c3.z;
+  }
+  const double viewerCaustic = imageSum(causticMean);
+  ASSERT_GT(referenceCaustic, 0.01 * imageSum(referenceDirect));  // there is a caustic
+  EXPECT_NEAR(viewerCaustic / referenceCaustic, 1.0, 0.05);
+
+  const LiveStats stats = renderer.stats();
+  EXPECT_EQ(stats.photons.method, CausticMethod::PhotonMap);
+  EXPECT_EQ(stats.photons.passes, kPasses);
+  EXPECT_EQ(stats.photons.photonsPerPass, c.photons);
+  EXPECT_EQ(stats.photons.stored, gatherOf(passes.back()).map().size());
+  EXPECT_GT(stats.photons.mapBytes, stats.photons.stored * sizeof(Photon) - 1);
+  EXPECT_GT(stats.photons.photonsPerSecond, 0.0);
+  EXPECT_FLOAT_EQ(stats.photons.radius, radius);
+}
+
+TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {
+  const SceneDescription d = causticScene();
+  const Scene scene(d);
+  LiveOptions options;
+  options.threads = 2;
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  LiveRenderer renderer(scene, options);
+  Recorder recorder;
+  std::thread coordinator([&] { renderer.run(recorder); });
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::None, 0});
+  ASSERT_TRUE(recorder.waitForFinished(1));
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+  ASSERT_TRUE(recorder.waitForFinished(2));
+  const LiveStats first = renderer.stats();
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, 5000});
+  ASSERT_TRUE(recorder.waitForFinished(3));
+  renderer.stop();
+  coordinator.join();
+
+  const std::vector<PassInfo> passes = recorder.passes();
+  ASSERT_EQ(passes.size(), 3u);
+  EXPECT_EQ(passes[0].light, nullptr);
+  EXPECT_LT(passes[0].frame, passes[1].frame);
+  EXPECT_LT(passes[1].frame, passes[2].frame);
+  EXPECT_EQ(passes[1].viewId, passes[0].viewId + 1);
+  EXPECT_EQ(passes[2].viewId, passes[1].viewId + 1);
+  EXPECT_EQ(first.photons.photonsPerPass, 20000u);
+  EXPECT_EQ(renderer.stats().photons.photonsPerPass, 5000u);
+  // A quarter of the photons, a quarter of the map (give or take the roulette).
+  const double ratio = static_cast<double>(gatherOf(passes[2]).map().size()) /
+                       static_cast<double>(gatherOf(passes[1]).map().size());
+  EXPECT_NEAR(ratio, 0.25, 0.02);
+  // Pass 1 without caustics is `prism render --caustics none`.
+  SceneDescription none = d;
+  none.caustics.method = CausticMethod::None;
+  const ImageRgb plain = renderFrame(Scene(none), FrameOptions{}).image;
+  const ImageRgb got = recorder.image(passes[0].frame);
+  for (size_t px = 0; px < got.pixels.size(); ++px) ASSERT_EQ(got.pixels[px], plain.pixels[px]);
+  EXPECT_GT(imageSum(recorder.image(passes[1].frame)), imageSum(got));  // the caustic adds light
 }
 
 }  // namespace

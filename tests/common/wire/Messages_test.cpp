@@ -144,11 +144,11 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad[0] = 'Q';
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
-  // 1: before photon messages; 2: before the View message.
-  for (uint16_t version : {1, 2, 4}) {
+  // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget.
+  for (uint16_t version : {1, 2, 3, 5}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 3");
+                    "message version " + std::to_string(version) + ", this build speaks 4");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View; 12 is the first unused type.
@@ -375,16 +375,22 @@ void expectSamePhotons(const std::vector<Photon>& a, const std::vector<Photon>& 
 }
 
 TEST(Messages, PhotonJobRoundTrips) {
-  const PhotonJobMessage job{17, 0x123456789ull, 4096};
+  const PhotonJobMessage job{17, 0x123456789ull, 4096, 0x200000000ull};
   const PhotonJobMessage back = decodePhotonJob(decodeMessage(encodePhotonJob(job)));
   EXPECT_EQ(back.pass, 17u);
   EXPECT_EQ(back.first, 0x123456789ull);
   EXPECT_EQ(back.count, 4096u);
+  EXPECT_EQ(back.photonsPerPass, 0x200000000ull);
   expectWireError(
       [] {
-        decodePhotonJob(decodeMessage(encodePhotonJob({0, UINT64_MAX - 1, 2})));
+        decodePhotonJob(decodeMessage(encodePhotonJob({0, UINT64_MAX - 1, 2, UINT64_MAX})));
       },
       "photon range overflows");
+  expectWireError(
+      [] {
+        decodePhotonJob(decodeMessage(encodePhotonJob({0, 10, 6, 15})));
+      },
+      "photon range exceeds the budget");
 }
 
 TEST(Messages, PhotonShareRoundTripsBitExact) {
@@ -496,7 +502,7 @@ TEST(Messages, PhotonMessagesRejectEveryTruncationAndTheWrongType) {
   for (size_t length = 0; length < good.size(); ++length) {
     EXPECT_THROW(decodePhotonMap(decodeMessage(good.data(), length)), WireError) << length;
   }
-  const Message job = decodeMessage(encodePhotonJob({1, 2, 3}));
+  const Message job = decodeMessage(encodePhotonJob({1, 2, 3, 5}));
   expectWireError([&] { decodePhotonMap(job); }, "expected a PhotonMap message, got PhotonJob");
   expectWireError([&] { decodePhotonShare(job); }, "expected a PhotonShare message, got PhotonJob");
   expectWireError([&] { decodePhotonJob(decodeMessage(good)); },
@@ -524,7 +530,7 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(RayCounters), 24u) << update;
   EXPECT_EQ(sizeof(TileResult), 80u) << update;
   EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
-  EXPECT_EQ(sizeof(PhotonJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(PhotonJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
   EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 88u) << update;
