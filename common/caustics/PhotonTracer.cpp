@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "math/LowDiscrepancy.h"
 #include "math/Random.h"
 #include "render/MaterialEval.h"
 #include "render/SpecularSplit.h"
@@ -59,6 +60,8 @@ PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
 
   uint64_t first = 0;
   for (PhotonLightPlan& plan : plans_) {
+    Pcg32 shift = Pcg32::forKey(scene.settings().seed, plan.light, kPhotonStreamBase - 1);
+    for (float& s : plan.emissionShift) s = shift.nextFloat();
     plan.first = first;
     first += plan.count;
     if (plan.count > 0) {
@@ -87,7 +90,13 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   ++stats.emitted;
   Pcg32 rng = Pcg32::forKey(scene_.settings().seed, index, kPhotonStreamBase + pass);
   const PointLightDesc& light = scene_.lights()[plan.light];
-  const float u0 = rng.nextFloat(), u1 = rng.nextFloat(), u2 = rng.nextFloat();
+  // Emission follows the light's Halton sequence, continued from pass to pass so that all the
+  // passes together stay evenly spread; a per-light rotation keyed by the seed decorrelates
+  // lights. Roulette below uses the photon's own random stream.
+  const uint64_t sequenceIndex = static_cast<uint64_t>(pass) * plan.count + (index - plan.first);
+  const float u0 = rotateUnit(radicalInverse(2, sequenceIndex), plan.emissionShift[0]);
+  const float u1 = rotateUnit(radicalInverse(3, sequenceIndex), plan.emissionShift[1]);
+  const float u2 = rotateUnit(radicalInverse(5, sequenceIndex), plan.emissionShift[2]);
   Ray ray{light.position, plan.map.sample(u0, u1, u2)};
   Color power = plan.powerPerPhoton;
 

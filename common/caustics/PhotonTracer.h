@@ -10,8 +10,10 @@
 // photon's power is multiplied by weight / probability, so colourless glass and mirrors leave it
 // unchanged and the estimate stays unbiased.
 //
-// Photon i of pass p draws from its own random stream keyed by (seed, i, p): the photons traced
-// do not depend on how the index range is split between threads or ranks.
+// Photon i of pass p leaves its light along Halton point (p · n + i − first) of that light (n its
+// photons per pass), evenly spread like a jittered grid, and draws its roulette decisions from
+// its own random stream keyed by (seed, i, p): the photons traced do not depend on how the index
+// range is split between threads or ranks.
 #pragma once
 
 #include <cstdint>
@@ -43,8 +45,9 @@ struct PhotonTraceStats {
 struct PhotonLightPlan {
   size_t light = 0;  // index into Scene::lights()
   ProjectionMap map;
-  uint64_t first = 0, count = 0;  // photon indices [first, first + count)
-  Color powerPerPhoton{0.0f};     // W
+  uint64_t first = 0, count = 0;                // photon indices [first, first + count)
+  Color powerPerPhoton{0.0f};                   // W
+  float emissionShift[3] = {0.0f, 0.0f, 0.0f};  // rotation of the light's Halton points
 };
 
 class PhotonTracer {
