@@ -168,6 +168,12 @@ TEST(LiveRenderer, ANewViewEndsTheFrameAndItsLateTilesAreDropped) {
   moved.position.x += 1.0f;
   renderer.setView({moved, 1, DebugView::Normals});
   ASSERT_TRUE(recorder.waitForFinished(1));
+  // The old frame's tiles (64 spp) come back after the new one (1 spp) is done: wait for them,
+  // however slowly a loaded machine renders them.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (renderer.stats().ranks[0].staleTiles == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   renderer.stop();
   coordinator.join();
 
