@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "caustics/PhotonGather.h"
+#include "math/Random.h"
 #include "master/PhotonPass.h"
 #include "slave/TileWorkerPool.h"
 #include "util/Stopwatch.h"
@@ -74,7 +75,9 @@ float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
   double sum = 0.0;
   size_t probes = 0;
   for (size_t i = 0; i < std::min(n, kProbes); ++i) {
-    const Photon& p = map.photons()[i * n / std::min(n, kProbes)];
+    // Hashed, not evenly strided, indices: photon order follows the Halton emission sequence,
+    // and a regular stride through it would probe a structured, unrepresentative subset.
+    const Photon& p = map.photons()[mix64(i + 1) % n];
     sum += std::sqrt(map.nearest(p.position, k, maxRadius * maxRadius, neighbours));
     ++probes;
   }
