@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "caustics/PhotonGather.h"
-#include "math/Random.h"
 #include "master/PhotonPass.h"
+#include "math/Random.h"
 #include "slave/TileWorkerPool.h"
 #include "util/Stopwatch.h"
 
@@ -92,6 +92,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   stats.method = settings.method;
   stats.progressive = settings.progressive;
   stats.k = settings.gather;
+  stats.settings = settings;
   options.roster = &roster;
   uint32_t frameId = options.frameId;
 
@@ -103,6 +104,25 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     };
     return renderFrame(scene, options, cluster);
   };
+
+  if (settings.method == CausticMethod::CausticMap) {
+    // Built here on rank 0 and by each slave for itself (slave/SlaveLoop.cpp): the maps depend
+    // on the scene alone, so every rank's copy is bit-identical and nothing is sent.
+    if (progress) progress("caustic map", 0, 1);
+    const auto start = SteadyClock::now();
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, options.threads);
+    stats.mapBuildSeconds = secondsSince(start);
+    stats.map = maps->stats();
+    stats.noCasters = maps->empty();
+    out.causticMaps = maps;
+    auto pass =
+        std::make_shared<const RenderPass>(RenderPass{0, true, maps->empty() ? nullptr : maps});
+    FrameResult f = frame(pass, "render");
+    stats.gatherRenderSeconds += f.seconds;
+    out.image = f.image;
+    addFrame(out.frames, f, true);
+    return out;
+  }
 
   std::unique_ptr<PhotonTracer> tracer;
   if (settings.method == CausticMethod::PhotonMap) {

@@ -2,6 +2,8 @@
 // with its photon map traced across the ranks (master/PhotonPass.h), summed into one image.
 //   none, or no caster any light can reach: one pass of direct light, no photons at all;
 //   photon map:  one photon pass, then one frame with direct light and k-NN caustics;
+//   caustic map: every rank builds the same caustic maps from the scene (no wire traffic), then
+//                one frame with direct light and the maps' caustics;
 //   progressive: one frame of direct light, then caustic-only passes, each with fresh photons
 //                and a fixed gather radius that shrinks as r²(i+1) = r²(i)·(i + α)/(i + 1)
 //                (Knaus & Zwicker 2011); the image is the direct frame plus the mean of the
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonMap.h"
 #include "caustics/PhotonTracer.h"
 #include "master/FrameRenderer.h"
@@ -36,13 +39,17 @@ struct CausticRunStats {
   int k = 0;
   float firstRadius = 0.0f, lastRadius = 0.0f;  // gather radius (progressive) or k-NN cap
   std::vector<uint64_t> photonsByRank;
+  CausticMapStats map;  // caustic mapping: summed over the lights (rank 0's build)
+  double mapBuildSeconds = 0.0;
+  CausticSettings settings;  // the run's, for the parameters the summary prints
 };
 
 struct CausticFrame {
   ImageRgb image;
   FrameResult frames;  // every frame of the run added together (tiles, rays, busy time)
   CausticRunStats caustics;
-  std::shared_ptr<const PhotonMap> lastMap;  // for the photon debug image
+  std::shared_ptr<const PhotonMap> lastMap;                // for the photon debug image
+  std::shared_ptr<const CausticMapEstimator> causticMaps;  // for the caustic-map debug images
 };
 
 // (stage label, done, total), from the coordinating thread.

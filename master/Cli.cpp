@@ -24,6 +24,9 @@ struct RenderOverrideValues {
   float gatherRadius = 0.0f;
   double timeBudget = 0.0;
   bool progressive = false;
+  int mapResolution = 0, mapSteps = 0, mapBlurRadius = 0;
+  float mapBlurSigma = 0.0f;
+  CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
@@ -77,17 +80,20 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
 
 constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics' section)";
 
-// The caustics options `render` and `view` share: the method and the photon budget.
-void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
+// The caustics options `render` and `view` share: the method and the photon budget. The viewer
+// has no caustic mapping yet (issue 6), so it is offered to `render` only.
+void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v, bool causticMap) {
   const char* caustics = kCausticsGroup;
+  std::map<std::string, CausticMethod> methods{{"none", CausticMethod::None},
+                                               {"photon-map", CausticMethod::PhotonMap}};
+  if (causticMap) methods.emplace("caustic-map", CausticMethod::CausticMap);
   command
       ->add_option("--caustics", v.causticMethod,
-                   "Caustics method: none or photon-map (default: the scene's)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, CausticMethod>{{"none", CausticMethod::None},
-                                               {"photon-map", CausticMethod::PhotonMap}},
-          CLI::ignore_case))
-      ->option_text("none|photon-map")
+                   causticMap ? "Caustics method: none, photon-map or caustic-map (default: the "
+                                "scene's)"
+                              : "Caustics method: none or photon-map (default: the scene's)")
+      ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
+      ->option_text(causticMap ? "none|photon-map|caustic-map" : "none|photon-map")
       ->group(caustics);
   command
       ->add_option("--photons", v.photons,
@@ -100,7 +106,7 @@ void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
 // scene's gather settings.
 void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
   const char* caustics = kCausticsGroup;
-  addCausticMethodOptions(render, v);
+  addCausticMethodOptions(render, v, true);
   render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
       ->check(CLI::Range(1, 100000))
       ->group(caustics);
@@ -125,6 +131,41 @@ void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues&
       ->add_option("--photon-image", o.photonImagePath,
                    "Debug: also write an image of where the stored photons landed")
       ->group(caustics);
+  render
+      ->add_option("--map-resolution", v.mapResolution,
+                   "Caustic map: texels per side of each light-space view (default 512)")
+      ->check(CLI::Range(kMinCausticMapResolution, kMaxCausticMapResolution))
+      ->group(caustics);
+  render
+      ->add_option("--map-steps", v.mapSteps,
+                   "Caustic map: iterations of the receiver-distance estimate (default 3)")
+      ->check(CLI::Range(1, kMaxCausticMapSteps))
+      ->group(caustics);
+  render
+      ->add_option("--map-blur-sigma", v.mapBlurSigma,
+                   "Caustic map: Gaussian blur sigma in texels (default 1)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(caustics);
+  render
+      ->add_option("--map-blur-radius", v.mapBlurRadius,
+                   "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
+      ->check(CLI::Range(0, kMaxCausticMapBlurRadius))
+      ->group(caustics);
+  render
+      ->add_option("--map-paths", v.mapPaths,
+                   "Caustic map: traced (through every caster surface, default) or front-face "
+                   "(one interface, as in the thesis)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, CausticMapPaths>{{"traced", CausticMapPaths::Traced},
+                                                 {"front-face", CausticMapPaths::FrontFace}},
+          CLI::ignore_case))
+      ->option_text("traced|front-face")
+      ->group(caustics);
+  render
+      ->add_option("--caustic-map-debug", o.causticMapDebugPrefix,
+                   "Debug: write the caustic maps as PREFIX-light<i>-<map>.png (receiver "
+                   "positions, caster positions and normals, caustic irradiance)")
+      ->group(caustics);
 }
 
 void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
@@ -147,7 +188,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
       "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
       "N normals, n image, q quits, h or F1 shows every key. See docs/viewer.md.");
   addSceneOptions(view, o.render, v);
-  addCausticMethodOptions(view, v);
+  addCausticMethodOptions(view, v, false);
   view->add_option("--preview-scale", o.previewScale,
                    "After a camera change, first render 1/N of each side at 1 spp (default 4; "
                    "1: no preview)")
@@ -193,6 +234,11 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--progressive")) options.progressive = true;
   if (given("--passes")) options.passes = overrides.passes;
   if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
+  if (given("--map-resolution")) options.mapResolution = overrides.mapResolution;
+  if (given("--map-steps")) options.mapSteps = overrides.mapSteps;
+  if (given("--map-blur-sigma")) options.mapBlurSigma = overrides.mapBlurSigma;
+  if (given("--map-blur-radius")) options.mapBlurRadius = overrides.mapBlurRadius;
+  if (given("--map-paths")) options.mapPaths = overrides.mapPaths;
 }
 
 }  // namespace

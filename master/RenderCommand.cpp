@@ -39,6 +39,16 @@ void applyOverrides(const RenderOptions& o, CausticSettings& c) {
   if (o.progressive) c.progressive = *o.progressive;
   if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;
   if (o.timeBudget) c.timeBudgetSeconds = *o.timeBudget;
+  if (o.mapResolution) c.mapResolution = *o.mapResolution;
+  if (o.mapSteps) c.mapSteps = *o.mapSteps;
+  if (o.mapBlurSigma) c.mapBlurSigma = *o.mapBlurSigma;
+  if (o.mapBlurRadius) c.mapBlurRadius = *o.mapBlurRadius;
+  if (o.mapPaths) c.mapPaths = *o.mapPaths;
+  // Caustic-map parameters alone ask for caustic mapping.
+  if ((o.mapResolution || o.mapSteps || o.mapBlurSigma || o.mapBlurRadius || o.mapPaths) &&
+      !o.causticMethod && c.method == CausticMethod::None) {
+    c.method = CausticMethod::CausticMap;
+  }
   // Asking for passes, a budget or a photon image means asking for photon mapping.
   if ((o.progressive || o.passes || o.timeBudget || o.photons) && !o.causticMethod &&
       c.method == CausticMethod::None) {

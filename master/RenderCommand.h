@@ -30,7 +30,11 @@ struct RenderOptions {
   std::optional<float> gatherRadius;  // k-NN cap, or the first progressive radius
   std::optional<double> timeBudget;
   std::string photonImagePath;  // debug: where the stored photons landed
-  bool quiet = false;           // no progress bar and no summary
+  std::optional<int> mapResolution, mapSteps, mapBlurRadius;  // caustic mapping
+  std::optional<float> mapBlurSigma;
+  std::optional<CausticMapPaths> mapPaths;
+  std::string causticMapDebugPrefix;  // debug: the caustic maps as images
+  bool quiet = false;                 // no progress bar and no summary
   // Distribution (MPI runs): how tiles are handed out and when a silent slave is given up on.
   Schedule schedule = Schedule::Dynamic;
   double leaseSeconds = 30.0;

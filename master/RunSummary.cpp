@@ -48,10 +48,41 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
   }
 }
 
+// What caustic mapping did: its parameters, texel counts and the time of each stage.
+void printCausticMap(const CausticRunStats& c, std::ostream& out) {
+  if (c.noCasters) {
+    out << "caustics  caustic map asked for, but no light sees a caster: no maps built\n";
+    return;
+  }
+  const CausticSettings& p = c.settings;
+  const CausticMapStats& m = c.map;
+  out << "caustics  caustic map: " << p.mapResolution << "x" << p.mapResolution << " x " << m.views
+      << (m.views == 1 ? " view" : " views") << ", " << p.mapSteps
+      << (p.mapSteps == 1 ? " step" : " steps") << ", blur ";
+  if (p.mapBlurRadius > 0 && p.mapBlurSigma > 0.0f) {
+    out << "sigma " << fixed(p.mapBlurSigma, 2) << " radius " << p.mapBlurRadius;
+  } else {
+    out << "off";
+  }
+  out << ", paths " << (p.mapPaths == CausticMapPaths::Traced ? "traced" : "front face") << "\n"
+      << "          texels: " << formatCount(static_cast<double>(m.receiverTexels)) << " receiver, "
+      << formatCount(static_cast<double>(m.casterTexels)) << " caster; "
+      << formatCount(static_cast<double>(m.paths)) << " paths, "
+      << formatCount(static_cast<double>(m.splatted)) << " splatted, "
+      << formatCount(static_cast<double>(m.lost)) << " lost; flux splatted "
+      << fixed(100.0 * m.splattedFlux / std::max(1e-30, m.emittedFlux), 1)
+      << " % of that through caster texels\n"
+      << "          receiver map " << milliseconds(m.receiverSeconds) << ", casters+splat "
+      << milliseconds(m.casterSeconds) << ", irradiance+blur " << milliseconds(m.filterSeconds)
+      << " (build " << milliseconds(c.mapBuildSeconds) << "), frame with lookups "
+      << fixed(c.gatherRenderSeconds, 3) << " s\n";
+}
+
 // What the photon passes did: counts, sizes and times.
 void printCaustics(const RunSummary& s, std::ostream& out) {
   const CausticRunStats& c = *s.caustics;
   if (c.method == CausticMethod::None) return;
+  if (c.method == CausticMethod::CausticMap) return printCausticMap(c, out);
   if (c.noCasters) {
     out << "caustics  photon map asked for, but no light reaches a caster: no photons traced\n";
     return;

@@ -10,6 +10,7 @@
 #include <set>
 #include <utility>
 
+#include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
 #include "scene/Scene.h"
@@ -85,6 +86,13 @@ class PhotonWork {
   // The render pass a tile job names; throws when it needs a photon map this rank lacks.
   std::shared_ptr<const RenderPass> pass(uint32_t index, uint8_t terms) {
     const bool caustics = terms & wire::kTermCaustics;
+    if (caustics && scene_.causticSettings().method == CausticMethod::CausticMap) {
+      // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
+      if (!causticMaps_)
+        causticMaps_ = std::make_shared<const CausticMapEstimator>(scene_, threads_);
+      caustics_ = causticMaps_;
+      mapPass_ = index;
+    }
     if (caustics && (!caustics_ || mapPass_ != index)) {
       throw std::runtime_error("tile of pass " + std::to_string(index) +
                                " needs a photon map this rank has not received");
@@ -108,6 +116,7 @@ class PhotonWork {
   std::future<wire::PhotonShareMessage> running_;
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;
+  std::shared_ptr<const CausticMapEstimator> causticMaps_;
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
 };
 

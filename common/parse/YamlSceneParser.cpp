@@ -38,9 +38,11 @@ constexpr std::string_view kCameraKeys[] = {"projection", "position", "look_at",
 constexpr std::string_view kRenderKeys[] = {"width",     "height",           "samples",
                                             "max_depth", "min_contribution", "seed",
                                             "exposure",  "triangle_test"};
-constexpr std::string_view kCausticsKeys[] = {"method", "photons",     "gather",      "max_radius",
-                                              "filter", "max_bounces", "progressive", "passes",
-                                              "alpha",  "radius",      "time_budget"};
+constexpr std::string_view kCausticsKeys[] = {
+    "method",    "photons",        "gather",          "max_radius",
+    "filter",    "max_bounces",    "progressive",     "passes",
+    "alpha",     "radius",         "time_budget",     "map_resolution",
+    "map_steps", "map_blur_sigma", "map_blur_radius", "map_paths"};
 constexpr std::string_view kEnvironmentKeys[] = {"cubemap", "scale"};
 // In the OpenGL cube-map order of CubeMapDesc::faces: +X, -X, +Y, -Y, +Z, -Z.
 constexpr std::string_view kCubeMapKeys[] = {"px", "nx", "py", "ny", "pz", "nz"};
@@ -66,7 +68,11 @@ constexpr std::pair<std::string_view, TriangleTest> kTriangleTests[] = {
     {"moller-trumbore", TriangleTest::MollerTrumbore},
     {"plane-inside", TriangleTest::PlaneThenInside}};
 constexpr std::pair<std::string_view, CausticMethod> kCausticMethods[] = {
-    {"none", CausticMethod::None}, {"photon_map", CausticMethod::PhotonMap}};
+    {"none", CausticMethod::None},
+    {"photon_map", CausticMethod::PhotonMap},
+    {"caustic_map", CausticMethod::CausticMap}};
+constexpr std::pair<std::string_view, CausticMapPaths> kCausticMapPaths[] = {
+    {"front_face", CausticMapPaths::FrontFace}, {"traced", CausticMapPaths::Traced}};
 constexpr std::pair<std::string_view, PhotonFilter> kPhotonFilters[] = {
     {"box", PhotonFilter::Box},
     {"cone", PhotonFilter::Cone},
@@ -578,6 +584,18 @@ class YamlSceneReader {
     }
     if (const Entry* e = m.find("radius")) c.radius = nonNegative(*e);
     if (const Entry* e = m.find("time_budget")) c.timeBudgetSeconds = nonNegative(*e);
+    if (const Entry* e = m.find("map_resolution")) {
+      c.mapResolution =
+          static_cast<int>(integer(*e, kMinCausticMapResolution, kMaxCausticMapResolution));
+    }
+    if (const Entry* e = m.find("map_steps")) {
+      c.mapSteps = static_cast<int>(integer(*e, 1, kMaxCausticMapSteps));
+    }
+    if (const Entry* e = m.find("map_blur_sigma")) c.mapBlurSigma = nonNegative(*e);
+    if (const Entry* e = m.find("map_blur_radius")) {
+      c.mapBlurRadius = static_cast<int>(integer(*e, 0, kMaxCausticMapBlurRadius));
+    }
+    if (const Entry* e = m.find("map_paths")) c.mapPaths = choice(*e, kCausticMapPaths);
   }
 
   CausticRole causticRole(const Mapping& m) const {

@@ -132,9 +132,19 @@ struct RenderSettings {
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
 };
 
-enum class CausticMethod { None, PhotonMap };
+enum class CausticMethod { None, PhotonMap, CausticMap };
+// What caustic mapping does past the first caster surface (docs/caustics.md, "Caustic mapping"):
+// FrontFace refracts/reflects once at the surface the light sees, as the thesis does; Traced
+// follows the light through the casters exactly and estimates only the last leg's receiver.
+enum class CausticMapPaths { FrontFace, Traced };
 // Density estimation kernels over the gathered disc (see caustics/DensityKernel.h).
 enum class PhotonFilter { Box, Cone, Epanechnikov };
+
+// Bounds of the caustic-map parameters (parser, codec and command line agree on them).
+inline constexpr int kMinCausticMapResolution = 16;
+inline constexpr int kMaxCausticMapResolution = 4096;
+inline constexpr int kMaxCausticMapSteps = 64;
+inline constexpr int kMaxCausticMapBlurRadius = 64;
 
 // How caustics are computed; see docs/caustics.md.
 struct CausticSettings {
@@ -150,6 +160,12 @@ struct CausticSettings {
   float alpha = 0.7f;            // radius shrink: r²(i+1) = r²(i)·(i + alpha)/(i + 1)
   float radius = 0.0f;           // first pass's radius; 0: automatic (mean k-NN distance)
   double timeBudgetSeconds = 0;  // stop starting passes after this long; 0: no limit
+  // Caustic mapping (Shah et al. 2007): light-space maps of mapResolution² texels per view.
+  int mapResolution = 512;
+  int mapSteps = 3;           // iterations of the receiver-distance estimate
+  float mapBlurSigma = 1.0f;  // Gaussian σ, texels
+  int mapBlurRadius = 2;      // Gaussian half-width, texels; 0: no blur
+  CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
 
 struct SceneDescription {

@@ -32,9 +32,14 @@ bool isKnown(CausticMethod m) {
   switch (m) {
     case CausticMethod::None:
     case CausticMethod::PhotonMap:
+    case CausticMethod::CausticMap:
       return true;
   }
   return false;
+}
+
+bool isKnown(CausticMapPaths p) {
+  return p == CausticMapPaths::FrontFace || p == CausticMapPaths::Traced;
 }
 
 bool isKnown(PhotonFilter f) {
@@ -168,7 +173,8 @@ RenderSettings readRender(ByteReader& r) {
 
 void writeCaustics(ByteWriter& w, const CausticSettings& c) {
   const auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha,
-               radius, timeBudgetSeconds] = c;
+               radius, timeBudgetSeconds, mapResolution, mapSteps, mapBlurSigma, mapBlurRadius,
+               mapPaths] = c;
   writeEnum(w, method);
   w.writeU64(photons);
   w.writeI32(gather);
@@ -180,12 +186,17 @@ void writeCaustics(ByteWriter& w, const CausticSettings& c) {
   w.writeF32(alpha);
   w.writeF32(radius);
   w.writeF64(timeBudgetSeconds);
+  w.writeI32(mapResolution);
+  w.writeI32(mapSteps);
+  w.writeF32(mapBlurSigma);
+  w.writeI32(mapBlurRadius);
+  writeEnum(w, mapPaths);
 }
 
 CausticSettings readCaustics(ByteReader& r) {
   CausticSettings c;
   auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha, radius,
-         timeBudgetSeconds] = c;
+         timeBudgetSeconds, mapResolution, mapSteps, mapBlurSigma, mapBlurRadius, mapPaths] = c;
   method = readEnum<CausticMethod>(r, "caustic method");
   photons = r.readU64();
   gather = r.readI32();
@@ -197,6 +208,16 @@ CausticSettings readCaustics(ByteReader& r) {
   alpha = r.readF32();
   radius = r.readF32();
   timeBudgetSeconds = r.readF64();
+  mapResolution = r.readI32();
+  mapSteps = r.readI32();
+  mapBlurSigma = r.readF32();
+  mapBlurRadius = r.readI32();
+  mapPaths = readEnum<CausticMapPaths>(r, "caustic map paths");
+  if (mapResolution < kMinCausticMapResolution || mapResolution > kMaxCausticMapResolution ||
+      mapSteps < 1 || mapSteps > kMaxCausticMapSteps || !(mapBlurSigma >= 0.0f) ||
+      mapBlurRadius < 0 || mapBlurRadius > kMaxCausticMapBlurRadius) {
+    throw WireError("invalid caustic map settings");
+  }
   if (gather <= 0 || maxBounces <= 0 || passes <= 0 || !(maxRadius >= 0.0f) || !(radius >= 0.0f) ||
       !(alpha > 0.0f && alpha < 1.0f)) {
     throw WireError("invalid caustic settings");

@@ -183,6 +183,21 @@ TEST_F(DistributedRender, HungSlavesPhotonShareIsTracedByRankZeroWithTheSamePixe
   EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
 }
 
+// Caustic mapping: every rank builds the maps itself from the scene; the image must not depend
+// on how many ranks did.
+TEST_F(DistributedRender, CausticMapPixelsAreBitIdenticalForOneAndTwoRanks) {
+  const std::string scene = kCausticScene + " --caustics caustic-map --map-resolution 128";
+  const test::ProcessRun single =
+      test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const test::ProcessRun run =
+      test::runPrismMpi(2, "render " + scene + " -o " + path("mpi.exr") + " --tile-size 8");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_NE(run.output.find("caustics  caustic map: 128x128"), std::string::npos) << run.output;
+}
+
 INSTANTIATE_TEST_SUITE_P(RanksModes, DistributedCaustics,
                          ::testing::Combine(::testing::Values(1, 2, 3),
                                             ::testing::Values("", "--progressive --passes 3")),

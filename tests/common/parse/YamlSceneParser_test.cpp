@@ -606,7 +606,7 @@ const BadScene kBadScenes[] = {
     {"camera_same_point.yaml", 3, 12, "'position' and 'look_at' are the same point"},
     // caustics
     {"unknown_caustic_method.yaml", 2, 11,
-     "unknown method 'photons' (expected none or photon_map)"},
+     "unknown method 'photons' (expected none, photon_map or caustic_map)"},
     {"unknown_photon_filter.yaml", 2, 11,
      "unknown filter 'gaussian' (expected box, cone or epanechnikov)"},
     {"unknown_caustic_role.yaml", 2, 53,

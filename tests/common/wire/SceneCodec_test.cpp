@@ -32,7 +32,12 @@ SceneDescription fullScene() {
                 33,
                 0.55f,
                 1e-40f,
-                12.5};
+                12.5,
+                1536,
+                7,
+                2.25f,
+                5,
+                CausticMapPaths::FrontFace};
   d.background = {0.1f, 0.2f, 0.3f};
   d.ambientLight = {0.05f, 0.06f, 1e-40f};
 
@@ -185,6 +190,11 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_SAME_FLOAT(a.caustics.radius, b.caustics.radius);
   EXPECT_EQ(std::bit_cast<uint64_t>(a.caustics.timeBudgetSeconds),
             std::bit_cast<uint64_t>(b.caustics.timeBudgetSeconds));
+  EXPECT_EQ(a.caustics.mapResolution, b.caustics.mapResolution);
+  EXPECT_EQ(a.caustics.mapSteps, b.caustics.mapSteps);
+  EXPECT_SAME_FLOAT(a.caustics.mapBlurSigma, b.caustics.mapBlurSigma);
+  EXPECT_EQ(a.caustics.mapBlurRadius, b.caustics.mapBlurRadius);
+  EXPECT_EQ(a.caustics.mapPaths, b.caustics.mapPaths);
 
   EXPECT_SAME_VEC3(a.background, b.background);
   EXPECT_SAME_VEC3(a.ambientLight, b.ambientLight);
@@ -303,8 +313,8 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 40u) << update;
-  EXPECT_EQ(sizeof(CausticSettings), 56u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 792u) << update;
+  EXPECT_EQ(sizeof(CausticSettings), 80u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 816u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -326,8 +336,11 @@ TEST(SceneCodec, UnknownEnumValuesAreRejected) {
   d.render.triangleTest = static_cast<TriangleTest>(-1);
   expectWireError(d, "invalid triangle test 4294967295");
   d = fullScene();
-  d.caustics.method = static_cast<CausticMethod>(2);
-  expectWireError(d, "invalid caustic method 2");
+  d.caustics.method = static_cast<CausticMethod>(3);
+  expectWireError(d, "invalid caustic method 3");
+  d.caustics.method = CausticMethod::CausticMap;
+  d.caustics.mapPaths = static_cast<CausticMapPaths>(2);
+  expectWireError(d, "invalid caustic map paths 2");
   d = fullScene();
   d.caustics.filter = static_cast<PhotonFilter>(3);
   expectWireError(d, "invalid photon filter 3");

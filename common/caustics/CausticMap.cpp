@@ -1,0 +1,277 @@
+#include "caustics/CausticMap.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/SpecularSplit.h"
+#include "util/Stopwatch.h"
+
+namespace prism {
+namespace {
+
+constexpr int kMaxInterfaces = 8;    // caster surfaces a traced path may cross
+constexpr float kMinWeight = 1e-3f;  // branches below this share of the texel's flux are dropped
+
+float mean(const Color& c) {
+  return (c.x + c.y + c.z) / 3.0f;
+}
+
+// As for photons: the map's density falls as 1/d² by itself; other falloffs are corrected once.
+float falloffRelativeToInverseSquare(const Attenuation& a, float d) {
+  return 1.0f / (a.constant / (d * d) + a.linear / d + a.quadratic);
+}
+
+// How far a point's distance from the light may differ from a texel's receiver and still be that
+// receiver: a texel's footprint along the surface's slope, plus a little for float error.
+float depthTolerance(const ReceiverTexel& t, float texelSize) {
+  return t.distance * (2e-3f + 1.5f * texelSize / std::max(t.cosine, 0.1f));
+}
+
+struct Splat {
+  uint32_t texel;
+  Color flux;
+};
+
+// Carries one caster texel's flux through the casters to its splats.
+class TexelTransport {
+ public:
+  TexelTransport(const Scene& scene, const LightFrustum& frustum, const ReceiverMap& receivers,
+                 const CausticSettings& settings, std::vector<Splat>& out, CausticMapStats& stats)
+      : scene_(scene),
+        frustum_(frustum),
+        receivers_(receivers),
+        settings_(settings),
+        out_(out),
+        stats_(stats) {}
+
+  void start(const SurfaceHit& s, const Vec3& direction, const Color& flux) {
+    minFlux_ = kMinWeight * maxComponent(flux);
+    scatter(s, direction, flux, 1);
+  }
+
+ private:
+  // Light arriving along `direction` at caster surface s leaves reflected and refracted.
+  void scatter(const SurfaceHit& s, const Vec3& direction, const Color& flux, int interfaces) {
+    const SpecularSplit split = splitSpecular(scene_.materials()[s.material], s, direction);
+    if (!isBlack(split.reflectWeight)) {
+      leave(s, reflectedDirection(s, direction), flux * split.reflectWeight, interfaces);
+    }
+    if (split.refracted && !isBlack(split.transmitWeight)) {
+      leave(s, *split.refracted, flux * split.transmitWeight, interfaces);
+    }
+  }
+
+  void leave(const SurfaceHit& s, const Vec3& direction, const Color& flux, int interfaces) {
+    if (maxComponent(flux) < minFlux_) return;
+    if (settings_.mapPaths == CausticMapPaths::Traced) {
+      // The exact next surface: another caster (the sphere's back, a second object) takes the
+      // light on; anything else ends the path, whose receiver the iteration estimates.
+      const Ray ray{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};
+      HitRecord hit;
+      if (scene_.intersect(ray, hit)) {
+        const SurfaceHit next = scene_.surface(ray, hit);
+        if (next.caustic & kCastsCaustics) {
+          if (interfaces < kMaxInterfaces) scatter(next, direction, flux, interfaces + 1);
+          return;
+        }
+      }
+    }
+    land(s.position, direction, flux);
+  }
+
+  // The thesis's estimate of where the ray P + t·dir meets the receivers, then the splat.
+  void land(const Vec3& p, const Vec3& dir, const Color& flux) {
+    ++stats_.paths;
+    float d = 1.0f;
+    for (int k = 0; k < settings_.mapSteps; ++k) {
+      const std::optional<LightSpacePoint> q = frustum_.project(p + d * dir);
+      if (!q) return lost();
+      const ReceiverTexel& r = receivers_.nearest(*q);
+      if (!r.valid) return lost();
+      d = glm::length(r.position - p);
+    }
+    const std::optional<LightSpacePoint> e = frustum_.project(p + d * dir);
+    if (!e) return lost();
+    const int n = receivers_.resolution();
+    const float fx = e->x - 0.5f, fy = e->y - 0.5f;
+    const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
+    const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
+    int index[4];
+    float weight[4];
+    float sum = 0.0f;
+    for (int c = 0; c < 4; ++c) {
+      const int i = i0 + (c & 1), j = j0 + (c >> 1);
+      weight[c] = ((c & 1) ? ax : 1.0f - ax) * ((c >> 1) ? ay : 1.0f - ay);
+      index[c] = -1;
+      if (i < 0 || j < 0 || i >= n || j >= n || !receivers_.at(e->view, i, j).valid) continue;
+      index[c] = (e->view * n + j) * n + i;
+      sum += weight[c];
+    }
+    if (!(sum > 0.0f)) return lost();
+    // Renormalised over the receiver texels, so a splat at a receiver's edge keeps its flux.
+    for (int c = 0; c < 4; ++c) {
+      if (index[c] >= 0 && weight[c] > 0.0f) {
+        out_.push_back({static_cast<uint32_t>(index[c]), flux * (weight[c] / sum)});
+      }
+    }
+    ++stats_.splatted;
+    stats_.splattedFlux += mean(flux);
+  }
+
+  void lost() { ++stats_.lost; }
+
+  const Scene& scene_;
+  const LightFrustum& frustum_;
+  const ReceiverMap& receivers_;
+  const CausticSettings& settings_;
+  std::vector<Splat>& out_;
+  CausticMapStats& stats_;
+  float minFlux_ = 0.0f;
+};
+
+}  // namespace
+
+CausticMapStats& CausticMapStats::operator+=(const CausticMapStats& o) {
+  views += o.views;
+  receiverTexels += o.receiverTexels;
+  casterTexels += o.casterTexels;
+  paths += o.paths;
+  splatted += o.splatted;
+  lost += o.lost;
+  emittedFlux += o.emittedFlux;
+  splattedFlux += o.splattedFlux;
+  receiverSeconds += o.receiverSeconds;
+  casterSeconds += o.casterSeconds;
+  filterSeconds += o.filterSeconds;
+  return *this;
+}
+
+CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSettings& settings,
+                       int threads)
+    : frustum_(scene.lights()[lightIndex].position, scene.causticCasters(),
+               settings.mapResolution) {
+  if (frustum_.empty()) return;
+  const PointLightDesc& light = scene.lights()[lightIndex];
+  const int n = frustum_.resolution();
+  const int views = static_cast<int>(frustum_.views().size());
+  const size_t texels = static_cast<size_t>(views) * n * n;
+  stats_.views = views;
+
+  auto start = SteadyClock::now();
+  receivers_ = std::make_unique<ReceiverMap>(scene, frustum_, threads);
+  stats_.receiverTexels = receivers_->validCount();
+  stats_.receiverSeconds = secondsSince(start);
+
+  start = SteadyClock::now();
+  casters_.resize(texels);
+  const int rows = views * n;
+  std::vector<std::vector<Splat>> rowSplats(static_cast<size_t>(rows));
+  std::vector<CausticMapStats> rowStats(static_cast<size_t>(rows));
+  parallelRows(rows, threads, [&](int row) {
+    const int view = row / n, j = row % n;
+    CausticMapStats& st = rowStats[static_cast<size_t>(row)];
+    TexelTransport transport(scene, frustum_, *receivers_, settings,
+                             rowSplats[static_cast<size_t>(row)], st);
+    for (int i = 0; i < n; ++i) {
+      const Ray ray{light.position, frustum_.direction(view, i + 0.5f, j + 0.5f)};
+      HitRecord hit;
+      if (!scene.intersect(ray, hit)) continue;
+      const SurfaceHit s = scene.surface(ray, hit);
+      if (!(s.caustic & kCastsCaustics)) continue;
+      casters_[static_cast<size_t>(row) * n + i] = {s.position, s.shadingNormal, true};
+      ++st.casterTexels;
+      const Color flux = light.intensity * static_cast<float>(frustum_.texelSolidAngle(i, j)) *
+                         falloffRelativeToInverseSquare(light.attenuation, hit.t);
+      st.emittedFlux += mean(flux);
+      transport.start(s, ray.direction, flux);
+    }
+  });
+  std::vector<Color> flux(texels, Color(0.0f));
+  for (int row = 0; row < rows; ++row) {  // in texel order: the same sums for any thread count
+    for (const Splat& s : rowSplats[static_cast<size_t>(row)]) flux[s.texel] += s.flux;
+    stats_ += rowStats[static_cast<size_t>(row)];
+  }
+  stats_.casterSeconds = secondsSince(start);
+
+  start = SteadyClock::now();
+  // Flux to irradiance: a receiver texel covers Ω·d²/cos θ of its surface.
+  irradiance_.assign(texels, Color(0.0f));
+  for (int view = 0; view < views; ++view) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const ReceiverTexel& t = receivers_->at(view, i, j);
+        const size_t k = (static_cast<size_t>(view) * n + j) * n + i;
+        if (!t.valid) continue;
+        const double area = frustum_.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
+        irradiance_[k] = flux[k] * static_cast<float>(1.0 / area);
+      }
+    }
+  }
+  if (settings.mapBlurRadius > 0 && settings.mapBlurSigma > 0.0f) {
+    const int radius = settings.mapBlurRadius;
+    std::vector<float> kernel(static_cast<size_t>(radius) + 1);
+    for (int k = 0; k <= radius; ++k) {
+      kernel[static_cast<size_t>(k)] = std::exp(-0.5f * static_cast<float>(k * k) /
+                                                (settings.mapBlurSigma * settings.mapBlurSigma));
+    }
+    const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
+    // Separable, over receiver texels only and not across depth jumps (a receiver's edge), with
+    // the weights renormalised over the texels taken.
+    const auto pass = [&](int di, int dj) {
+      std::vector<Color> out(texels, Color(0.0f));
+      for (int view = 0; view < views; ++view) {
+        for (int j = 0; j < n; ++j) {
+          for (int i = 0; i < n; ++i) {
+            const ReceiverTexel& c = receivers_->at(view, i, j);
+            if (!c.valid) continue;
+            const float tol = depthTolerance(c, texelSize);
+            Color acc(0.0f);
+            float wsum = 0.0f;
+            for (int k = -radius; k <= radius; ++k) {
+              const int ii = i + k * di, jj = j + k * dj;
+              if (ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
+              const ReceiverTexel& t = receivers_->at(view, ii, jj);
+              if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
+              const float w = kernel[static_cast<size_t>(std::abs(k))];
+              acc += w * irradiance_[(static_cast<size_t>(view) * n + jj) * n + ii];
+              wsum += w;
+            }
+            out[(static_cast<size_t>(view) * n + j) * n + i] = acc / wsum;
+          }
+        }
+      }
+      irradiance_ = std::move(out);
+    };
+    pass(1, 0);
+    pass(0, 1);
+  }
+  stats_.filterSeconds = secondsSince(start);
+}
+
+Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
+  if (frustum_.empty()) return Color(0.0f);
+  const std::optional<LightSpacePoint> p = frustum_.project(position);
+  if (!p) return Color(0.0f);
+  const int n = frustum_.resolution();
+  const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
+  const float fx = p->x - 0.5f, fy = p->y - 0.5f;
+  const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
+  const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
+  Color acc(0.0f);
+  float wsum = 0.0f;
+  for (int c = 0; c < 4; ++c) {
+    const int i = std::clamp(i0 + (c & 1), 0, n - 1), j = std::clamp(j0 + (c >> 1), 0, n - 1);
+    const ReceiverTexel& t = receivers_->at(p->view, i, j);
+    // The shadow-map test: only the receiver the light sees in this texel gets its caustic.
+    if (!t.valid || glm::dot(normal, t.normal) <= 0.0f ||
+        std::abs(t.distance - p->distance) > depthTolerance(t, texelSize)) {
+      continue;
+    }
+    const float w = ((c & 1) ? ax : 1.0f - ax) * ((c >> 1) ? ay : 1.0f - ay);
+    acc += w * irradiance_[(static_cast<size_t>(p->view) * n + j) * n + i];
+    wsum += w;
+  }
+  return wsum > 1e-4f ? acc / wsum : Color(0.0f);
+}
+
+}  // namespace prism

@@ -1,0 +1,66 @@
+// The caustic map of one point light (Shah, Konttinen & Pattanaik 2007), built on the CPU:
+//   1. receiver position map (ReceiverMap) and caster maps (first caster surface per texel);
+//   2. per caster texel, the light is reflected and refracted with the Fresnel split of eye rays
+//      and photons (SpecularSplit); where each leaving ray meets the receivers is estimated by the
+//      thesis's iteration on the receiver map (d = 1; P' = P + d·dir; read the receiver R at
+//      P''s texel; d = |R − P|; repeat), and the texel's flux, I·Ω_texel·weight, is splatted
+//      bilinearly into the receiver texels around the estimate;
+//   3. flux per receiver texel becomes irradiance, E = Φ / (Ω_texel·d²/cos θ), in W/m² like the
+//      photon map's estimate; a separable Gaussian smooths it.
+// Every texel depends only on the scene, and splats are added in texel order, so the map is
+// bit-identical for any thread or rank count.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "caustics/LightFrustum.h"
+#include "caustics/ReceiverMap.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+struct CasterTexel {
+  Vec3 position{0.0f};
+  Vec3 normal{0.0f};  // shading normal, facing the light
+  bool valid = false;
+};
+
+struct CausticMapStats {
+  int views = 0;
+  size_t receiverTexels = 0;  // texels with a receiver
+  size_t casterTexels = 0;    // texels whose first surface casts
+  size_t paths = 0;           // rays that left the casters towards receivers
+  size_t splatted = 0;        // of those, estimates that landed on a receiver texel
+  size_t lost = 0;            // estimates that left the map or met no receiver
+  double emittedFlux = 0.0;   // mean over channels, W, through caster texels
+  double splattedFlux = 0.0;  // mean over channels, W
+  double receiverSeconds = 0.0, casterSeconds = 0.0, filterSeconds = 0.0;
+  CausticMapStats& operator+=(const CausticMapStats& o);
+};
+
+class CausticMap {
+ public:
+  CausticMap(const Scene& scene, size_t lightIndex, const CausticSettings& settings, int threads);
+
+  bool empty() const { return frustum_.empty(); }
+  const LightFrustum& frustum() const { return frustum_; }
+  const ReceiverMap& receivers() const { return *receivers_; }
+  const std::vector<CasterTexel>& casters() const { return casters_; }
+  // Caustic irradiance per receiver texel (W/m²), view-major then rows, after the blur.
+  const std::vector<Color>& irradianceMap() const { return irradiance_; }
+  const CausticMapStats& stats() const { return stats_; }
+
+  // Caustic irradiance at a receiver point facing `normal`: bilinear over the texels around its
+  // projection whose receiver is this point (within a depth tolerance) and faces its way.
+  Color irradiance(const Vec3& position, const Vec3& normal) const;
+
+ private:
+  LightFrustum frustum_;
+  std::unique_ptr<ReceiverMap> receivers_;
+  std::vector<CasterTexel> casters_;
+  std::vector<Color> irradiance_;
+  CausticMapStats stats_;
+};
+
+}  // namespace prism

@@ -1,0 +1,169 @@
+// Caustic mapping against closed forms and against photon mapping: an index-1 sphere passes the
+// light unchanged (the map must give the direct irradiance I·cos θ/d²), energy is never created,
+// the maps are finite, and on the glass-sphere seed scene the error against a converged photon
+// map falls as the resolution rises.
+#include "caustics/CausticMap.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "caustics/CausticMapEstimator.h"
+#include "caustics/PhotonTracer.h"
+#include "parse/SceneLoader.h"
+
+namespace prism {
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+constexpr float kIntensity = 100.0f;
+constexpr float kLightHeight = 4.0f;
+
+// A sphere of radius 1 at (0, 2, 0), transmittance 1 and index `ior`, a diffuse floor y = 0 and
+// a point light of intensity I at (0, 4, 0), as in PhotonTracer_test's energy scene.
+SceneDescription sphereScene(float ior, int resolution, int blurRadius) {
+  SceneDescription d;
+  MaterialDesc glass;
+  glass.diffuse = Color(0.0f);
+  glass.transmittance = Color(1.0f);
+  glass.ior = ior;
+  MaterialDesc floor;
+  floor.diffuse = Color(0.8f);
+  d.materials = {glass, floor};
+  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}});
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  PointLightDesc light;
+  light.position = {0, kLightHeight, 0};
+  light.intensity = Color(kIntensity);
+  d.lights.push_back(light);
+  d.caustics.method = CausticMethod::CausticMap;
+  d.caustics.mapResolution = resolution;
+  d.caustics.mapBlurRadius = blurRadius;
+  return d;
+}
+
+TEST(CausticMap, IndexOneSphereGivesTheDirectIrradianceUnderIt) {
+  for (const CausticMapPaths paths : {CausticMapPaths::Traced, CausticMapPaths::FrontFace}) {
+    SceneDescription d = sphereScene(1.0f, 256, 2);
+    d.caustics.mapPaths = paths;
+    const Scene scene(d);
+    const CausticMap map(scene, 0, scene.causticSettings(), 0);
+    ASSERT_FALSE(map.empty());
+    EXPECT_FALSE(map.frustum().cube());
+    // The shadow of the sphere reaches x = 4·tan 30° = 2.31; stay inside it, off its rim.
+    for (const float x : {0.0f, 0.37f, 0.81f, 1.2f, 1.6f}) {
+      const float d2 = kLightHeight * kLightHeight + x * x;
+      const float expected = kIntensity * kLightHeight / (d2 * std::sqrt(d2));
+      const Color e = map.irradiance({x, 0.0f, 0.3f * x}, {0, 1, 0});
+      const float dz2 = d2 + 0.09f * x * x;
+      const float expectedZ = kIntensity * kLightHeight / (dz2 * std::sqrt(dz2));
+      EXPECT_NEAR(e.x, expectedZ, 0.01f * expected) << "x = " << x;
+      EXPECT_FLOAT_EQ(e.x, e.z);
+    }
+    // From below the floor, or at a point the light does not see first: nothing.
+    EXPECT_EQ(map.irradiance({0.2f, 0.0f, 0.0f}, {0, -1, 0}).x, 0.0f);
+    EXPECT_EQ(map.irradiance({0.0f, -1.0f, 0.0f}, {0, 1, 0}).x, 0.0f);
+  }
+}
+
+// Every path the light takes through the caster texels carries at most their flux, and the
+// caster texels hold the flux of the cone the sphere subtends: I·2π(1 − cos 30°).
+TEST(CausticMap, NoEnergyIsCreatedAndTheMapsAreFinite) {
+  for (const float ior : {1.0f, 1.5f}) {
+    const Scene scene(sphereScene(ior, 128, 2));
+    const CausticMap map(scene, 0, scene.causticSettings(), 0);
+    const CausticMapStats& s = map.stats();
+    const double cone = kIntensity * 2.0 * kPiD * (1.0 - std::cos(kPiD / 6.0));
+    EXPECT_NEAR(s.emittedFlux, cone, 0.01 * cone);
+    EXPECT_LE(s.splattedFlux, s.emittedFlux * (1.0 + 1e-6));
+    EXPECT_GT(s.splatted, 0u);
+    // The flux the irradiance map holds: Σ E·area over the receiver texels (before any blur).
+    SceneDescription unblurred = sphereScene(ior, 128, 0);
+    const Scene scene0(unblurred);
+    const CausticMap map0(scene0, 0, scene0.causticSettings(), 0);
+    const int n = map0.frustum().resolution();
+    double held = 0.0;
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const ReceiverTexel& t = map0.receivers().at(0, i, j);
+        const Color e = map0.irradianceMap()[static_cast<size_t>(j) * n + i];
+        ASSERT_TRUE(isFinite(e));
+        if (!t.valid) continue;
+        held += e.x * map0.frustum().texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
+      }
+    }
+    EXPECT_NEAR(held, map0.stats().splattedFlux, 1e-3 * held);
+    EXPECT_LE(held, map0.stats().emittedFlux * (1.0 + 1e-4));
+    for (const Color& e : map.irradianceMap()) ASSERT_TRUE(isFinite(e));
+  }
+}
+
+// The flux reaching each ring 0.1 wide around the point under the ball centre, from lookups on a
+// fine grid of the floor; the photon reference sums photon powers in the same rings.
+constexpr int kRings = 24;
+constexpr float kRingWidth = 0.1f;
+
+std::vector<double> mapRingFlux(const CausticMapEstimator& maps) {
+  std::vector<double> flux(kRings, 0.0);
+  constexpr float kStep = 0.01f;
+  const float extent = kRings * kRingWidth;
+  for (float z = -extent + 0.5f * kStep; z < extent; z += kStep) {
+    for (float x = -extent + 0.5f * kStep; x < extent; x += kStep) {
+      const int ring = static_cast<int>(std::sqrt(x * x + z * z) / kRingWidth);
+      if (ring >= kRings) continue;
+      flux[ring] += maps.irradiance({x, 0.0f, z}, {0, 1, 0}).x * kStep * kStep;
+    }
+  }
+  return flux;
+}
+
+std::vector<double> photonRingFlux(const Scene& scene, uint64_t photons) {
+  const PhotonTracer tracer(scene, photons, 16);
+  std::vector<double> flux(kRings, 0.0);
+  for (const Photon& p : tracePhotons(tracer, 0, 0, photons, 0)) {
+    if (std::abs(p.position.y) > 1e-3f) continue;
+    const int ring = static_cast<int>(glm::length(Vec2(p.position.x, p.position.z)) / kRingWidth);
+    if (ring < kRings) flux[ring] += p.power.x;
+  }
+  return flux;
+}
+
+double relativeError(const std::vector<double>& a, const std::vector<double>& reference) {
+  double diff = 0.0, sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    diff += std::abs(a[i] - reference[i]);
+    sum += reference[i];
+  }
+  return diff / sum;
+}
+
+TEST(CausticMap, ErrorAgainstPhotonMappingFallsAsResolutionRises) {
+  SceneDescription d =
+      loadScene(std::string(PRISM_SOURCE_DIR) + "/scenes/caustic-glass-sphere.yaml");
+  d.caustics.method = CausticMethod::CausticMap;
+  const std::vector<double> reference = photonRingFlux(Scene(d), 2'000'000);
+  std::vector<double> errors;
+  for (const int resolution : {64, 128, 256, 512}) {
+    d.caustics.mapResolution = resolution;
+    const Scene scene(d);
+    const CausticMapEstimator maps(scene, 0);
+    errors.push_back(relativeError(mapRingFlux(maps), reference));
+    std::printf("resolution %4d: ring-flux error %.4f\n", resolution, errors.back());
+  }
+  EXPECT_LT(errors[3], errors[0]);
+  EXPECT_LT(errors[2], errors[0]);
+  EXPECT_LT(errors[3], 0.1);
+}
+
+TEST(CausticMap, IsTheSameForAnyThreadCount) {
+  const Scene scene(sphereScene(1.5f, 128, 2));
+  const CausticMap one(scene, 0, scene.causticSettings(), 1);
+  const CausticMap two(scene, 0, scene.causticSettings(), 3);
+  ASSERT_EQ(one.irradianceMap().size(), two.irradianceMap().size());
+  for (size_t i = 0; i < one.irradianceMap().size(); ++i) {
+    ASSERT_EQ(one.irradianceMap()[i], two.irradianceMap()[i]) << i;
+  }
+}
+
+}  // namespace
+}  // namespace prism
