@@ -5,6 +5,7 @@
 #include <memory>
 #include <ostream>
 
+#include "caustics/CausticMapImages.h"
 #include "caustics/PhotonImage.h"
 #include "image/ImageIo.h"
 #include "master/CausticPasses.h"
@@ -151,6 +152,22 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       } else {
         err << "prism: warning: no photons were traced, so " << options.photonImagePath
             << " was not written\n";
+      }
+    }
+
+    if (!options.causticMapDebugPrefix.empty()) {
+      if (result.causticMaps && !result.causticMaps->empty()) {
+        const auto& maps = result.causticMaps->maps();
+        for (size_t i = 0; i < maps.size(); ++i) {
+          for (const NamedImage& image : causticMapImages(*maps[i])) {
+            writeImage(image.image,
+                       options.causticMapDebugPrefix + "-light" + std::to_string(i) + "-" +
+                           image.name + ".png",
+                       1.0f);
+          }
+        }
+      } else {
+        err << "prism: warning: no caustic map was built, so no --caustic-map-debug images\n";
       }
     }
 

@@ -1,0 +1,50 @@
+#include "caustics/CausticMapImages.h"
+
+#include <algorithm>
+
+namespace prism {
+
+std::vector<NamedImage> causticMapImages(const CausticMap& map) {
+  const int n = map.frustum().resolution();
+  const int views = static_cast<int>(map.frustum().views().size());
+  std::vector<NamedImage> out{{"receivers", ImageRgb(n * views, n)},
+                              {"casters", ImageRgb(n * views, n)},
+                              {"normals", ImageRgb(n * views, n)},
+                              {"caustics", ImageRgb(n * views, n)}};
+  // Positions are shown relative to the box the receiver and caster texels span.
+  Vec3 lo(1e30f), hi(-1e30f);
+  float brightest = 0.0f;
+  for (int v = 0; v < views; ++v) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const size_t k = (static_cast<size_t>(v) * n + j) * n + i;
+        const ReceiverTexel& r = map.receivers().at(v, i, j);
+        if (r.valid) lo = glm::min(lo, r.position), hi = glm::max(hi, r.position);
+        const CasterTexel& c = map.casters()[k];
+        if (c.valid) lo = glm::min(lo, c.position), hi = glm::max(hi, c.position);
+        brightest = std::max(brightest, maxComponent(map.irradianceMap()[k]));
+      }
+    }
+  }
+  const Vec3 span = glm::max(hi - lo, Vec3(1e-6f));
+  for (int v = 0; v < views; ++v) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const size_t k = (static_cast<size_t>(v) * n + j) * n + i;
+        // Row j = 0 is the bottom of the light's grid; images run top down.
+        const size_t px = static_cast<size_t>(n - 1 - j) * (n * views) + v * n + i;
+        const ReceiverTexel& r = map.receivers().at(v, i, j);
+        if (r.valid) out[0].image.pixels[px] = (r.position - lo) / span;
+        const CasterTexel& c = map.casters()[k];
+        if (c.valid) {
+          out[1].image.pixels[px] = (c.position - lo) / span;
+          out[2].image.pixels[px] = 0.5f * c.normal + 0.5f;
+        }
+        if (brightest > 0.0f) out[3].image.pixels[px] = map.irradianceMap()[k] / brightest;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace prism
