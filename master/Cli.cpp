@@ -86,14 +86,17 @@ void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v, bool ca
   const char* caustics = kCausticsGroup;
   std::map<std::string, CausticMethod> methods{{"none", CausticMethod::None},
                                                {"photon-map", CausticMethod::PhotonMap}};
-  if (causticMap) methods.emplace("caustic-map", CausticMethod::CausticMap);
+  if (causticMap) {
+    methods.emplace("caustic-map", CausticMethod::CausticMap);
+    methods.emplace("map", CausticMethod::CausticMap);  // the short name the design uses
+  }
   command
       ->add_option("--caustics", v.causticMethod,
                    causticMap ? "Caustics method: none, photon-map or caustic-map (default: the "
                                 "scene's)"
                               : "Caustics method: none or photon-map (default: the scene's)")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
-      ->option_text(causticMap ? "none|photon-map|caustic-map" : "none|photon-map")
+      ->option_text(causticMap ? "none|photon-map|caustic-map (or map)" : "none|photon-map")
       ->group(caustics);
   command
       ->add_option("--photons", v.photons,
