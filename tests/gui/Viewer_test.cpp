@@ -49,9 +49,11 @@ TEST_F(Viewer, TwoRanksRenderPhotonMappedPassesLikeOne) {
   const std::string args = " --max-passes 2 --exit-after-passes 2 --photons 8000 --save ";
   const auto two = runPrismMpi(2, "view " + scene + args + path("two.exr"));
   ASSERT_EQ(two.exitCode, 0) << two.output;
+  // Rank 1 took part (its Ready gave its threads). How many tiles it rendered depends on timing:
+  // on a loaded machine rank 0 may render them all while rank 1 builds its photon kd-tree.
   const auto at = two.output.find("rank 1 ");
   ASSERT_NE(at, std::string::npos) << two.output;
-  EXPECT_GT(std::stoi(two.output.substr(two.output.find("threads, ", at) + 9)), 0) << two.output;
+  EXPECT_GT(std::stoi(two.output.substr(at + 7)), 0) << two.output;
   // The photon maps do not depend on the rank count, nor do the tiles: the same average.
   const auto one = runPrism("view " + scene + args + path("one.exr"));
   ASSERT_EQ(one.exitCode, 0) << one.output;
