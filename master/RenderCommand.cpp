@@ -57,6 +57,24 @@ void applyOverrides(const RenderOptions& o, CausticSettings& c) {
   }
 }
 
+SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
+  SceneDescription description = loadScene(options.scenePath);
+  applyOverrides(options, description.render);
+  applyOverrides(options, description.caustics);
+  checkRenderFits(description.render, physicalMemoryBytes());
+  checkCausticsFit(description.caustics, physicalMemoryBytes());
+  return description;
+}
+
+int failBeforeScene(MpiSession* session, const std::string& what, std::ostream& err) {
+  if (session) {
+    std::vector<uint8_t> bytes = wire::encodeError({what});
+    session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+  }
+  err << "prism: error: " << what << "\n";
+  return 1;
+}
+
 std::string defaultOutputPath(const std::string& scenePath) {
   return std::filesystem::path(scenePath).stem().string() + ".png";
 }
@@ -69,7 +87,6 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     slave.fault = options.fault;
     return runSlave(*session, slave);
   }
-  constexpr double kBroadcastTimeoutSeconds = 600.0;
   const auto start = std::chrono::steady_clock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
@@ -82,20 +99,10 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       throw std::runtime_error("--photon-image: " + why);
     }
     const auto parseStart = std::chrono::steady_clock::now();
-    description = loadScene(options.scenePath);
+    description = loadSceneWithOverrides(options);
     summary.parseSeconds = secondsSince(parseStart);
-    applyOverrides(options, description.render);
-    applyOverrides(options, description.caustics);
-    checkRenderFits(description.render, physicalMemoryBytes());
-    checkCausticsFit(description.caustics, physicalMemoryBytes());
   } catch (const std::exception& e) {
-    // The slaves wait for a scene: send them the error instead so they stop at once.
-    if (session) {
-      std::vector<uint8_t> bytes = wire::encodeError({e.what()});
-      session->broadcast(bytes, kBroadcastTimeoutSeconds);
-    }
-    err << "prism: error: " << e.what() << "\n";
-    return 1;
+    return failBeforeScene(session, e.what(), err);
   }
 
   int exitCode = 0;
@@ -104,7 +111,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     if (session) {
       const auto broadcastStart = std::chrono::steady_clock::now();
       std::vector<uint8_t> bytes = wire::encodeScene(description);
-      session->broadcast(bytes, kBroadcastTimeoutSeconds);
+      session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
       summary.broadcastSeconds = secondsSince(broadcastStart);
       summary.broadcastBytes = bytes.size();
     }

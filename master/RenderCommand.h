@@ -51,6 +51,17 @@ std::string defaultOutputPath(const std::string& scenePath);
 
 class MpiSession;
 
+// How long rank 0's scene broadcast may wait for the slaves (they may still be starting).
+inline constexpr double kSceneBroadcastTimeoutSeconds = 600.0;
+
+// Loads the scene the options name, applies their overrides, and refuses an image or a photon
+// map that cannot fit in memory. Throws on any of these.
+SceneDescription loadSceneWithOverrides(const RenderOptions& options);
+
+// Rank 0 could not produce a scene: the slaves, waiting for one, get the error instead and stop
+// at once; the error is printed. Returns the exit code, 1.
+int failBeforeScene(MpiSession* session, const std::string& what, std::ostream& err);
+
 // Runs the command; returns the process exit code. Errors go to err as "prism: error: ...".
 // In an MPI run (session given) rank 0 is the master and every other rank a slave.
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,

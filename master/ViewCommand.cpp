@@ -20,7 +20,6 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Mp
     slave.fault = options.render.fault;
     return runSlave(*session, slave);
   }
-  constexpr double kBroadcastTimeoutSeconds = 600.0;
   SceneDescription description;
   try {
     if (!viewer) {
@@ -32,25 +31,16 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Mp
       std::string why;
       if (!isWritableImagePath(options.savePath, &why)) throw std::runtime_error(why);
     }
-    description = loadScene(options.render.scenePath);
-    applyOverrides(options.render, description.render);
-    applyOverrides(options.render, description.caustics);  // --caustics, --photons
-    checkRenderFits(description.render, physicalMemoryBytes());
-    checkCausticsFit(description.caustics, physicalMemoryBytes());
+    description = loadSceneWithOverrides(options.render);  // --caustics, --photons too
   } catch (const std::exception& e) {
-    if (session) {
-      std::vector<uint8_t> bytes = wire::encodeError({e.what()});
-      session->broadcast(bytes, kBroadcastTimeoutSeconds);
-    }
-    err << "prism: error: " << e.what() << "\n";
-    return 1;
+    return failBeforeScene(session, e.what(), err);
   }
 
   int exitCode = 0;
   try {
     if (session) {
       std::vector<uint8_t> bytes = wire::encodeScene(description);
-      session->broadcast(bytes, kBroadcastTimeoutSeconds);
+      session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
     }
     const Scene scene(description);
     exitCode = viewer(scene, description, options, session, out, err);
