@@ -147,11 +147,11 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     auto map = tracePhotonPass(*tracer, pass, threads, cluster, roster, options.leaseSeconds, p);
     addPhotonStats(stats, p);
     ++stats.passes;
-    return std::make_pair(std::move(map), p);
+    return map;
   };
 
   if (!settings.progressive) {
-    auto [map, p] = photonPass(0, "trace");
+    const auto map = photonPass(0, "trace");
     const PhotonGatherSettings gather{false, settings.gather, maxRadius, settings.filter};
     PhotonPassStats sent;
     sendPhotonMap(*map, 0, gather, cluster, roster, sent);
@@ -181,7 +181,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
       break;
     }
     const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
-    auto [map, p] = photonPass(static_cast<uint32_t>(i), label);
+    const auto map = photonPass(static_cast<uint32_t>(i), label);
     if (i == 1) {
       if (!(radius > 0.0f)) radius = automaticProgressiveRadius(*map, settings.gather, maxRadius);
       stats.firstRadius = radius;

@@ -157,7 +157,7 @@ void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettin
                    MpiSession* cluster, ClusterRoster& roster, PhotonPassStats& stats) {
   if (!cluster || cluster->size() == 1) return;
   const auto start = SteadyClock::now();
-  const std::vector<uint8_t> bytes = wire::encodePhotonMap({pass, gather, map.photons()});
+  const std::vector<uint8_t> bytes = wire::encodePhotonMap(pass, gather, map.photons());
   for (int r = 1; r < cluster->size(); ++r) {
     if (roster.retired[r]) continue;
     if (cluster->send(r, bytes)) {

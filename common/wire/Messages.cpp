@@ -437,8 +437,13 @@ PhotonShareMessage decodePhotonShare(const Message& message) {
 }
 
 std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
+  const auto& [pass, gather, photons] = map;
+  return encodePhotonMap(pass, gather, photons);
+}
+
+std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
+                                     const std::vector<Photon>& photons) {
   return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
-    const auto& [pass, gather, photons] = map;
     const auto& [fixedRadius, k, radius, filter] = gather;
     w.writeU32(pass);
     w.writeBool(fixedRadius);

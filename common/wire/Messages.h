@@ -159,6 +159,9 @@ std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share);
 PhotonShareMessage decodePhotonShare(const Message& message);
 
 std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
+// The same bytes without first copying the photons into a message struct.
+std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
+                                     const std::vector<Photon>& photons);
 PhotonMapMessage decodePhotonMap(const Message& message);
 
 std::vector<uint8_t> encodeShutdown();
