@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstring>
 
+#include "tests/common/caustics/BallOverFloorScene.h"
+
 namespace prism {
 namespace {
 
-constexpr float kIntensity = 100.0f, kLightHeight = 4.0f, kAlbedo = 0.8f;
+constexpr float kAlbedo = test::kBallFloorAlbedo;
 
 // The scene of PhotonTracerEnergy (tests/common/caustics/PhotonTracer_test.cpp), seen from
 // straight above by an orthographic camera 1.2 wide, centred on the axis: every pixel looks
@@ -20,20 +22,7 @@ constexpr float kIntensity = 100.0f, kLightHeight = 4.0f, kAlbedo = 0.8f;
 // by the sphere (shadow rays stop at every object), so the radiance is the caustic alone and
 // must equal the direct-light radiance ρ/π · I·h/d³.
 SceneDescription indexOneView(int size) {
-  SceneDescription d;
-  MaterialDesc clear;
-  clear.diffuse = Color(0.0f);
-  clear.transmittance = Color(1.0f);
-  clear.ior = 1.0f;
-  MaterialDesc floor;
-  floor.diffuse = Color(kAlbedo);
-  d.materials = {clear, floor};
-  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}});
-  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
-  PointLightDesc light;
-  light.position = {0, kLightHeight, 0};
-  light.intensity = Color(kIntensity);
-  d.lights.push_back(light);
+  SceneDescription d = test::ballOverFloorScene(1.0f);
   d.camera.projection = Projection::Orthographic;
   d.camera.position = {0, 10, 0};
   d.camera.lookAt = {0, 0, 0};
@@ -50,8 +39,7 @@ SceneDescription indexOneView(int size) {
 double expectedRadiance(const Camera& camera, int x, int y) {
   const Ray ray = camera.generateRay(x + 0.5f, y + 0.5f);
   const Vec3 p = ray.at(-ray.origin.y / ray.direction.y);
-  const double d2 = kLightHeight * kLightHeight + p.x * p.x + p.z * p.z;
-  return kAlbedo / 3.14159265358979323846 * kIntensity * kLightHeight / (d2 * std::sqrt(d2));
+  return kAlbedo / 3.14159265358979323846 * test::ballOverFloorDirectIrradiance(p.x, p.z);
 }
 
 // Relative RMS and mean error of the green channel over the image.

@@ -11,31 +11,19 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonTracer.h"
 #include "parse/SceneLoader.h"
+#include "tests/common/caustics/BallOverFloorScene.h"
 
 namespace prism {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
-constexpr float kIntensity = 100.0f;
-constexpr float kLightHeight = 4.0f;
+constexpr float kIntensity = test::kBallLightIntensity;
+constexpr float kLightHeight = test::kBallLightHeight;
 
 // A sphere of radius 1 at (0, 2, 0), transmittance 1 and index `ior`, a diffuse floor y = 0 and
 // a point light of intensity I at (0, 4, 0), as in PhotonTracer_test's energy scene.
 SceneDescription sphereScene(float ior, int resolution, int blurRadius) {
-  SceneDescription d;
-  MaterialDesc glass;
-  glass.diffuse = Color(0.0f);
-  glass.transmittance = Color(1.0f);
-  glass.ior = ior;
-  MaterialDesc floor;
-  floor.diffuse = Color(0.8f);
-  d.materials = {glass, floor};
-  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}});
-  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
-  PointLightDesc light;
-  light.position = {0, kLightHeight, 0};
-  light.intensity = Color(kIntensity);
-  d.lights.push_back(light);
+  SceneDescription d = test::ballOverFloorScene(ior);
   d.caustics.method = CausticMethod::CausticMap;
   d.caustics.mapResolution = resolution;
   d.caustics.mapBlurRadius = blurRadius;

@@ -12,6 +12,7 @@
 
 #include "caustics/PhotonGather.h"
 #include "render/Optics.h"
+#include "tests/common/caustics/BallOverFloorScene.h"
 
 namespace prism {
 namespace {
@@ -45,24 +46,15 @@ Color totalPower(const std::vector<Photon>& photons) {
 // n = 1 Fresnel reflects nothing), a point light of intensity I at (0, 4, 0), a diffuse floor
 // y = 0. Light passes the sphere undeviated, so the photons under it must reproduce the direct
 // irradiance E = I·cos θ / d² = I·h / d³ (h = 4, d² = h² + x² + z²).
-constexpr float kEnergyIntensity = 100.0f;
-constexpr float kLightHeight = 4.0f;
+constexpr float kEnergyIntensity = test::kBallLightIntensity;
+constexpr float kLightHeight = test::kBallLightHeight;
 
 SceneDescription indexOneScene() {
-  SceneDescription d;
-  d.materials = {clearMaterial(1.0f), diffuseMaterial()};
-  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}});
-  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
-  PointLightDesc light;
-  light.position = {0, kLightHeight, 0};
-  light.intensity = Color(kEnergyIntensity);
-  d.lights.push_back(light);
-  return d;
+  return test::ballOverFloorScene(1.0f);
 }
 
 double directIrradiance(double x, double z) {
-  const double d2 = kLightHeight * kLightHeight + x * x + z * z;
-  return kEnergyIntensity * kLightHeight / (d2 * std::sqrt(d2));
+  return test::ballOverFloorDirectIrradiance(x, z);
 }
 
 TEST(PhotonTracerEnergy, IndexOneCasterPassesExactlyItsConeOfFlux) {
