@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/LightFalloff.h"
 #include "render/SpecularSplit.h"
 #include "util/Stopwatch.h"
 
@@ -11,15 +12,6 @@ namespace {
 
 constexpr int kMaxInterfaces = 8;    // caster surfaces a traced path may cross
 constexpr float kMinWeight = 1e-3f;  // branches below this share of the texel's flux are dropped
-
-float mean(const Color& c) {
-  return (c.x + c.y + c.z) / 3.0f;
-}
-
-// As for photons: the map's density falls as 1/d² by itself; other falloffs are corrected once.
-float falloffRelativeToInverseSquare(const Attenuation& a, float d) {
-  return 1.0f / (a.constant / (d * d) + a.linear / d + a.quadratic);
-}
 
 // How far a point's distance from the light may differ from a texel's receiver and still be that
 // receiver: a texel's footprint along the surface's slope, plus a little for float error.
@@ -115,7 +107,7 @@ class TexelTransport {
       }
     }
     ++stats_.splatted;
-    stats_.splattedFlux += mean(flux);
+    stats_.splattedFlux += meanComponent(flux);
   }
 
   void lost() { ++stats_.lost; }
@@ -182,7 +174,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
       ++st.casterTexels;
       const Color flux = light.intensity * static_cast<float>(frustum_.texelSolidAngle(i, j)) *
                          falloffRelativeToInverseSquare(light.attenuation, hit.t);
-      st.emittedFlux += mean(flux);
+      st.emittedFlux += meanComponent(flux);
       transport.start(s, ray.direction, flux);
     }
   });

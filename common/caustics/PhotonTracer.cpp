@@ -7,6 +7,7 @@
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
+#include "render/LightFalloff.h"
 #include "render/MaterialEval.h"
 #include "render/SpecularSplit.h"
 
@@ -15,16 +16,6 @@ namespace {
 
 // Keeps photon streams apart from the pixel streams, which are keyed by (x, y).
 constexpr uint64_t kPhotonStreamBase = 0x5048'4f54'0000'0000ULL;  // "PHOT"
-
-float mean(const Color& c) {
-  return (c.x + c.y + c.z) / 3.0f;
-}
-
-// The light's falloff relative to inverse-square at distance d: 1 for physical lights. Photon
-// density falls as 1/d² by itself; this factor makes other falloffs agree with direct light.
-float falloffRelativeToInverseSquare(const Attenuation& a, float d) {
-  return 1.0f / (a.constant / (d * d) + a.linear / d + a.quadratic);
-}
 
 }  // namespace
 
@@ -36,7 +27,7 @@ PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
   for (size_t i = 0; i < scene.lights().size(); ++i) {
     const PointLightDesc& light = scene.lights()[i];
     ProjectionMap map(light.position, casters);
-    const double f = map.coveredSolidAngle() * std::max(0.0f, mean(light.intensity));
+    const double f = map.coveredSolidAngle() * std::max(0.0f, meanComponent(light.intensity));
     if (map.empty() || !(f > 0.0)) continue;
     plans_.push_back({i, std::move(map), 0, 0, Color(0.0f)});
     flux.push_back(f);
@@ -122,8 +113,8 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
     }
     const MaterialDesc& m = scene_.materials()[s.material];
     const SpecularSplit split = splitSpecular(m, s, ray.direction);
-    float reflectP = std::max(0.0f, mean(split.reflectWeight));
-    float transmitP = split.refracted ? std::max(0.0f, mean(split.transmitWeight)) : 0.0f;
+    float reflectP = std::max(0.0f, meanComponent(split.reflectWeight));
+    float transmitP = split.refracted ? std::max(0.0f, meanComponent(split.transmitWeight)) : 0.0f;
     const float sum = reflectP + transmitP;
     if (sum > 1.0f) {
       reflectP /= sum;

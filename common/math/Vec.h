@@ -18,6 +18,9 @@ inline constexpr float kInvPi = 1.0f / kPi;
 inline float maxComponent(const Vec3& v) {
   return std::max(v.x, std::max(v.y, v.z));
 }
+inline float meanComponent(const Vec3& v) {
+  return (v.x + v.y + v.z) / 3.0f;
+}
 inline float minComponent(const Vec3& v) {
   return std::min(v.x, std::min(v.y, v.z));
 }

@@ -1,17 +1,12 @@
 #include "render/WhittedIntegrator.h"
 
+#include "render/LightFalloff.h"
 #include "render/MaterialEval.h"
 #include "render/Optics.h"
 #include "render/SpecularSplit.h"
 
 namespace prism {
-namespace {
-
-float attenuationFactor(const Attenuation& a, float distance) {
-  return 1.0f / (a.constant + a.linear * distance + a.quadratic * distance * distance);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc& m,
                                         const Color& albedo, const Vec3& toViewer,

@@ -350,10 +350,6 @@ void writePhotons(ByteWriter& w, const std::vector<Photon>& photons) {
   }
 }
 
-bool finite(const Vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 std::vector<Photon> readPhotons(ByteReader& r) {
   const size_t count = r.readCount(kPhotonBytes);
   std::vector<Photon> photons(count);
@@ -363,7 +359,7 @@ std::vector<Photon> readPhotons(ByteReader& r) {
     p.power = r.readVec3();
     p.direction[0] = r.readU16();
     p.direction[1] = r.readU16();
-    if (!finite(p.position) || !finite(p.power) || p.power.x < 0.0f || p.power.y < 0.0f ||
+    if (!isFinite(p.position) || !isFinite(p.power) || p.power.x < 0.0f || p.power.y < 0.0f ||
         p.power.z < 0.0f) {
       throw WireError("photon " + std::to_string(i) + " has a non-finite position or a power " +
                       "that is negative or not finite");
