@@ -65,9 +65,43 @@ QRect FrameView::imageRect() const {
   return QRect(QPoint((width() - scaled.width()) / 2, (height() - scaled.height()) / 2), scaled);
 }
 
+void FrameView::setOverlay(const QImage& image, const QString& caption) {
+  overlay_ = image;
+  overlayCaption_ = caption;
+  overlayShown_ = true;
+  update();
+}
+
+void FrameView::clearOverlay() {
+  if (!overlayShown_) return;
+  overlayShown_ = false;
+  overlay_ = QImage();
+  overlayCaption_.clear();
+  update();
+}
+
+void FrameView::paintOverlay(QPainter& painter) {
+  if (!overlay_.isNull()) {
+    const QSize scaled = overlay_.size().scaled(size(), Qt::KeepAspectRatio);
+    const QRect target(QPoint((width() - scaled.width()) / 2, (height() - scaled.height()) / 2),
+                       scaled);
+    painter.drawImage(target, overlay_);  // no smoothing: each texel stays a square
+  }
+  painter.setPen(Qt::white);
+  painter.fillRect(QRect(0, 0, width(), 28), QColor(0, 0, 0, 170));
+  painter.drawText(QRect(8, 0, width() - 16, 28), Qt::AlignLeft | Qt::AlignVCenter,
+                   overlayCaption_);
+}
+
 void FrameView::paintEvent(QPaintEvent*) {
   QPainter painter(this);
   painter.fillRect(rect(), Qt::black);
+  if (overlayShown_) {
+    paintOverlay(painter);
+    if (showHelp_) paintHelp(painter);
+    emit painted(frame_.pass().viewId, frame_.completedPass());
+    return;
+  }
   const QRect target = imageRect();
   painter.drawImage(target, display_);
   if (showTiles_) {
@@ -79,16 +113,18 @@ void FrameView::paintEvent(QPaintEvent*) {
                               t.rect.width * sx - 2, t.rect.height * sy - 2));
     }
   }
-  if (showHelp_) {
-    painter.fillRect(rect(), QColor(0, 0, 0, 170));
-    painter.setPen(Qt::white);
-    QFont font("Monospace");
-    font.setStyleHint(QFont::TypeWriter);
-    painter.setFont(font);
-    painter.drawText(rect().adjusted(24, 24, -24, -24), Qt::AlignLeft | Qt::AlignTop,
-                     QString::fromUtf8(kViewerHelpText));
-  }
+  if (showHelp_) paintHelp(painter);
   emit painted(frame_.pass().viewId, frame_.completedPass());
+}
+
+void FrameView::paintHelp(QPainter& painter) {
+  painter.fillRect(rect(), QColor(0, 0, 0, 170));
+  painter.setPen(Qt::white);
+  QFont font("Monospace");
+  font.setStyleHint(QFont::TypeWriter);
+  painter.setFont(font);
+  painter.drawText(rect().adjusted(24, 24, -24, -24), Qt::AlignLeft | Qt::AlignTop,
+                   QString::fromUtf8(kViewerHelpText));
 }
 
 void FrameView::mousePressEvent(QMouseEvent* event) {

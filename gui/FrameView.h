@@ -1,7 +1,9 @@
 // The live image. Tiles go into the FrameAccumulator as they arrive; this widget repaints on
 // a timer (60 Hz at most, and only when something changed), converting just the changed
 // rectangle to display bytes, so a burst of small tiles costs one repaint. Draws the tiles in
-// flight outlined in their rank's colour (toggleable) and the help overlay.
+// flight outlined in their rank's colour (toggleable) and the help overlay. A light-space debug
+// image (the caustic maps of R, P, C) can be shown instead of the frame, which keeps rendering
+// underneath.
 #pragma once
 
 #include <QImage>
@@ -10,6 +12,8 @@
 
 #include "gui/FrameAccumulator.h"
 #include "image/ToneMap.h"
+
+class QPainter;
 
 namespace prism {
 
@@ -23,6 +27,13 @@ class FrameView : public QWidget {
   bool showTiles() const { return showTiles_; }
   void setShowHelp(bool show);
   bool showHelp() const { return showHelp_; }
+  // Shows `image` (any size, scaled to fit with its texels kept sharp) with a caption instead of
+  // the frame; a null image shows the caption alone. clearOverlay() returns to the frame.
+  void setOverlay(const QImage& image, const QString& caption);
+  void clearOverlay();
+  bool showsOverlay() const { return overlayShown_; }
+  const QImage& overlayImage() const { return overlay_; }
+  const QString& overlayCaption() const { return overlayCaption_; }
   // Something changed (a tile, an assignment, a new pass): repaint at the next tick.
   void markChanged() { changed_ = true; }
 
@@ -50,6 +61,8 @@ class FrameView : public QWidget {
  private:
   void refresh();
   void convert(const TileRect& r);
+  void paintOverlay(QPainter& painter);
+  void paintHelp(QPainter& painter);
 
   const FrameAccumulator& frame_;
   DisplayEncoder encoder_;
@@ -58,6 +71,9 @@ class FrameView : public QWidget {
   bool changed_ = false;
   bool showTiles_ = true;
   bool showHelp_ = false;
+  bool overlayShown_ = false;
+  QImage overlay_;
+  QString overlayCaption_;
   QPoint lastMouse_;
 };
 

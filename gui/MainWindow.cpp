@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QButtonGroup>
+#include <QCheckBox>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QGroupBox>
@@ -16,6 +17,7 @@
 #include <QSpinBox>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <algorithm>
 
@@ -29,15 +31,20 @@ namespace {
 constexpr float kTurnDegrees = 5.0f;
 constexpr float kOrbitDegreesPerPixel = 0.4f;
 constexpr float kZoomPerStep = 0.9f;
+constexpr int kMapPollMilliseconds = 30;
 }  // namespace
 
 MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
-                       ViewRequest requestView, QWidget* parent)
+                       ViewRequest requestView, CausticMapSource causticMaps, QWidget* parent)
     : QMainWindow(parent),
       exposure_(scene.render.exposure),
       requestView_(std::move(requestView)),
       camera_(scene.camera),
-      frame_(scene.render.width, scene.render.height) {
+      frame_(scene.render.width, scene.render.height),
+      causticMaps_(std::move(causticMaps)) {
+  mapPoll_ = new QTimer(this);
+  mapPoll_->setInterval(kMapPollMilliseconds);
+  connect(mapPoll_, &QTimer::timeout, this, [this] { updateLightSpace(); });
   setWindowTitle("Prism — " + sceneName);
   settings_.camera = scene.camera;
   settings_.samplesPerPixel = scene.render.samplesPerPixel;
@@ -91,25 +98,32 @@ QWidget* MainWindow::buildSidePanel() {
   form->addRow("samples / pixel / pass", spp_);
   layout->addWidget(render);
 
-  // Debug views. Extension point for the caustics work: caster positions (R), receiver
-  // positions (P) and the caustic map (C) get a button here and an enumerator in
-  // common/render/RenderView.h.
+  // Debug views: per pixel from the camera (image, normals), or the caustic maps in light space.
   auto* debug = new QGroupBox("Debug view", panel);
   auto* debugLayout = new QVBoxLayout(debug);
   imageButton_ = new QRadioButton("image (n)", debug);
   normalsButton_ = new QRadioButton("normals (N)", debug);
+  castersButton_ = new QRadioButton("caustic map: caster positions (R)", debug);
+  receiversButton_ = new QRadioButton("caustic map: receiver positions (P)", debug);
+  causticMapViewButton_ = new QRadioButton("caustic map: irradiance (C)", debug);
+  castersButton_->setObjectName("debugCasters");
+  receiversButton_->setObjectName("debugReceivers");
+  causticMapViewButton_->setObjectName("debugCausticMap");
   imageButton_->setChecked(true);
   auto* group = new QButtonGroup(debug);
-  group->addButton(imageButton_);
-  group->addButton(normalsButton_);
-  connect(imageButton_, &QRadioButton::toggled, this, [this](bool on) {
-    if (on) setDebugView(DebugView::Image);
-  });
-  connect(normalsButton_, &QRadioButton::toggled, this, [this](bool on) {
-    if (on) setDebugView(DebugView::Normals);
-  });
-  debugLayout->addWidget(imageButton_);
-  debugLayout->addWidget(normalsButton_);
+  const std::pair<QRadioButton*, std::function<void()>> choices[] = {
+      {imageButton_, [this] { setDebugView(DebugView::Image); }},
+      {normalsButton_, [this] { setDebugView(DebugView::Normals); }},
+      {castersButton_, [this] { showLightSpace(LightSpaceMap::Casters); }},
+      {receiversButton_, [this] { showLightSpace(LightSpaceMap::Receivers); }},
+      {causticMapViewButton_, [this] { showLightSpace(LightSpaceMap::Caustics); }}};
+  for (const auto& [button, choose] : choices) {
+    group->addButton(button);
+    connect(button, &QRadioButton::toggled, this, [choose = choose](bool on) {
+      if (on) choose();
+    });
+    debugLayout->addWidget(button);
+  }
   layout->addWidget(debug);
 
   layout->addWidget(buildCausticsGroup(panel));
@@ -122,29 +136,41 @@ QWidget* MainWindow::buildSidePanel() {
 }
 
 QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
-  // Caustic mapping (and its blur toggle, b) joins these when it exists.
   auto* group = new QGroupBox("Caustics", parent);
   auto* form = new QFormLayout(group);
   noCausticsButton_ = new QRadioButton("none", group);
   photonMapButton_ = new QRadioButton("photon map (progressive)", group);
+  causticMapButton_ = new QRadioButton("caustic map", group);
   noCausticsButton_->setObjectName("causticsNone");
   photonMapButton_->setObjectName("causticsPhotonMap");
+  causticMapButton_->setObjectName("causticsCausticMap");
   photonMapButton_->setToolTip(
       "Every full pass traces its own photons and gathers them with a shrinking radius; the "
       "averaged passes are progressive photon mapping");
-  (settings_.caustics == CausticMethod::PhotonMap ? photonMapButton_ : noCausticsButton_)
-      ->setChecked(true);
+  causticMapButton_->setToolTip(
+      "Light-space caustic maps (Shah et al. 2007), built once per blur setting on every rank; "
+      "the preview shows them too");
   auto* buttons = new QButtonGroup(group);
-  buttons->addButton(noCausticsButton_);
-  buttons->addButton(photonMapButton_);
-  connect(noCausticsButton_, &QRadioButton::toggled, this, [this](bool on) {
-    if (on) setCausticMethod(CausticMethod::None);
-  });
-  connect(photonMapButton_, &QRadioButton::toggled, this, [this](bool on) {
-    if (on) setCausticMethod(CausticMethod::PhotonMap);
-  });
-  form->addRow(noCausticsButton_);
-  form->addRow(photonMapButton_);
+  const std::pair<QRadioButton*, CausticMethod> methods[] = {
+      {noCausticsButton_, CausticMethod::None},
+      {photonMapButton_, CausticMethod::PhotonMap},
+      {causticMapButton_, CausticMethod::CausticMap}};
+  for (const auto& [button, method] : methods) {
+    buttons->addButton(button);
+    button->setChecked(settings_.caustics == method);
+    connect(button, &QRadioButton::toggled, this, [this, method = method](bool on) {
+      if (on) setCausticMethod(method);
+    });
+    form->addRow(button);
+  }
+  blur_ = new QCheckBox("caustic map blur (b)", group);
+  blur_->setObjectName("causticMapBlur");
+  blur_->setChecked(settings_.causticMapBlur);
+  blur_->setToolTip(
+      "The scene's Gaussian filter over the caustic map (map_blur_sigma, "
+      "map_blur_radius); off shows the raw splats");
+  connect(blur_, &QCheckBox::toggled, this, [this](bool on) { setCausticMapBlur(on); });
+  form->addRow(blur_);
   photons_ = new QSpinBox(group);
   photons_->setObjectName("photonsPerPass");
   constexpr int kMaxPhotons = 20'000'000;  // far beyond an interactive pass on a laptop
@@ -166,8 +192,63 @@ QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
 void MainWindow::setCausticMethod(CausticMethod method) {
   if (settings_.caustics == method) return;
   settings_.caustics = method;
-  (method == CausticMethod::PhotonMap ? photonMapButton_ : noCausticsButton_)->setChecked(true);
+  (method == CausticMethod::PhotonMap    ? photonMapButton_
+   : method == CausticMethod::CausticMap ? causticMapButton_
+                                         : noCausticsButton_)
+      ->setChecked(true);
   viewChanged();
+}
+
+void MainWindow::setCausticMapBlur(bool blur) {
+  if (settings_.causticMapBlur == blur) return;
+  settings_.causticMapBlur = blur;
+  if (blur_->isChecked() != blur) blur_->setChecked(blur);
+  if (settings_.caustics == CausticMethod::CausticMap) viewChanged();
+  if (lightSpace_) showLightSpace(*lightSpace_);  // the irradiance map changes with the blur
+}
+
+void MainWindow::showLightSpace(LightSpaceMap which) {
+  lightSpace_ = which;
+  checkDebugButton();
+  if (!causticMaps_) {
+    view_->setOverlay({}, "caustic maps are not available in this window · n: back to the image");
+    return;
+  }
+  updateLightSpace();
+}
+
+void MainWindow::updateLightSpace() {
+  if (!lightSpace_ || !causticMaps_) return mapPoll_->stop();
+  if (pendingMaps_.valid() &&
+      pendingMaps_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    readyMaps_ = pendingMaps_.get();
+    readyBlur_ = pendingBlur_;
+  }
+  const bool blur = settings_.causticMapBlur;
+  if (readyMaps_ && readyBlur_ == blur) {
+    mapPoll_->stop();
+    view_->setOverlay(lightSpaceImage(*readyMaps_, *lightSpace_),
+                      lightSpaceCaption(*readyMaps_, *lightSpace_, blur));
+    return;
+  }
+  if (!pendingMaps_.valid()) {  // one build at a time; a stale one finishes first
+    pendingBlur_ = blur;
+    pendingMaps_ = std::async(std::launch::async, causticMaps_, blur);
+  }
+  if (!mapPoll_->isActive()) {
+    view_->setOverlay({}, "building the caustic maps…");
+    mapPoll_->start();
+  }
+}
+
+void MainWindow::checkDebugButton() {
+  QRadioButton* button = settings_.debugView == DebugView::Normals ? normalsButton_ : imageButton_;
+  if (lightSpace_) {
+    button = *lightSpace_ == LightSpaceMap::Casters     ? castersButton_
+             : *lightSpace_ == LightSpaceMap::Receivers ? receiversButton_
+                                                        : causticMapViewButton_;
+  }
+  if (!button->isChecked()) button->setChecked(true);
 }
 
 void MainWindow::setPhotonsPerPass(uint64_t photons) {
@@ -226,10 +307,21 @@ void MainWindow::viewChanged() {
 }
 
 void MainWindow::setDebugView(DebugView view) {
-  if (settings_.debugView == view) return;
+  const bool leftLightSpace = lightSpace_.has_value();
+  lightSpace_.reset();
+  mapPoll_->stop();
+  view_->clearOverlay();
+  if (settings_.debugView == view) {
+    if (leftLightSpace) checkDebugButton();
+    return;
+  }
   settings_.debugView = view;
-  (view == DebugView::Normals ? normalsButton_ : imageButton_)->setChecked(true);
+  checkDebugButton();
   viewChanged();
+}
+
+MainWindow::~MainWindow() {
+  if (pendingMaps_.valid()) pendingMaps_.wait();  // a build in flight uses the renderer
 }
 
 void MainWindow::saveImage(const QString& path) const {
@@ -283,6 +375,14 @@ void MainWindow::keyPressEvent(QKeyEvent* event) {
     setDebugView(DebugView::Normals);
   } else if (c == 'n') {
     setDebugView(DebugView::Image);
+  } else if (c == 'R') {
+    showLightSpace(LightSpaceMap::Casters);
+  } else if (c == 'P') {
+    showLightSpace(LightSpaceMap::Receivers);
+  } else if (c == 'C') {
+    showLightSpace(LightSpaceMap::Caustics);
+  } else if (c == 'b') {
+    setCausticMapBlur(!settings_.causticMapBlur);
   } else if (c == 'q') {
     close();
   } else if (c == 't') {

@@ -6,16 +6,21 @@
 
 #include <QMainWindow>
 #include <functional>
+#include <future>
+#include <optional>
 
 #include "gui/CameraController.h"
 #include "gui/FrameAccumulator.h"
+#include "gui/LightSpaceImage.h"
 #include "master/LiveRenderer.h"
 
 class QSpinBox;
 class QRadioButton;
 class QVBoxLayout;
 class QAction;
+class QCheckBox;
 class QLabel;
+class QTimer;
 
 namespace prism {
 
@@ -27,9 +32,13 @@ class MainWindow : public QMainWindow {
 
  public:
   using ViewRequest = std::function<void(const ViewSettings&)>;
+  // The scene's caustic maps with the blur on or off (LiveRenderer::causticMaps); called on a
+  // worker thread, so it may take a while.
+  using CausticMapSource = std::function<std::shared_ptr<const CausticMapEstimator>(bool blur)>;
 
   MainWindow(const SceneDescription& scene, const QString& sceneName, ViewRequest requestView,
-             QWidget* parent = nullptr);
+             CausticMapSource causticMaps = {}, QWidget* parent = nullptr);
+  ~MainWindow() override;
 
   // Asks for the first view (the scene's camera); call once the renderer runs.
   void startRendering();
@@ -46,6 +55,14 @@ class MainWindow : public QMainWindow {
   // The caustics switch and photon budget of the side panel; a change is a new view.
   void setCausticMethod(CausticMethod method);
   void setPhotonsPerPass(uint64_t photons);
+  // The caustic map's Gaussian blur (b); a change is a new view when caustic mapping is on.
+  void setCausticMapBlur(bool blur);
+
+  // Shows a light-space map instead of the frame (R, P, C), once the maps are built; the frame
+  // keeps rendering underneath. Back with setDebugView (n, N).
+  void showLightSpace(LightSpaceMap which);
+  // The light-space map on show, if any (the overlay may still say the maps are being built).
+  std::optional<LightSpaceMap> lightSpaceShown() const { return lightSpace_; }
 
   const ViewSettings& viewSettings() const { return settings_; }
   const FrameAccumulator& frame() const { return frame_; }
@@ -73,6 +90,8 @@ class MainWindow : public QMainWindow {
   QWidget* buildCausticsGroup(QWidget* parent);
   void buildMenus();
   void setDebugView(DebugView view);
+  void checkDebugButton();
+  void updateLightSpace();
   void updateStatusBar();
 
   float exposure_;
@@ -85,12 +104,25 @@ class MainWindow : public QMainWindow {
   QSpinBox* spp_;
   QRadioButton* imageButton_;
   QRadioButton* normalsButton_;
+  QRadioButton* castersButton_;
+  QRadioButton* receiversButton_;
+  QRadioButton* causticMapViewButton_;
   QRadioButton* noCausticsButton_;
   QRadioButton* photonMapButton_;
+  QRadioButton* causticMapButton_;
+  QCheckBox* blur_;
   QSpinBox* photons_;
   QAction* tilesAction_;
   QLabel* status_;
   int fullPassesDone_ = 0;
+
+  CausticMapSource causticMaps_;
+  std::optional<LightSpaceMap> lightSpace_;
+  std::future<std::shared_ptr<const CausticMapEstimator>> pendingMaps_;  // being built
+  bool pendingBlur_ = true;
+  std::shared_ptr<const CausticMapEstimator> readyMaps_;  // the last maps built
+  bool readyBlur_ = true;
+  QTimer* mapPoll_;  // checks a build in flight
 };
 
 }  // namespace prism

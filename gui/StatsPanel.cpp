@@ -30,8 +30,21 @@ QString milliseconds(double seconds) {
   return seconds > 0.0 ? QString::number(seconds * 1e3, 'f', 1) + " ms" : QString("—");
 }
 
-// The photon lines of the summary: empty without photon mapping.
+// The caustic-map line of the summary.
+QString causticMapLines(const PhotonLiveStats& p) {
+  if (p.noCasters) return "\ncaustic map  none: no light reaches a caustic caster";
+  if (p.mapResolution == 0) return "\ncaustic map  building";
+  // (No "²" after a placeholder: QString::arg reads a superscript digit as part of it.)
+  return QString("\ncaustic map  %1x%1 x %2 view(s), blur %3, built in %4 (rank 0)")
+      .arg(p.mapResolution)
+      .arg(p.mapViews)
+      .arg(p.mapBlur ? "on" : "off")
+      .arg(milliseconds(p.mapBuildSeconds));
+}
+
+// The caustics lines of the summary: empty without caustics.
 QString photonLines(const PhotonLiveStats& p) {
+  if (p.method == CausticMethod::CausticMap) return causticMapLines(p);
   if (p.method != CausticMethod::PhotonMap) return {};
   if (p.noCasters) return "\nphotons      none: no light reaches a caustic caster";
   if (p.passes == 0) return "\nphotons      waiting for the first full pass";

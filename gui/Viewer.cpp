@@ -111,6 +111,11 @@ void printSummary(const LiveStats& s, std::ostream& out) {
         << p.photonsPerSecond << " photons/s), kd-tree " << 1e3 * p.buildSeconds << " ms, send "
         << 1e3 * p.distributeSeconds << " ms, gather radius " << p.radius << "\n";
   }
+  if (p.method == CausticMethod::CausticMap && p.mapResolution > 0) {
+    out << "caustic map " << p.mapResolution << "x" << p.mapResolution << " x " << p.mapViews
+        << " view(s), blur " << (p.mapBlur ? "on" : "off") << ", built on rank 0 in "
+        << 1e3 * p.mapBuildSeconds << " ms\n";
+  }
   for (const RankStats& r : s.ranks) {
     out << "rank " << r.rank << "     " << r.threads << " threads, " << r.tiles << " tiles, busy "
         << r.busySeconds << " thread-s, " << r.rays.total() << " rays, " << r.staleTiles
@@ -142,9 +147,10 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   live.maxPasses = options.maxPasses;
   LiveRenderer renderer(scene, live, session);
   RenderBridge bridge;
-  MainWindow window(description,
-                    QFileInfo(QString::fromStdString(options.render.scenePath)).fileName(),
-                    [&renderer](const ViewSettings& v) { renderer.setView(v); });
+  MainWindow window(
+      description, QFileInfo(QString::fromStdString(options.render.scenePath)).fileName(),
+      [&renderer](const ViewSettings& v) { renderer.setView(v); },
+      [&renderer](bool blur) { return renderer.causticMaps(blur); });
   // Queued: the bridge emits on the coordinator thread, the window lives on this one.
   QObject::connect(&bridge, &RenderBridge::passStartedSignal, &window, &MainWindow::onPassStarted,
                    Qt::QueuedConnection);

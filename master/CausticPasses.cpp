@@ -115,8 +115,8 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     stats.map = maps->stats();
     stats.noCasters = maps->empty();
     out.causticMaps = maps;
-    auto pass =
-        std::make_shared<const RenderPass>(RenderPass{0, true, maps->empty() ? nullptr : maps});
+    auto pass = std::make_shared<const RenderPass>(
+        RenderPass{0, true, maps->empty() ? nullptr : maps, !maps->empty()});
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
     out.image = f.image;

@@ -80,28 +80,55 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
 
 constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics' section)";
 
-// The caustics options `render` and `view` share: the method and the photon budget. The viewer
-// has no caustic mapping yet (issue 6), so it is offered to `render` only.
-void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v, bool causticMap) {
+// The caustics options `render` and `view` share: the method, the photon budget and the
+// caustic-map parameters.
+void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
   const char* caustics = kCausticsGroup;
-  std::map<std::string, CausticMethod> methods{{"none", CausticMethod::None},
-                                               {"photon-map", CausticMethod::PhotonMap}};
-  if (causticMap) {
-    methods.emplace("caustic-map", CausticMethod::CausticMap);
-    methods.emplace("map", CausticMethod::CausticMap);  // the short name the design uses
-  }
+  const std::map<std::string, CausticMethod> methods{
+      {"none", CausticMethod::None},
+      {"photon-map", CausticMethod::PhotonMap},
+      {"caustic-map", CausticMethod::CausticMap},
+      {"map", CausticMethod::CausticMap}};  // the short name the design uses
   command
       ->add_option("--caustics", v.causticMethod,
-                   causticMap ? "Caustics method: none, photon-map or caustic-map (default: the "
-                                "scene's)"
-                              : "Caustics method: none or photon-map (default: the scene's)")
+                   "Caustics method: none, photon-map or caustic-map (default: the scene's)")
       ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
-      ->option_text(causticMap ? "none|photon-map|caustic-map (or map)" : "none|photon-map")
+      ->option_text("none|photon-map|caustic-map (or map)")
       ->group(caustics);
   command
       ->add_option("--photons", v.photons,
                    "Photons emitted per pass towards the caustic casters (implies photon-map)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40))
+      ->group(caustics);
+  command
+      ->add_option("--map-resolution", v.mapResolution,
+                   "Caustic map: texels per side of each light-space view (default 512)")
+      ->check(CLI::Range(kMinCausticMapResolution, kMaxCausticMapResolution))
+      ->group(caustics);
+  command
+      ->add_option("--map-steps", v.mapSteps,
+                   "Caustic map: iterations of the receiver-distance estimate (default 3)")
+      ->check(CLI::Range(1, kMaxCausticMapSteps))
+      ->group(caustics);
+  command
+      ->add_option("--map-blur-sigma", v.mapBlurSigma,
+                   "Caustic map: Gaussian blur sigma in texels (default 1)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(caustics);
+  command
+      ->add_option("--map-blur-radius", v.mapBlurRadius,
+                   "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
+      ->check(CLI::Range(0, kMaxCausticMapBlurRadius))
+      ->group(caustics);
+  command
+      ->add_option("--map-paths", v.mapPaths,
+                   "Caustic map: traced (through every caster surface, default) or front-face "
+                   "(one interface, as in the thesis)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, CausticMapPaths>{{"traced", CausticMapPaths::Traced},
+                                                 {"front-face", CausticMapPaths::FrontFace}},
+          CLI::ignore_case))
+      ->option_text("traced|front-face")
       ->group(caustics);
 }
 
@@ -109,7 +136,7 @@ void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v, bool ca
 // scene's gather settings.
 void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
   const char* caustics = kCausticsGroup;
-  addCausticMethodOptions(render, v, true);
+  addCausticMethodOptions(render, v);
   render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
       ->check(CLI::Range(1, 100000))
       ->group(caustics);
@@ -133,36 +160,6 @@ void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues&
   render
       ->add_option("--photon-image", o.photonImagePath,
                    "Debug: also write an image of where the stored photons landed")
-      ->group(caustics);
-  render
-      ->add_option("--map-resolution", v.mapResolution,
-                   "Caustic map: texels per side of each light-space view (default 512)")
-      ->check(CLI::Range(kMinCausticMapResolution, kMaxCausticMapResolution))
-      ->group(caustics);
-  render
-      ->add_option("--map-steps", v.mapSteps,
-                   "Caustic map: iterations of the receiver-distance estimate (default 3)")
-      ->check(CLI::Range(1, kMaxCausticMapSteps))
-      ->group(caustics);
-  render
-      ->add_option("--map-blur-sigma", v.mapBlurSigma,
-                   "Caustic map: Gaussian blur sigma in texels (default 1)")
-      ->check(CLI::NonNegativeNumber)
-      ->group(caustics);
-  render
-      ->add_option("--map-blur-radius", v.mapBlurRadius,
-                   "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
-      ->check(CLI::Range(0, kMaxCausticMapBlurRadius))
-      ->group(caustics);
-  render
-      ->add_option("--map-paths", v.mapPaths,
-                   "Caustic map: traced (through every caster surface, default) or front-face "
-                   "(one interface, as in the thesis)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, CausticMapPaths>{{"traced", CausticMapPaths::Traced},
-                                                 {"front-face", CausticMapPaths::FrontFace}},
-          CLI::ignore_case))
-      ->option_text("traced|front-face")
       ->group(caustics);
   render
       ->add_option("--caustic-map-debug", o.causticMapDebugPrefix,
@@ -189,9 +186,10 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
       "view",
       "Render a scene live in a Qt window (rank 0 only; other ranks render tiles).\n"
       "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
-      "N normals, n image, q quits, h or F1 shows every key. See docs/viewer.md.");
+      "N normals, n image, R/P/C caustic-map casters/receivers/irradiance, b caustic-map\n"
+      "blur, q quits, h or F1 shows every key. See docs/viewer.md.");
   addSceneOptions(view, o.render, v);
-  addCausticMethodOptions(view, v, false);
+  addCausticMethodOptions(view, v);
   view->add_option("--preview-scale", o.previewScale,
                    "After a camera change, first render 1/N of each side at 1 spp (default 4; "
                    "1: no preview)")
@@ -231,17 +229,17 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
   if (given("--caustics")) options.causticMethod = overrides.causticMethod;
   if (given("--photons")) options.photons = overrides.photons;
-  if (!command->get_option_no_throw("--gather")) return;  // `view` has only the two above
-  if (given("--gather")) options.gather = overrides.gather;
-  if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
-  if (given("--progressive")) options.progressive = true;
-  if (given("--passes")) options.passes = overrides.passes;
-  if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
   if (given("--map-resolution")) options.mapResolution = overrides.mapResolution;
   if (given("--map-steps")) options.mapSteps = overrides.mapSteps;
   if (given("--map-blur-sigma")) options.mapBlurSigma = overrides.mapBlurSigma;
   if (given("--map-blur-radius")) options.mapBlurRadius = overrides.mapBlurRadius;
   if (given("--map-paths")) options.mapPaths = overrides.mapPaths;
+  if (!command->get_option_no_throw("--gather")) return;  // `view` has only the ones above
+  if (given("--gather")) options.gather = overrides.gather;
+  if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
+  if (given("--progressive")) options.progressive = true;
+  if (given("--passes")) options.passes = overrides.passes;
+  if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
 }
 
 }  // namespace

@@ -116,6 +116,7 @@ void LiveRenderer::beginPassLocked(const PassPlan& plan, std::shared_ptr<const R
   view->samplesPerPixel = index == 0 ? 1 : plan.view.samplesPerPixel;
   view->seed = passSeed(settings.seed, index);
   view->debugView = plan.view.debugView;
+  view->causticMapBlur = plan.view.causticMapBlur;
   info.view = view;
   info.light = std::move(light);
   int threads = 0;
@@ -156,12 +157,46 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
   return PassPlan{index, nextFrame_++, viewId_, view_};
 }
 
-std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {
-  // The preview and the debug views show no caustics.
-  if (plan.index == 0 || plan.view.caustics != CausticMethod::PhotonMap ||
-      plan.view.debugView != DebugView::Image) {
-    return nullptr;
+std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) {
+  const std::lock_guard<std::mutex> lock(mapsMutex_);
+  std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
+  if (!maps) {
+    const auto start = SteadyClock::now();
+    maps = std::make_shared<const CausticMapEstimator>(
+        scene_, causticMapSettings(scene_.causticSettings(), blur), pool_.threadCount());
+    mapBuildSeconds_[blur] = secondsSince(start);
   }
+  return maps;
+}
+
+std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& plan) {
+  // Every rank builds the maps from the scene once per blur setting (the slaves when the first
+  // tile asks for them); they do not depend on the camera, so the preview shows them too.
+  const bool blur = plan.view.causticMapBlur;
+  const std::shared_ptr<const CausticMapEstimator> maps = causticMaps(blur);
+  double buildSeconds = 0.0;
+  {
+    const std::lock_guard<std::mutex> lock(mapsMutex_);
+    buildSeconds = mapBuildSeconds_[blur];
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (plan.viewId == viewId_) {
+    PhotonLiveStats& s = live_.photons;
+    s.noCasters = maps->empty();
+    s.mapResolution = scene_.causticSettings().mapResolution;
+    s.mapViews = maps->stats().views;
+    s.mapBlur = blur;
+    s.mapBuildSeconds = buildSeconds;
+  }
+  if (maps->empty()) return nullptr;
+  return std::make_shared<const RenderPass>(RenderPass{plan.frame, true, maps, true});
+}
+
+std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {
+  if (plan.view.debugView != DebugView::Image) return nullptr;  // debug views: no caustics
+  if (plan.view.caustics == CausticMethod::CausticMap) return causticMapLight(plan);
+  // The preview shows no photon-mapped caustics: a photon pass would delay it.
+  if (plan.index == 0 || plan.view.caustics != CausticMethod::PhotonMap) return nullptr;
   const CausticSettings& c = scene_.causticSettings();
   const uint64_t budget = plan.view.photonsPerPass > 0 ? plan.view.photonsPerPass : c.photons;
   if (!tracer_ || tracerBudget_ != budget) {

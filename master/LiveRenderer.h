@@ -9,15 +9,19 @@
 // makes). Each pass is its own frame on the wire (a new frame id); a new view ends the
 // current frame at once, and slaves drop its queued tiles.
 //
-// With photon-mapped caustics on (ViewSettings::caustics), every full-resolution pass i first
-// traces a photon pass of its own (master/PhotonPass.h, across the ranks) and gathers from it
-// with the progressive fixed radius r_i: r_1 from the scene's caustics.radius or, when that is
-// 0, automaticProgressiveRadius of pass 1's map; r²(i+1) = r²(i)·(i + α)/(i + 1). So the
-// average of passes 1..N that the window shows is progressive photon mapping with N passes
-// (Knaus & Zwicker 2011). Pass 1 with caustics is therefore not `prism render`'s k-NN image: it
-// is a single progressive pass, direct light plus the fixed-radius estimate of one photon map.
-// The photon pass number (which keys the photon streams and names the map on the wire) is the
-// pass's frame id, so it is unique per pass. The preview pass renders no caustics.
+// With caustic mapping on, every pass (the preview too) adds the caustic maps' caustics: each
+// rank builds the maps from the scene once per blur setting and keeps them, since they do not
+// depend on the camera.
+//
+// With photon-mapped caustics on, every full-resolution pass i first traces a photon pass of
+// its own (master/PhotonPass.h, across the ranks) and gathers from it with the progressive
+// fixed radius r_i: r_1 from the scene's caustics.radius or, when that is 0,
+// automaticProgressiveRadius of pass 1's map; r²(i+1) = r²(i)·(i + α)/(i + 1). So the average
+// of passes 1..N that the window shows is progressive photon mapping with N passes (Knaus &
+// Zwicker 2011). Pass 1 with caustics is therefore not `prism render`'s k-NN image: it is a
+// single progressive pass, direct light plus the fixed-radius estimate of one photon map. The
+// photon pass number (which keys the photon streams and names the map on the wire) is the
+// pass's frame id, so it is unique per pass. The preview pass renders no photon caustics.
 //
 // run() is the coordinator: the only thread that calls MPI, the only thread that calls the
 // listener, and the one that traces photons (a new view asked for meanwhile waits for that
@@ -29,11 +33,13 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <vector>
 
+#include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonTracer.h"
 #include "master/FrameRenderer.h"
 #include "master/TileScheduler.h"
@@ -67,6 +73,7 @@ struct ViewSettings {
   DebugView debugView = DebugView::Image;
   CausticMethod caustics = CausticMethod::None;  // photon map: one photon pass per full pass
   uint64_t photonsPerPass = 0;                   // photon budget; 0: the scene's
+  bool causticMapBlur = true;                    // caustic map: the scene's blur, or none
 };
 
 struct PassInfo {
@@ -83,7 +90,7 @@ struct PassInfo {
 // The photon side of the current view (all zero without photon mapping).
 struct PhotonLiveStats {
   CausticMethod method = CausticMethod::None;
-  bool noCasters = false;       // photon mapping is on but no light reaches a caster
+  bool noCasters = false;       // caustics are on but no light reaches a caster
   uint64_t photonsPerPass = 0;  // budget: photons emitted per pass
   int passes = 0;               // photon passes traced for the current view
   // The last photon pass:
@@ -94,6 +101,11 @@ struct PhotonLiveStats {
   double distributeSeconds = 0.0;  // map sent to the slaves
   double photonsPerSecond = 0.0;   // emitted / traceSeconds
   float radius = 0.0f;             // its gather radius
+  // Caustic mapping (method CausticMap):
+  int mapResolution = 0;         // texels per side of each light-space view
+  int mapViews = 0;              // views over all lights
+  bool mapBlur = true;           // the Gaussian blur is on
+  double mapBuildSeconds = 0.0;  // rank 0's build of the maps in use
 };
 
 struct RankStats {
@@ -148,6 +160,10 @@ class LiveRenderer {
   // The numbers statsUpdated reports, now (rays/s: since the last report). Any thread.
   LiveStats stats();
 
+  // The scene's caustic maps with the blur on or off, built on first use (by whichever thread
+  // asks first; others wait) and kept. Any thread: the viewer's debug images use them.
+  std::shared_ptr<const CausticMapEstimator> causticMaps(bool blur);
+
   // The seed of full-resolution pass p ≥ 1: pass 1 keeps the scene's seed.
   static uint64_t passSeed(uint64_t sceneSeed, int pass);
 
@@ -160,6 +176,7 @@ class LiveRenderer {
   void accept(uint32_t frame, TileResult&& tile, int rank);
   std::optional<PassPlan> nextPassLocked();
   std::shared_ptr<const RenderPass> passLight(const PassPlan& plan);
+  std::shared_ptr<const RenderPass> causticMapLight(const PassPlan& plan);
   void beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
                        std::vector<PassInfo>& started);
   void serviceSlaves();
@@ -195,6 +212,10 @@ class LiveRenderer {
   uint64_t tracerBudget_ = 0;
   float maxRadius_;
   float radius_ = 0.0f;  // the last photon pass's gather radius, for the next one's
+
+  std::mutex mapsMutex_;  // guards the two below; mutex_ is never taken while holding it
+  std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
+  std::map<bool, double> mapBuildSeconds_;
 };
 
 }  // namespace prism

@@ -84,15 +84,23 @@ class PhotonWork {
   }
 
   // The render pass a tile job names; throws when it needs a photon map this rank lacks.
-  std::shared_ptr<const RenderPass> pass(uint32_t index, uint8_t terms) {
-    const bool caustics = terms & wire::kTermCaustics;
-    if (caustics && scene_.causticSettings().method == CausticMethod::CausticMap) {
+  // `blur`: the current view's caustic-map blur switch.
+  std::shared_ptr<const RenderPass> pass(uint32_t index, uint8_t terms, bool blur) {
+    const bool direct = (terms & wire::kTermDirect) != 0;
+    if (terms & wire::kTermCausticMap) {
       // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
-      if (!causticMaps_)
-        causticMaps_ = std::make_shared<const CausticMapEstimator>(scene_, threads_);
-      caustics_ = causticMaps_;
-      mapPass_ = index;
+      std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
+      if (!maps) {
+        maps = std::make_shared<const CausticMapEstimator>(
+            scene_, causticMapSettings(scene_.causticSettings(), blur), threads_);
+      }
+      std::shared_ptr<const RenderPass>& cached = mapPasses_[{terms, blur}];
+      if (!cached || cached->index != index) {
+        cached = std::make_shared<const RenderPass>(RenderPass{index, direct, maps, true});
+      }
+      return cached;
     }
+    const bool caustics = terms & wire::kTermCaustics;
     if (caustics && (!caustics_ || mapPass_ != index)) {
       throw std::runtime_error("tile of pass " + std::to_string(index) +
                                " needs a photon map this rank has not received");
@@ -100,7 +108,7 @@ class PhotonWork {
     std::shared_ptr<const RenderPass>& cached = passes_[terms];
     if (!cached || cached->index != index) {
       cached = std::make_shared<const RenderPass>(
-          RenderPass{index, (terms & wire::kTermDirect) != 0, caustics ? caustics_ : nullptr});
+          RenderPass{index, direct, caustics ? caustics_ : nullptr});
     }
     return cached;
   }
@@ -115,9 +123,11 @@ class PhotonWork {
   std::unique_ptr<PhotonTracer> tracer_;
   std::future<wire::PhotonShareMessage> running_;
   uint32_t mapPass_ = 0;
-  std::shared_ptr<const CausticEstimator> caustics_;
-  std::shared_ptr<const CausticMapEstimator> causticMaps_;
+  std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
+  // Caustic maps by blur switch, built on first use and kept: they depend on the scene alone.
+  std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
+  std::map<std::pair<uint8_t, bool>, std::shared_ptr<const RenderPass>> mapPasses_;
 };
 
 // After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
@@ -263,8 +273,8 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       }
       if (hang || (drop && received % 2 == 0)) continue;
       held.insert(job.tileIndex);
-      jobs.push(
-          TileJob(job.tileIndex, job.rect, job.frame, view, photons.pass(job.pass, job.terms)));
+      jobs.push(TileJob(job.tileIndex, job.rect, job.frame, view,
+                        photons.pass(job.pass, job.terms, !view || view->causticMapBlur)));
     }
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({e.what()}));

@@ -2,9 +2,10 @@
 
 namespace prism {
 
-CausticMapEstimator::CausticMapEstimator(const Scene& scene, int threads) {
+CausticMapEstimator::CausticMapEstimator(const Scene& scene, const CausticSettings& settings,
+                                         int threads) {
   for (size_t i = 0; i < scene.lights().size(); ++i) {
-    auto map = std::make_unique<CausticMap>(scene, i, scene.causticSettings(), threads);
+    auto map = std::make_unique<CausticMap>(scene, i, settings, threads);
     if (!map->empty() && map->stats().casterTexels > 0) maps_.push_back(std::move(map));
   }
 }

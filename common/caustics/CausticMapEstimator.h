@@ -11,10 +11,19 @@
 
 namespace prism {
 
+// The scene's caustic settings with the Gaussian blur kept or turned off (the viewer's `b`).
+inline CausticSettings causticMapSettings(CausticSettings settings, bool blur) {
+  if (!blur) settings.mapBlurRadius = 0;
+  return settings;
+}
+
 class CausticMapEstimator : public CausticEstimator {
  public:
-  // Builds the maps with `threads` threads (0: all cores), with the scene's caustic settings.
-  CausticMapEstimator(const Scene& scene, int threads);
+  // Builds the maps with `threads` threads (0: all cores), with the scene's caustic settings
+  // or with `settings`.
+  CausticMapEstimator(const Scene& scene, int threads)
+      : CausticMapEstimator(scene, scene.causticSettings(), threads) {}
+  CausticMapEstimator(const Scene& scene, const CausticSettings& settings, int threads);
 
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
 

@@ -16,6 +16,9 @@ struct RenderPass {
   uint32_t index = 0;
   bool direct = true;
   std::shared_ptr<const CausticEstimator> caustics;  // null: no caustic term
+  // The caustics come from caustic maps each rank builds from the scene (nothing is sent),
+  // not from a photon map the master sends.
+  bool causticMap = false;
 
   LightTerms terms() const { return {direct, caustics.get()}; }
 };

@@ -24,6 +24,7 @@ struct RenderView {
   int samplesPerPixel = 1;
   uint64_t seed = 0;  // each refinement pass uses its own, so passes average to more samples
   DebugView debugView = DebugView::Image;
+  bool causticMapBlur = true;  // caustic mapping: the scene's Gaussian blur, or none (viewer `b`)
 };
 
 }  // namespace prism

@@ -190,7 +190,9 @@ TileJobMessage decodeTileJob(const Message& message) {
     rect = readRect(r);
     pass = r.readU32();
     terms = r.readU8();
-    if (terms == 0 || terms > (kTermDirect | kTermCaustics)) {
+    // Any non-empty set of the three, but never both kinds of caustics.
+    const bool bothCaustics = (terms & kTermCaustics) && (terms & kTermCausticMap);
+    if (terms == 0 || terms > (kTermDirect | kTermCaustics | kTermCausticMap) || bothCaustics) {
       throw WireError("invalid light terms " + std::to_string(terms));
     }
     return job;
@@ -297,7 +299,7 @@ ProgressMessage decodeProgress(const Message& message) {
 std::vector<uint8_t> encodeView(const ViewMessage& message) {
   return encodeWith(MessageType::View, [&](ByteWriter& w) {
     const auto& [frame, view] = message;
-    const auto& [camera, width, height, samplesPerPixel, seed, debugView] = view;
+    const auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur] = view;
     w.writeU32(frame);
     writeCamera(w, camera);
     w.writeI32(width);
@@ -305,6 +307,7 @@ std::vector<uint8_t> encodeView(const ViewMessage& message) {
     w.writeI32(samplesPerPixel);
     w.writeU64(seed);
     w.writeU32(static_cast<uint32_t>(debugView));
+    w.writeU8(causticMapBlur ? 1 : 0);
   });
 }
 
@@ -312,7 +315,7 @@ ViewMessage decodeView(const Message& message) {
   return decodePayload(message, MessageType::View, [](ByteReader& r) {
     ViewMessage m;
     auto& [frame, view] = m;
-    auto& [camera, width, height, samplesPerPixel, seed, debugView] = view;
+    auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur] = view;
     frame = r.readU32();
     camera = readCamera(r);
     width = r.readI32();
@@ -320,6 +323,9 @@ ViewMessage decodeView(const Message& message) {
     samplesPerPixel = r.readI32();
     seed = r.readU64();
     const uint32_t rawView = r.readU32();
+    const uint8_t blur = r.readU8();
+    if (blur > 1) throw WireError("invalid caustic-map blur flag " + std::to_string(blur));
+    causticMapBlur = blur == 1;
     if (width <= 0 || height <= 0 || int64_t{width} * height > INT_MAX) {
       throw WireError("invalid view size " + std::to_string(width) + "x" + std::to_string(height));
     }

@@ -22,7 +22,8 @@ namespace prism::wire {
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
 // 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
-inline constexpr uint16_t kVersion = 4;
+// 5: the caustic-map term of TileJob, and the view's caustic-map blur switch.
+inline constexpr uint16_t kVersion = 5;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -63,6 +64,8 @@ inline Message decodeMessage(const std::vector<uint8_t>& bytes) {
 // Bits of TileJobMessage::terms: what the tile adds up (see render/WhittedIntegrator.h).
 inline constexpr uint8_t kTermDirect = 1;
 inline constexpr uint8_t kTermCaustics = 2;  // with the photon map of `pass`
+// With the caustic maps the rank builds from the scene, blurred as the current view says.
+inline constexpr uint8_t kTermCausticMap = 4;
 
 struct TileJobMessage {
   uint32_t frame = 0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <QApplication>
+#include <QCheckBox>
 #include <QElapsedTimer>
 #include <QRadioButton>
 #include <QSpinBox>
@@ -42,7 +43,9 @@ class LiveWindow {
       : description_(load(scenePath, width, height, spp)),
         scene_(description_),
         renderer_(scene_, options(maxPasses)),
-        window_(description_, "test", [this](const ViewSettings& v) { renderer_.setView(v); }) {
+        window_(
+            description_, "test", [this](const ViewSettings& v) { renderer_.setView(v); },
+            [this](bool blur) { return renderer_.causticMaps(blur); }) {
     QObject::connect(&bridge_, &RenderBridge::passStartedSignal, &window_,
                      &MainWindow::onPassStarted, Qt::QueuedConnection);
     QObject::connect(&bridge_, &RenderBridge::tileAssignedSignal, &window_,
@@ -63,6 +66,7 @@ class LiveWindow {
   }
 
   MainWindow& window() { return window_; }
+  LiveRenderer& renderer() { return renderer_; }
   const Scene& scene() const { return scene_; }
   const SceneDescription& description() const { return description_; }
 
@@ -308,6 +312,66 @@ TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
   s.photons.noCasters = true;
   panel.showStats(s);
   EXPECT_TRUE(panel.summaryText().contains("no light reaches a caustic caster"));
+}
+
+// Caustic mapping from the side panel and the keys: the switch and `b` start new views whose
+// passes carry the maps' caustics, the statistics say which maps are in use, and R, P and C show
+// exactly the light-space images of the maps the renderer built, until n.
+TEST(MainWindow, CausticMapSwitchBlurKeyAndLightSpaceViews) {
+  LiveWindow live(PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml", 40, 30, 1, 2);
+  MainWindow& w = live.window();
+  auto* causticMap = w.findChild<QRadioButton*>("causticsCausticMap");
+  auto* blur = w.findChild<QCheckBox*>("causticMapBlur");
+  ASSERT_TRUE(causticMap && blur);
+  EXPECT_TRUE(blur->isChecked());
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  const uint64_t view = w.viewId();
+  causticMap->click();
+  EXPECT_EQ(w.viewSettings().caustics, CausticMethod::CausticMap);
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 1; }));
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  ASSERT_NE(w.frame().pass().light, nullptr);
+  EXPECT_TRUE(w.frame().pass().light->causticMap);
+  ASSERT_TRUE(waitUntil([&] {
+    return w.statsPanel()->summaryText().contains("caustic map  512x512 x 1 view(s), blur on");
+  })) << w.statsPanel()->summaryText().toStdString();
+
+  QTest::keyClicks(w.frameView(), "b");
+  EXPECT_FALSE(w.viewSettings().causticMapBlur);
+  EXPECT_FALSE(blur->isChecked());
+  ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 2; }));
+  ASSERT_TRUE(waitUntil([&] { return w.statsPanel()->summaryText().contains("blur off"); }))
+      << w.statsPanel()->summaryText().toStdString();
+
+  const auto unblurred = live.renderer().causticMaps(false);
+  ASSERT_FALSE(unblurred->empty());
+  const struct {
+    const char* key;
+    LightSpaceMap map;
+    const char* button;
+  } views[] = {{"C", LightSpaceMap::Caustics, "debugCausticMap"},
+               {"R", LightSpaceMap::Casters, "debugCasters"},
+               {"P", LightSpaceMap::Receivers, "debugReceivers"}};
+  for (const auto& v : views) {
+    QTest::keyClicks(w.frameView(), v.key);
+    ASSERT_TRUE(waitUntil([&] { return !w.frameView()->overlayImage().isNull(); }));
+    EXPECT_EQ(w.lightSpaceShown(), v.map);
+    EXPECT_TRUE(w.findChild<QRadioButton*>(v.button)->isChecked());
+    const QImage expected = lightSpaceImage(*unblurred, v.map);
+    EXPECT_EQ(w.frameView()->overlayImage(), expected);
+    int lit = 0;  // texels with something to show
+    for (int y = 0; y < expected.height(); ++y) {
+      for (int x = 0; x < expected.width(); ++x) lit += expected.pixel(x, y) != qRgb(0, 0, 0);
+    }
+    EXPECT_GT(lit, 100);
+    EXPECT_TRUE(w.frameView()->overlayCaption().contains("blur off"));
+  }
+  EXPECT_TRUE(w.frameView()->overlayCaption().startsWith("receiver positions (P)"));
+  QTest::keyClicks(w.frameView(), "n");
+  EXPECT_FALSE(w.frameView()->showsOverlay());
+  EXPECT_FALSE(w.lightSpaceShown().has_value());
+  EXPECT_EQ(w.viewSettings().debugView, DebugView::Image);
+  EXPECT_EQ(w.viewId(), view + 2);  // leaving a light-space view re-renders nothing
 }
 
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {

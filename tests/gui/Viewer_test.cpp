@@ -74,6 +74,25 @@ TEST_F(Viewer, TwoRanksRenderPhotonMappedPassesLikeOne) {
   EXPECT_GT(different, with.pixels.size() / 50);
 }
 
+// Caustic mapping in the viewer: each rank builds the maps from the scene, so two ranks give the
+// pixels of one, which are `prism render --caustics map`'s (pass 1 keeps the scene's seed).
+TEST_F(Viewer, TwoRanksRenderCausticMapsLikeRender) {
+  ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  const std::string scene = PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml";
+  const std::string args =
+      " --caustics map --map-resolution 128 --max-passes 1 "
+      "--exit-after-passes 1 --save ";
+  const auto two = runPrismMpi(2, "view " + scene + args + path("two.exr"));
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  EXPECT_NE(two.output.find("caustic map 128x128 x 1 view(s), blur on, built on rank 0 in "),
+            std::string::npos)
+      << two.output;
+  const auto render = runPrism("render " + scene + " --caustics map --map-resolution 128 -q -o " +
+                               path("render.exr"));
+  ASSERT_EQ(render.exitCode, 0) << render.output;
+  expectSameImage(path("two.exr"), path("render.exr"));
+}
+
 TEST_F(Viewer, NoDisplayIsAClearError) {
   const auto bare = test::runCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM " +
                                      std::string(PRISM_EXECUTABLE) + " view " + kScene);

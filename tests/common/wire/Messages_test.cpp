@@ -144,11 +144,12 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad[0] = 'Q';
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
-  // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget.
-  for (uint16_t version : {1, 2, 3, 5}) {
+  // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
+  // 4: before the caustic-map term and blur switch.
+  for (uint16_t version : {1, 2, 3, 4, 6}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 4");
+                    "message version " + std::to_string(version) + ", this build speaks 5");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View; 12 is the first unused type.
@@ -289,6 +290,7 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   m.view.samplesPerPixel = 3;
   m.view.seed = 0xDEADBEEFCAFEull;
   m.view.debugView = DebugView::Normals;
+  m.view.causticMapBlur = false;
   const ViewMessage back = decodeView(decodeMessage(encodeView(m)));
   EXPECT_EQ(back.frame, 41u);
   EXPECT_EQ(back.view.camera.position, m.view.camera.position);
@@ -300,6 +302,10 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   EXPECT_EQ(back.view.samplesPerPixel, 3);
   EXPECT_EQ(back.view.seed, 0xDEADBEEFCAFEull);
   EXPECT_EQ(back.view.debugView, DebugView::Normals);
+  EXPECT_FALSE(back.view.causticMapBlur);
+  ViewMessage blurred = m;
+  blurred.view.causticMapBlur = true;
+  EXPECT_TRUE(decodeView(decodeMessage(encodeView(blurred))).view.causticMapBlur);
   EXPECT_STREQ(messageTypeName(MessageType::View), "View");
 
   ViewMessage bad = m;
@@ -312,6 +318,11 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   bad = m;
   bad.view.debugView = static_cast<DebugView>(77);
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid debug view 77");
+  Message flag = decodeMessage(encodeView(m));
+  flag.payload.back() = 2;  // the blur switch is the last byte
+  expectWireError(
+      [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, flag.payload))); },
+      "invalid caustic-map blur flag 2");
   EXPECT_THROW(decodeView(decodeMessage(encodeShutdown())), WireError);
 }
 
@@ -324,7 +335,8 @@ TEST(Messages, PhotonTypeNames) {
 }
 
 TEST(Messages, TileJobCarriesItsPassAndLightTerms) {
-  for (uint8_t terms : {kTermDirect, kTermCaustics, uint8_t(kTermDirect | kTermCaustics)}) {
+  for (uint8_t terms : {kTermDirect, kTermCaustics, uint8_t(kTermDirect | kTermCaustics),
+                        kTermCausticMap, uint8_t(kTermDirect | kTermCausticMap)}) {
     TileJobMessage job{9, 4, {0, 16, 8, 8}};
     job.pass = 0xDEADBEEF;
     job.terms = terms;
@@ -338,7 +350,8 @@ TEST(Messages, TileJobCarriesItsPassAndLightTerms) {
 }
 
 TEST(Messages, TileJobWithoutLightTermsIsRejected) {
-  for (uint8_t terms : {0, 4, 0xFF}) {
+  // None, unknown bits, or photon-map and caustic-map caustics at once.
+  for (uint8_t terms : {0, 6, 7, 8, 0xFF}) {
     TileJobMessage job{0, 0, {0, 0, 4, 4}};
     job.terms = terms;
     const Message m = decodeMessage(encodeTileJob(job));
