@@ -44,11 +44,19 @@ class Outbox {
 };
 
 // The caustic side of a slave: traces the photon shares the master asks for (on a thread of its
-// own, so the main thread keeps its heartbeat going) and holds the photon map of the current
-// pass for the tiles that need it.
+// own, so the main thread keeps its heartbeat going), holds the photon map of the current pass
+// for the tiles that need it, and builds the caustic maps.
 class PhotonWork {
  public:
-  PhotonWork(const Scene& scene, int threads) : scene_(scene), threads_(threads) {}
+  PhotonWork(const Scene& scene, int threads) : scene_(scene), threads_(threads) {
+    // A caustic-map scene: build the maps now, while rank 0 builds its own, rather than when
+    // the first tile asks (which would put a second build on the frame's critical path).
+    if (scene_.causticSettings().method == CausticMethod::CausticMap) {
+      eagerMaps_ = std::async(std::launch::async, [this] {
+        return std::make_shared<const CausticMapEstimator>(scene_, threads_);
+      });
+    }
+  }
 
   void start(const wire::PhotonJobMessage& job) {
     if (running_.valid()) running_.wait();  // the master asks again only after a pass is done
@@ -90,6 +98,7 @@ class PhotonWork {
     if (terms & wire::kTermCausticMap) {
       // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
       std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
+      if (!maps && blur && eagerMaps_.valid()) maps = eagerMaps_.get();
       if (!maps) {
         maps = std::make_shared<const CausticMapEstimator>(
             scene_, causticMapSettings(scene_.causticSettings(), blur), threads_);
@@ -115,6 +124,7 @@ class PhotonWork {
 
   void wait() {
     if (running_.valid()) running_.wait();
+    if (eagerMaps_.valid()) eagerMaps_.wait();
   }
 
  private:
@@ -127,6 +137,7 @@ class PhotonWork {
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
   // Caustic maps by blur switch, built on first use and kept: they depend on the scene alone.
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
+  std::future<std::shared_ptr<const CausticMapEstimator>> eagerMaps_;  // with the scene's blur
   std::map<std::pair<uint8_t, bool>, std::shared_ptr<const RenderPass>> mapPasses_;
 };
 

@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
+#include "parse/SceneLoader.h"
 #include "tests/common/caustics/BallOverFloorScene.h"
 
 namespace prism {
@@ -208,6 +210,55 @@ TEST(CausticPasses, SceneWithoutACasterRendersDirectLightOnlyAndTracesNothing) {
   const CausticFrame without = render(d);
   EXPECT_FALSE(without.caustics.noCasters);
   EXPECT_TRUE(bitIdentical(with.image, without.image));
+}
+
+// A caustic seen only in a mirror (scenes/caustic-map-mirror-view.yaml): a ray tracer looks the
+// caustic map up wherever a ray meets a receiver, so the mirror shows 0.9 (its reflectance) of
+// what a camera at the mirror image of the eye sees directly, as photon mapping does. The
+// thesis's image-space setting, which applies the map only to receivers the eye sees directly,
+// would show no caustic there.
+TEST(CausticPasses, CausticMapIsSeenInAMirrorLikeDirectly) {
+  SceneDescription inMirror =
+      loadScene(std::string(PRISM_SOURCE_DIR) + "/scenes/caustic-map-mirror-view.yaml");
+  inMirror.render.width = 96;
+  inMirror.render.height = 72;
+  inMirror.caustics.mapResolution = 256;
+  inMirror.caustics.photons = 300000;
+  // The same view without the mirror, from the eye's mirror image in the plane z = -4.5; its
+  // image is the mirror's, flipped left to right.
+  SceneDescription direct = inMirror;
+  direct.meshes.clear();
+  direct.camera.position.z = -9.0f - inMirror.camera.position.z;
+  direct.camera.lookAt.z = -9.0f - inMirror.camera.lookAt.z;
+  // Rows that see the mirror (the bottom ones see the floor in front of it directly).
+  const int rows = inMirror.render.height * 3 / 4;
+  const auto sum = [&](const ImageRgb& image, bool flip) {
+    double total = 0.0;
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < image.width; ++x) total += image.at(flip ? image.width - 1 - x : x, y).y;
+    }
+    return total;
+  };
+  const auto caustic = [&](SceneDescription d, CausticMethod method, bool flip) {
+    d.caustics.method = method;
+    const double with = sum(render(d).image, flip);
+    d.spheres.at(0).caustic = CausticRole::Off;  // the same ball and shadows, no caustic
+    return with - sum(render(d).image, flip);
+  };
+  const double mapMirror = caustic(inMirror, CausticMethod::CausticMap, false);
+  const double mapDirect = caustic(direct, CausticMethod::CausticMap, true);
+  const double photonMirror = caustic(inMirror, CausticMethod::PhotonMap, false);
+  const double photonDirect = caustic(direct, CausticMethod::PhotonMap, true);
+  std::printf(
+      "caustic radiance summed: map in mirror %.4g, direct %.4g; photons in mirror %.4g, "
+      "direct %.4g\n",
+      mapMirror, mapDirect, photonMirror, photonDirect);
+  EXPECT_GT(mapMirror, 0.0);
+  EXPECT_NEAR(mapMirror / (0.9 * mapDirect), 1.0, 0.01);
+  EXPECT_NEAR(photonMirror / (0.9 * photonDirect), 1.0, 0.02);
+  // The methods differ by the same amount in the mirror as directly: the ball's weak reflected
+  // light, outside the map's light-space view, which only photons carry (about a tenth here).
+  EXPECT_NEAR((mapMirror / photonMirror) / (mapDirect / photonDirect), 1.0, 0.02);
 }
 
 TEST(CausticPasses, AutomaticRadii) {
