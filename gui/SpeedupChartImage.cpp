@@ -75,7 +75,7 @@ QChartView* drawPanel(const ChartPanel& panel) {
   double xLow = 1e300, xHigh = -1e300, yLow = 1e300, yHigh = -1e300;
   std::vector<QAbstractSeries*> all;
   auto* oversubscribed = new QScatterSeries;
-  oversubscribed->setName("oversubscribed (ranks > cores)");
+  oversubscribed->setName("oversubscribed");
   oversubscribed->setMarkerShape(QScatterSeries::MarkerShapeRectangle);
   oversubscribed->setMarkerSize(13);
   oversubscribed->setColor(Qt::transparent);
@@ -158,7 +158,7 @@ void writeSpeedupChartImage(const SpeedupChart& chart, const std::string& pngPat
   auto* row = new QHBoxLayout;
   for (const ChartPanel& panel : chart.panels) row->addWidget(drawPanel(panel));
   layout->addLayout(row);
-  page.resize(820 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), 600);
+  page.resize(1000 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), 640);
   page.show();
   QApplication::processEvents();
   const QPixmap image = page.grab();

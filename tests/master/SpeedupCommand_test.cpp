@@ -90,8 +90,8 @@ TEST_F(SpeedupCommand, ThreeRanksWriteEveryPointChartsAndProjection) {
 #ifdef PRISM_HAVE_VIEWER
   for (const std::string& chart : {files.chart, files.projectionChart}) {
     const auto [width, height] = pngSize(chart);
-    EXPECT_EQ(width, 1640u) << chart;
-    EXPECT_EQ(height, 600u) << chart;
+    EXPECT_EQ(width, 2000u) << chart;
+    EXPECT_EQ(height, 640u) << chart;
     EXPECT_GT(std::filesystem::file_size(chart), 20000u) << chart;  // axes, lines, text
   }
 #else
