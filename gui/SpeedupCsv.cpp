@@ -45,6 +45,8 @@ std::vector<SpeedupPoint> parseSpeedupCsv(const std::string& text, const std::st
   std::string line;
   int lineNumber = 0;
   std::array<int, 4> column{-1, -1, -1, -1};
+  int seriesColumn = -1;  // optional: `prism speedup` writes several series in one file
+  std::string firstSeries;
   bool haveHeader = false;
   std::vector<SpeedupPoint> points;
   while (std::getline(in, line)) {
@@ -62,8 +64,14 @@ std::vector<SpeedupPoint> parseSpeedupCsv(const std::string& text, const std::st
         }
         column[c] = static_cast<int>(it - fields.begin());
       }
+      const auto series = std::find(fields.begin(), fields.end(), "series");
+      if (series != fields.end()) seriesColumn = static_cast<int>(series - fields.begin());
       haveHeader = true;
       continue;
+    }
+    if (seriesColumn >= 0 && seriesColumn < static_cast<int>(fields.size())) {
+      if (points.empty() && firstSeries.empty()) firstSeries = fields[seriesColumn];
+      if (fields[seriesColumn] != firstSeries) continue;  // one curve: the first series
     }
     const int needed = *std::max_element(column.begin(), column.end()) + 1;
     if (static_cast<int>(fields.size()) < needed) {

@@ -1,7 +1,9 @@
 // The speedup table the statistics panel charts: a CSV file with a header line naming at least
 // the columns p, seconds, speedup and efficiency (in any order; other columns are ignored),
-// then one row per process count. Lines starting with # and blank lines are skipped. This is
-// the format `prism speedup` is to write; docs/viewer.md describes it. No Qt.
+// then one row per process count. Lines starting with # and blank lines are skipped. When a
+// `series` column is present (`prism speedup` writes one series per schedule and tile size),
+// only the rows of the first series are read. This is the format `prism speedup` writes;
+// docs/viewer.md and docs/scaling.md describe it. No Qt.
 #pragma once
 
 #include <string>

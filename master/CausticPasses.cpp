@@ -51,6 +51,12 @@ void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
 
 }  // namespace
 
+std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
+                                                 std::shared_ptr<const CausticMapEstimator> maps) {
+  if (!maps || maps->empty()) return std::make_shared<const RenderPass>(RenderPass{index, true, nullptr});
+  return std::make_shared<const RenderPass>(RenderPass{index, true, std::move(maps), true});
+}
+
 float automaticMaxRadius(const Scene& scene) {
   float largest = 0.0f;
   for (const CasterBounds& c : scene.causticCasters()) {
@@ -115,8 +121,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     stats.map = maps->stats();
     stats.noCasters = maps->empty();
     out.causticMaps = maps;
-    auto pass = std::make_shared<const RenderPass>(
-        RenderPass{0, true, maps->empty() ? nullptr : maps, !maps->empty()});
+    auto pass = causticMapPass(0, maps);
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
     out.image = f.image;

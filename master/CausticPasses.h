@@ -58,6 +58,11 @@ using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
                                 ClusterRoster& roster, const PassProgress& progress = {});
 
+// A pass of direct light and the caustics of `maps` (direct light alone when they are empty),
+// whose tiles tell the slaves to use the caustic maps they build themselves.
+std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
+                                                 std::shared_ptr<const CausticMapEstimator> maps);
+
 // The k-NN gather radius cap when the scene leaves it at 0: a tenth of the largest bounded
 // caster's bounding radius, or a hundredth of the scene's size when only planes cast.
 float automaticMaxRadius(const Scene& scene);

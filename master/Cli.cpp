@@ -5,6 +5,7 @@
 #include <map>
 
 #include "master/RenderCommand.h"
+#include "master/SpeedupCommand.h"
 #include "transport/MpiSession.h"
 
 namespace prism {
@@ -217,16 +218,67 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
       ->check(CLI::Range(1, 100000));
 }
 
+void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v) {
+  CLI::App* speedup = app.add_subcommand(
+      "speedup",
+      "Measure strong scaling inside one MPI job: the same frame rendered by 1..N-1 slaves\n"
+      "(rank 0 coordinates, the other slaves idle) and by 1 process on 1 thread (T1, no MPI).\n"
+      "Every point is repeated; set-up (parse, broadcast, scene build, photon pass) is timed\n"
+      "apart. Prints speedup, efficiency, Karp-Flatt serial fraction, per-slave busy time and an\n"
+      "Amdahl fit; writes PREFIX.csv, PREFIX-projection.csv, PREFIX-speedup.png and\n"
+      "PREFIX-projection.png (charts need Qt). The projection simulates the tile queue with\n"
+      "the measured tile costs and link for up to --project-workers workers and images up to\n"
+      "8K, validated on the measured points. Start it as: mpiexec -n N prism speedup SCENE\n"
+      "(--oversubscribe when N exceeds the cores). See docs/scaling.md.");
+  speedup->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  speedup->add_option("-o,--output", o.outputPrefix,
+                      "Prefix of the files written (default: speedup-<scene name>)");
+  speedup
+      ->add_option("--schedules", o.schedules,
+                   "Tile schedules to measure, comma-separated (default: dynamic,static)")
+      ->delimiter(',')
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, Schedule>{{"dynamic", Schedule::Dynamic},
+                                                                  {"static", Schedule::Static}},
+                                  CLI::ignore_case))
+      ->option_text("dynamic,static");
+  speedup
+      ->add_option("--tile-sizes", o.tileSizes,
+                   "Tile edges to sweep, comma-separated (default: the automatic size for N-1 "
+                   "slaves)")
+      ->delimiter(',')
+      ->check(CLI::Range(4, 4096));
+  speedup
+      ->add_option("--threads-per-rank", o.threadsPerRank,
+                   "Render threads of each slave (default 1); p counts slaves x threads")
+      ->check(CLI::Range(1, 4096));
+  speedup
+      ->add_option("-r,--repeats", o.repeats,
+                   "Runs of every point; medians are reported "
+                   "with min and max (default 5)")
+      ->check(CLI::Range(1, 1000));
+  speedup->add_option("--prefetch", o.render.prefetch, "Tiles in flight per slave (default 2)")
+      ->check(CLI::Range(1, 64));
+  speedup
+      ->add_option("--project-workers", o.projectWorkers,
+                   "Largest worker count of the projection (default 1024)")
+      ->check(CLI::Range(1, 1 << 16));
+  speedup->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 20));
+  speedup->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 20));
+  speedup->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 16));
+  addCausticMethodOptions(speedup, v);
+  speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
+}
+
 void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& overrides,
                          RenderOptions& options) {
   auto given = [&](const char* name) { return command->get_option(name)->count() > 0; };
   if (given("--width")) options.width = overrides.width;
   if (given("--height")) options.height = overrides.height;
   if (given("--spp")) options.samples = overrides.samples;
-  if (given("--max-depth")) options.maxDepth = overrides.maxDepth;
-  if (given("--seed")) options.seed = overrides.seed;
-  if (given("--exposure")) options.exposure = overrides.exposure;
-  if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
   if (given("--caustics")) options.causticMethod = overrides.causticMethod;
   if (given("--photons")) options.photons = overrides.photons;
   if (given("--map-resolution")) options.mapResolution = overrides.mapResolution;
@@ -234,7 +286,12 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--map-blur-sigma")) options.mapBlurSigma = overrides.mapBlurSigma;
   if (given("--map-blur-radius")) options.mapBlurRadius = overrides.mapBlurRadius;
   if (given("--map-paths")) options.mapPaths = overrides.mapPaths;
-  if (!command->get_option_no_throw("--gather")) return;  // `view` has only the ones above
+  if (!command->get_option_no_throw("--max-depth")) return;  // `speedup` has only those above
+  if (given("--max-depth")) options.maxDepth = overrides.maxDepth;
+  if (given("--seed")) options.seed = overrides.seed;
+  if (given("--exposure")) options.exposure = overrides.exposure;
+  if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
+  if (!command->get_option_no_throw("--gather")) return;  // `view` has only those above
   if (given("--gather")) options.gather = overrides.gather;
   if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
   if (given("--progressive")) options.progressive = true;
@@ -244,7 +301,8 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
 
 }  // namespace
 
-int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer) {
+int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer,
+           const SpeedupChartWriter& chartWriter) {
   const bool quietRank = session && session->rank() != 0;
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
@@ -257,6 +315,9 @@ int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewe
   ViewOptions viewOptions;
   RenderOverrideValues viewOverrides;
   addViewCommand(app, viewOptions, viewOverrides);
+  SpeedupOptions speedupOptions;
+  RenderOverrideValues speedupOverrides;
+  addSpeedupCommand(app, speedupOptions, speedupOverrides);
 
   try {
     app.parse(argc, argv);
@@ -277,6 +338,11 @@ int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewe
   if (view->parsed()) {
     applyGivenOverrides(view, viewOverrides, viewOptions.render);
     return runView(viewOptions, std::cout, std::cerr, session, viewer);
+  }
+  CLI::App* speedup = app.get_subcommand("speedup");
+  if (speedup->parsed()) {
+    applyGivenOverrides(speedup, speedupOverrides, speedupOptions.render);
+    return runSpeedup(speedupOptions, std::cout, std::cerr, session, chartWriter);
   }
   return 1;
 }

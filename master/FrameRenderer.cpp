@@ -26,9 +26,11 @@ class FrameState {
       : rects_(rects),
         pass_(options.pass),
         frameId_(options.frameId),
-        scheduler_(rects.size(), workers, options.schedule, options.leaseSeconds),
+        scheduler_(rects.size(), workers, options.schedule, options.leaseSeconds,
+                   activeWorkers(workers, options)),
         framebuffer_(width, height, rects.size()),
         stats_(static_cast<size_t>(workers)),
+        tileSeconds_(rects.size(), 0.0),
         start_(Clock::now()) {
     scheduler_.exemptFromLeases(kLocalWorker);
     for (int r = 0; r < workers; ++r) stats_[r].rank = r;
@@ -72,6 +74,7 @@ class FrameState {
     const bool planned =
         tile.tileIndex < rects_.size() && sameRect(tile.rect, rects_[tile.tileIndex]);
     if (planned && scheduler_.complete(tile.tileIndex, rank, now()) && framebuffer_.insert(tile)) {
+      tileSeconds_[tile.tileIndex] = tile.seconds;
       WorkerStats& s = stats_[rank];
       ++s.tiles;
       s.rays += tile.rays;
@@ -142,9 +145,20 @@ class FrameState {
   // Only after every thread has stopped.
   const ImageRgb& image() const { return framebuffer_.image(); }
   std::vector<WorkerStats>& stats() { return stats_; }
+  const std::vector<double>& tileSeconds() const { return tileSeconds_; }
   size_t reissued() const { return scheduler_.reissuedCount(); }
 
  private:
+  // Which ranks the scheduler may give tiles to (FrameOptions::masterRenders, activeSlaves).
+  static std::vector<bool> activeWorkers(int workers, const FrameOptions& options) {
+    std::vector<bool> active(static_cast<size_t>(workers), true);
+    active[kLocalWorker] = options.masterRenders;
+    for (int r = 1; r < workers; ++r) {
+      active[r] = options.activeSlaves < 0 || r <= options.activeSlaves;
+    }
+    return active;
+  }
+
   static bool sameRect(const TileRect& a, const TileRect& b) {
     return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
   }
@@ -157,6 +171,7 @@ class FrameState {
   TileScheduler scheduler_;
   Framebuffer framebuffer_;
   std::vector<WorkerStats> stats_;
+  std::vector<double> tileSeconds_;
   bool abandoned_ = false;
   Clock::time_point start_;
 };
@@ -223,9 +238,13 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   result.tileCount = rects.size();
 
   FrameState state(rects, ranks, options, settings.width, settings.height);
-  state.stats()[kLocalWorker].threads = pool.threadCount();
-  pool.start([&] { return state.nextLocalJob(); },
-             [&](const TileJob&, TileResult&& tile) { state.accept(tile, kLocalWorker); });
+  if (options.masterRenders) {
+    state.stats()[kLocalWorker].threads = pool.threadCount();
+    pool.start([&] { return state.nextLocalJob(); },
+               [&](const TileJob&, TileResult&& tile) { state.accept(tile, kLocalWorker); });
+  } else {
+    result.threads = 0;
+  }
 
   try {
     auto lastProgress = Clock::now();
@@ -252,6 +271,8 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
 
   result.image = state.image();
   result.workers = state.stats();
+  result.tiles = rects;
+  result.tileSeconds = state.tileSeconds();
   result.reissuedTiles = state.reissued();
   for (const WorkerStats& w : result.workers) {
     result.rays += w.rays;

@@ -11,6 +11,7 @@
 #include "master/TileScheduler.h"
 #include "render/RayCounters.h"
 #include "render/RenderPass.h"
+#include "render/Tile.h"
 #include "scene/Scene.h"
 
 namespace prism {
@@ -41,6 +42,10 @@ struct FrameOptions {
   // caustics needs its photon map already sent to the slaves (master/PhotonPass.h).
   std::shared_ptr<const RenderPass> pass;
   ClusterRoster* roster = nullptr;  // read before the frame and updated after it, when given
+  // `prism speedup` measures with part of the cluster: rank 0's threads may render nothing, and
+  // only slaves 1..activeSlaves get tiles (-1: every slave); the others stay idle.
+  bool masterRenders = true;
+  int activeSlaves = -1;
   // Tags the frame's messages; every frame of a run needs its own, so that a late tile or
   // heartbeat from an earlier frame is recognised and ignored.
   uint32_t frameId = 0;
@@ -68,6 +73,8 @@ struct FrameResult {
   double seconds = 0.0;
   double busyThreadSeconds = 0.0;
   std::vector<WorkerStats> workers;  // index = rank
+  std::vector<TileRect> tiles;       // the frame's tiles, in plan order
+  std::vector<double> tileSeconds;   // index = tile: the time its render thread spent on it
   size_t reissuedTiles = 0;
 };
 

@@ -189,7 +189,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& 
     s.mapBuildSeconds = buildSeconds;
   }
   if (maps->empty()) return nullptr;
-  return std::make_shared<const RenderPass>(RenderPass{plan.frame, true, maps, true});
+  return causticMapPass(plan.frame, maps);
 }
 
 std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {

@@ -1,19 +1,26 @@
 #include "master/TileScheduler.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace prism {
 
 TileScheduler::TileScheduler(size_t tileCount, int workerCount, Schedule schedule,
-                             double leaseSeconds)
+                             double leaseSeconds, const std::vector<bool>& active)
     : schedule_(schedule),
       leaseSeconds_(leaseSeconds),
       workers_(static_cast<size_t>(std::max(workerCount, 1))),
       done_(tileCount, false),
       issued_(tileCount, false) {
+  std::vector<size_t> taking;  // the workers that take part, in rank order
+  for (size_t w = 0; w < workers_.size(); ++w) {
+    workers_[w].idle = w < active.size() && !active[w];
+    if (!workers_[w].idle) taking.push_back(w);
+  }
+  if (taking.empty()) throw std::invalid_argument("TileScheduler: no active worker");
   for (uint32_t tile = 0; tile < tileCount; ++tile) {
     if (schedule_ == Schedule::Static) {
-      workers_[tile % workers_.size()].own.push_back(tile);
+      workers_[taking[tile % taking.size()]].own.push_back(tile);
     } else {
       shared_.push_back(tile);
     }
@@ -26,7 +33,7 @@ void TileScheduler::exemptFromLeases(int worker) {
 
 std::optional<uint32_t> TileScheduler::next(int worker, double now) {
   Worker& w = workers_[worker];
-  if (w.retired) return std::nullopt;
+  if (w.retired || w.idle) return std::nullopt;
   // A worker's own tiles first (static), then the shared queue. Skip tiles finished meanwhile
   // (a reclaimed tile whose late result arrived).
   for (std::deque<uint32_t>* queue : {&w.own, &shared_}) {

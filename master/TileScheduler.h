@@ -4,6 +4,8 @@
 // Dynamic schedule: one queue in row-major order; every worker takes the next tile.
 // Static schedule: tile i belongs to worker i mod W (interleaved rows of tiles), for honest
 // comparison with the dynamic one.
+// Idle workers (`prism speedup` measures with some ranks left out) take part in neither
+// schedule: they are never given a tile, and W counts only the active ones.
 // Leases: a tile handed out is leased to its worker. When a worker has been silent (no result,
 // no heartbeat) for leaseSeconds while holding leases, it is retired: its tiles go back to the
 // front of the queue for anyone to take, and it gets no more work. A late result from it is
@@ -23,7 +25,9 @@ enum class Schedule { Dynamic, Static };
 
 class TileScheduler {
  public:
-  TileScheduler(size_t tileCount, int workerCount, Schedule schedule, double leaseSeconds);
+  // active[w] says whether worker w is given tiles; empty: every worker is. At least one must be.
+  TileScheduler(size_t tileCount, int workerCount, Schedule schedule, double leaseSeconds,
+                const std::vector<bool>& active = {});
 
   // A worker whose silence never retires it (the master's own threads).
   void exemptFromLeases(int worker);
@@ -53,6 +57,7 @@ class TileScheduler {
   size_t doneCount() const { return doneCount_; }
   size_t outstanding(int worker) const { return workers_[worker].leased.size(); }
   bool retired(int worker) const { return workers_[worker].retired; }
+  bool idle(int worker) const { return workers_[worker].idle; }
   size_t reissuedCount() const { return reissued_; }
 
  private:
@@ -64,6 +69,7 @@ class TileScheduler {
     double lastHeard = 0.0;
     bool exempt = false;
     bool retired = false;
+    bool idle = false;  // not taking part in this frame
   };
 
   void retire(Worker& worker);

@@ -6,6 +6,7 @@
 #include "master/Cli.h"
 #include "transport/MpiSession.h"
 #ifdef PRISM_HAVE_VIEWER
+#include "gui/SpeedupChartImage.h"
 #include "gui/Viewer.h"
 #endif
 
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
     }
   }
 #ifdef PRISM_HAVE_VIEWER
-  return prism::runCli(argc, argv, session.get(), prism::runViewer);
+  return prism::runCli(argc, argv, session.get(), prism::runViewer, prism::writeSpeedupChartImage);
 #else
   return prism::runCli(argc, argv, session.get());
 #endif

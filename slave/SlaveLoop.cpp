@@ -1,6 +1,7 @@
 #include "slave/SlaveLoop.h"
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <future>
@@ -26,12 +27,18 @@ namespace {
 using Clock = SteadyClock;
 
 // Finished tiles, with the frame they belong to, waiting for the main thread, the only one
-// that calls MPI.
+// that calls MPI. The main thread sleeps on it between polls, so a finished tile wakes it and
+// leaves at once instead of waiting out the poll interval.
 class Outbox {
  public:
   void add(uint32_t frame, TileResult&& tile) {
     const std::lock_guard<std::mutex> lock(mutex_);
     tiles_.push_back({frame, std::move(tile)});
+    added_.notify_one();
+  }
+  void waitForTile(std::chrono::microseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    added_.wait_for(lock, timeout, [this] { return !tiles_.empty(); });
   }
   std::vector<wire::TileResultMessage> take() {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -40,6 +47,7 @@ class Outbox {
 
  private:
   std::mutex mutex_;
+  std::condition_variable added_;
   std::vector<wire::TileResultMessage> tiles_;
 };
 
@@ -234,7 +242,13 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         masterSilent = true;
         break;
       }
-      const auto incoming = session.waitForMessage(0.002);
+      // Poll, else sleep until a tile finishes or a millisecond passes (when MPI is probed
+      // again), so neither a job nor a result waits longer than that.
+      auto incoming = session.poll();
+      if (!incoming) {
+        outbox.waitForTile(std::chrono::milliseconds(1));
+        incoming = session.poll();
+      }
       if (!incoming) {
         if (secondsSince(lastHeard) > options.masterTimeoutSeconds) {
           std::fprintf(stderr, "prism: rank %d: no word from rank 0 for %.0f s, giving up\n",
@@ -259,6 +273,10 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
         jobs.clear();  // tiles of earlier frames nobody wants any more
         held.clear();
         received = 0;
+        continue;
+      }
+      if (message.type == wire::MessageType::Echo) {  // a link probe: straight back
+        session.send(0, incoming->bytes);
         continue;
       }
       if (message.type == wire::MessageType::PhotonJob) {

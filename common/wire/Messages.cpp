@@ -17,7 +17,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::View);
+         raw <= static_cast<uint16_t>(MessageType::Echo);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -97,6 +97,8 @@ const char* messageTypeName(MessageType type) {
       return "Progress";
     case MessageType::View:
       return "View";
+    case MessageType::Echo:
+      return "Echo";
     case MessageType::PhotonJob:
       return "PhotonJob";
     case MessageType::PhotonShare:
@@ -266,6 +268,22 @@ std::vector<uint8_t> encodeError(const ErrorMessage& error) {
 ErrorMessage decodeError(const Message& message) {
   return decodePayload(message, MessageType::Error,
                        [](ByteReader& r) { return ErrorMessage{r.readString()}; });
+}
+
+std::vector<uint8_t> encodeEcho(const EchoMessage& echo) {
+  return encodeWith(MessageType::Echo, [&](ByteWriter& w) {
+    w.writeU32(echo.sequence);
+    w.writeString(echo.padding);
+  });
+}
+
+EchoMessage decodeEcho(const Message& message) {
+  return decodePayload(message, MessageType::Echo, [](ByteReader& r) {
+    EchoMessage echo;
+    echo.sequence = r.readU32();
+    echo.padding = r.readString();
+    return echo;
+  });
 }
 
 std::vector<uint8_t> encodeShutdown() {

@@ -22,7 +22,8 @@ namespace prism::wire {
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
 // 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
-// 5: the caustic-map term of TileJob, and the view's caustic-map blur switch.
+// 5: the caustic-map term of TileJob, the view's caustic-map blur switch, and the Echo
+// message (`prism speedup` measures the links with it).
 inline constexpr uint16_t kVersion = 5;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
@@ -38,7 +39,8 @@ enum class MessageType : uint16_t {
   PhotonJob = 8,
   PhotonShare = 9,
   PhotonMap = 10,
-  View = 11
+  View = 11,
+  Echo = 12
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -133,6 +135,13 @@ struct ViewMessage {
   RenderView view;
 };
 
+// Master to slave and back unchanged: a ping-pong that times the link (latency from small
+// messages, bandwidth from tile-sized ones). The padding gives the message its size.
+struct EchoMessage {
+  uint32_t sequence = 0;
+  std::string padding;
+};
+
 // Each encodeX returns a full message (envelope included); each decodeX checks the message type
 // and the payload (sizes, ranges, nothing left over) and throws WireError.
 std::vector<uint8_t> encodeScene(const SceneDescription& scene);
@@ -166,6 +175,9 @@ std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons);
 PhotonMapMessage decodePhotonMap(const Message& message);
+
+std::vector<uint8_t> encodeEcho(const EchoMessage& echo);
+EchoMessage decodeEcho(const Message& message);
 
 std::vector<uint8_t> encodeShutdown();
 // Checks that message is a Shutdown with an empty payload.

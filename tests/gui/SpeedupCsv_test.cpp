@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "master/SpeedupReport.h"
+
 namespace prism {
 namespace {
 
@@ -20,6 +24,45 @@ TEST(SpeedupCsv, ReadsColumnsInAnyOrderSkippingCommentsAndExtras) {
   EXPECT_DOUBLE_EQ(points[1].speedup, 3.8);
   EXPECT_DOUBLE_EQ(points[1].efficiency, 0.95);
   EXPECT_DOUBLE_EQ(points[1].seconds, 1.25);
+}
+
+TEST(SpeedupCsv, KeepsOnlyTheFirstSeriesWhenTheFileHasSeveral) {
+  const auto points = parseSpeedupCsv(
+      "series,p,seconds,speedup,efficiency\n"
+      "dynamic-32,1,2.0,1.0,1.0\n"
+      "dynamic-32,2,1.1,1.8,0.9\n"
+      "static-32,1,2.1,0.95,0.95\n"
+      "static-32,2,1.4,1.4,0.7\n",
+      "t.csv");
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_DOUBLE_EQ(points[0].seconds, 2.0);
+  EXPECT_DOUBLE_EQ(points[1].speedup, 1.8);
+}
+
+// What `prism speedup` writes is what the viewer charts: its first series.
+TEST(SpeedupCsv, ReadsWhatPrismSpeedupWrites) {
+  SpeedupReport report;
+  report.serial = {{32, {4.0}, {}}};
+  for (Schedule schedule : {Schedule::Dynamic, Schedule::Static}) {
+    for (int slaves : {1, 2}) {
+      ScalingPoint p;
+      p.schedule = schedule;
+      p.tileSize = 32;
+      p.slaves = slaves;
+      p.samples = {schedule == Schedule::Dynamic ? 4.0 / slaves : 5.0 / slaves};
+      p.busyFractions.assign(static_cast<size_t>(slaves), {1.0});
+      report.points.push_back(p);
+    }
+  }
+  deriveStatistics(report);
+  std::stringstream csv;
+  writeSpeedupCsv(report, csv);
+  const auto points = parseSpeedupCsv(csv.str(), "speedup.csv");
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1].processes, 2);
+  EXPECT_DOUBLE_EQ(points[1].seconds, 2.0);
+  EXPECT_DOUBLE_EQ(points[1].speedup, 2.0);
+  EXPECT_DOUBLE_EQ(points[1].efficiency, 1.0);
 }
 
 void expectError(const std::string& text, const std::string& fragment) {

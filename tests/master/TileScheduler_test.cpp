@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
 
 namespace prism {
 namespace {
@@ -22,6 +23,29 @@ TEST(TileScheduler, StaticInterleavesTilesByWorker) {
   EXPECT_EQ(worker1, (std::vector<uint32_t>{1, 4}));
   EXPECT_EQ(s.next(0, 0.0), 0u);
   EXPECT_EQ(s.next(0, 0.0), 3u);
+}
+
+// `prism speedup` leaves rank 0 and some slaves out: they get nothing, and the static
+// interleave runs over the active workers only.
+TEST(TileScheduler, IdleWorkersTakeNoTilesUnderEitherSchedule) {
+  const std::vector<bool> active{false, true, true, false};
+  TileScheduler fixed(5, 4, Schedule::Static, 10.0, active);
+  EXPECT_TRUE(fixed.idle(0));
+  EXPECT_FALSE(fixed.next(0, 0.0));
+  EXPECT_FALSE(fixed.next(3, 0.0));
+  std::vector<uint32_t> worker1, worker2;
+  while (auto t = fixed.next(1, 0.0)) worker1.push_back(*t);
+  while (auto t = fixed.next(2, 0.0)) worker2.push_back(*t);
+  EXPECT_EQ(worker1, (std::vector<uint32_t>{0, 2, 4}));
+  EXPECT_EQ(worker2, (std::vector<uint32_t>{1, 3}));
+
+  TileScheduler pulled(3, 4, Schedule::Dynamic, 10.0, active);
+  EXPECT_FALSE(pulled.next(3, 0.0));
+  EXPECT_EQ(pulled.next(2, 0.0), 0u);
+  pulled.retire(2);  // its tile goes back to the queue, still not to an idle worker
+  EXPECT_FALSE(pulled.next(0, 0.0));
+  EXPECT_EQ(pulled.next(1, 0.0), 0u);
+  EXPECT_THROW(TileScheduler(3, 2, Schedule::Dynamic, 10.0, {false, false}), std::invalid_argument);
 }
 
 TEST(TileScheduler, CompletionIsCountedOnceAndDuplicatesAreRejected) {

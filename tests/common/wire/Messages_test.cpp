@@ -145,15 +145,15 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
-  // 4: before the caustic-map term and blur switch.
+  // 4: before the caustic-map term, the blur switch and the Echo message.
   for (uint16_t version : {1, 2, 3, 4, 6}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
                     "message version " + std::to_string(version) + ", this build speaks 5");
   }
 
-  // 8, 9 and 10 are the photon messages, 11 the View; 12 is the first unused type.
-  for (uint16_t type : {0, 12, 0xFFFF}) {
+  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo; 13 is the first unused type.
+  for (uint16_t type : {0, 13, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -555,6 +555,18 @@ TEST(Messages, MessageStructsMatchTheCodec) {
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
+}
+
+TEST(Messages, EchoRoundTripsWithItsPadding) {
+  const EchoMessage m{77, std::string(5000, 'x')};
+  const std::vector<uint8_t> bytes = encodeEcho(m);
+  EXPECT_EQ(bytes.size(), kHeaderSize + 4 + 4 + 5000);
+  const EchoMessage back = decodeEcho(decodeMessage(bytes));
+  EXPECT_EQ(back.sequence, 77u);
+  EXPECT_EQ(back.padding, m.padding);
+  EXPECT_STREQ(messageTypeName(MessageType::Echo), "Echo");
+  expectWireError([&] { decodeEcho(decodeMessage(encodeShutdown())); },
+                  "expected a Echo message, got Shutdown");
 }
 
 }  // namespace

@@ -1,0 +1,176 @@
+#include "gui/SpeedupChartImage.h"
+
+#include <QApplication>
+#include <QFile>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPixmap>
+#include <QVBoxLayout>
+#include <QWidget>
+#include <QtCharts/QChart>
+#include <QtCharts/QChartView>
+#include <QtCharts/QLineSeries>
+#include <QtCharts/QLogValueAxis>
+#include <QtCharts/QScatterSeries>
+#include <QtCharts/QValueAxis>
+#include <algorithm>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+using namespace QtCharts;
+
+namespace prism {
+namespace {
+
+// `prism speedup` runs without a Qt application; one is made on first use and kept. Without a
+// display Qt would abort, so the offscreen platform is chosen first.
+void ensureApplication() {
+  if (QApplication::instance()) return;
+  const bool display = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
+  if (!display && !std::getenv("QT_QPA_PLATFORM")) ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  static int argc = 1;
+  static char name[] = "prism";
+  static char* argv[] = {name, nullptr};
+  static std::unique_ptr<QApplication> app = std::make_unique<QApplication>(argc, argv);
+}
+
+// The offscreen platform's chatter (no window manager hints, no runtime folder) says nothing
+// about the chart; everything else still reaches stderr.
+QtMessageHandler defaultHandler = nullptr;
+void quietOffscreenNotes(QtMsgType type, const QMessageLogContext& context, const QString& text) {
+  if (text.contains("propagateSizeHints") || text.contains("XDG_RUNTIME_DIR")) return;
+  if (defaultHandler) defaultHandler(type, context, text);
+}
+
+// Distinct, print-friendly colours for the measured and modelled series, in order.
+QColor seriesColour(size_t index) {
+  static const QColor colours[] = {QColor(31, 119, 180),  QColor(214, 39, 40),  QColor(44, 160, 44),
+                                   QColor(148, 103, 189), QColor(255, 127, 14), QColor(140, 86, 75),
+                                   QColor(23, 190, 207),  QColor(188, 189, 34)};
+  return colours[index % (sizeof colours / sizeof colours[0])];
+}
+
+QAbstractAxis* makeAxis(bool log, const QString& title, double low, double high) {
+  if (log) {
+    auto* axis = new QLogValueAxis;
+    axis->setBase(2.0);
+    axis->setLabelFormat("%g");
+    axis->setRange(low, high);
+    axis->setTitleText(title);
+    return axis;
+  }
+  auto* axis = new QValueAxis;
+  axis->setRange(low, high);
+  axis->setTitleText(title);
+  axis->applyNiceNumbers();
+  return axis;
+}
+
+QChartView* drawPanel(const ChartPanel& panel) {
+  auto* chart = new QChart;
+  chart->setTitle(QString::fromStdString(panel.title));
+  chart->setAnimationOptions(QChart::NoAnimation);
+  chart->legend()->setAlignment(Qt::AlignRight);
+  double xLow = 1e300, xHigh = -1e300, yLow = 1e300, yHigh = -1e300;
+  std::vector<QAbstractSeries*> all;
+  auto* oversubscribed = new QScatterSeries;
+  oversubscribed->setName("oversubscribed");
+  oversubscribed->setMarkerShape(QScatterSeries::MarkerShapeRectangle);
+  oversubscribed->setMarkerSize(13);
+  oversubscribed->setColor(Qt::transparent);
+  oversubscribed->setBorderColor(Qt::black);
+  size_t colour = 0;
+  for (const ChartSeries& s : panel.series) {
+    auto* line = new QLineSeries;
+    line->setName(QString::fromStdString(s.name));
+    QPen pen(s.kind == ChartSeries::Kind::Ideal ? QColor(120, 120, 120) : seriesColour(colour++));
+    pen.setWidthF(s.kind == ChartSeries::Kind::Measured ? 2.5 : 1.8);
+    if (s.kind != ChartSeries::Kind::Measured) pen.setStyle(Qt::DashLine);
+    line->setPen(pen);
+    line->setPointsVisible(s.kind == ChartSeries::Kind::Measured);
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      line->append(s.x[i], s.y[i]);
+      xLow = std::min(xLow, s.x[i]);
+      xHigh = std::max(xHigh, s.x[i]);
+      yLow = std::min(yLow, s.y[i]);
+      yHigh = std::max(yHigh, s.y[i]);
+      if (i < s.oversubscribed.size() && s.oversubscribed[i])
+        oversubscribed->append(s.x[i], s.y[i]);
+    }
+    all.push_back(line);
+  }
+  if (oversubscribed->count() > 0) {
+    all.push_back(oversubscribed);
+  } else {
+    delete oversubscribed;
+  }
+  for (QAbstractSeries* s : all) chart->addSeries(s);
+  if (xLow > xHigh) xLow = 0.0, xHigh = 1.0, yLow = 0.0, yHigh = 1.0;
+  if (panel.logX) {
+    xLow = std::max(xLow, 1e-9) / 1.3;
+    xHigh *= 1.3;
+  } else {
+    xLow = std::min(0.0, xLow);
+    xHigh += 0.5;
+  }
+  if (panel.logY) {
+    yLow = std::max(yLow, 1e-9) / 1.5;
+    yHigh *= 1.5;
+  } else {
+    yLow = std::min(0.0, yLow);
+    yHigh = yHigh * 1.1 + 1e-9;
+  }
+  QAbstractAxis* x = makeAxis(panel.logX, QString::fromStdString(panel.xTitle), xLow, xHigh);
+  QAbstractAxis* y = makeAxis(panel.logY, QString::fromStdString(panel.yTitle), yLow, yHigh);
+  chart->addAxis(x, Qt::AlignBottom);
+  chart->addAxis(y, Qt::AlignLeft);
+  for (QAbstractSeries* s : all) {
+    s->attachAxis(x);
+    s->attachAxis(y);
+  }
+  auto* view = new QChartView(chart);
+  view->setRenderHint(QPainter::Antialiasing);
+  return view;
+}
+
+}  // namespace
+
+void writeSpeedupChartImage(const SpeedupChart& chart, const std::string& pngPath) {
+  defaultHandler = qInstallMessageHandler(quietOffscreenNotes);
+  struct Restore {
+    ~Restore() { qInstallMessageHandler(defaultHandler); }
+  } restore;
+  ensureApplication();
+  QWidget page;
+  page.setAttribute(Qt::WA_DontShowOnScreen);
+  page.setStyleSheet("background: white;");
+  auto* layout = new QVBoxLayout(&page);
+  auto* title = new QLabel(QString::fromStdString(chart.title));
+  QFont font = title->font();
+  font.setPointSize(font.pointSize() + 3);
+  font.setBold(true);
+  title->setFont(font);
+  layout->addWidget(title);
+  auto* note = new QLabel(QString::fromStdString(chart.note));
+  note->setWordWrap(true);
+  layout->addWidget(note);
+  auto* row = new QHBoxLayout;
+  for (const ChartPanel& panel : chart.panels) row->addWidget(drawPanel(panel));
+  layout->addLayout(row);
+  page.resize(1000 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), 640);
+  page.show();
+  QApplication::processEvents();
+  const QPixmap image = page.grab();
+  page.hide();
+  const QString temporary = QString::fromStdString(pngPath + ".tmp.png");
+  if (image.isNull() || !image.save(temporary, "PNG")) {
+    throw std::runtime_error("cannot write the chart " + pngPath);
+  }
+  QFile::remove(QString::fromStdString(pngPath));
+  if (!QFile::rename(temporary, QString::fromStdString(pngPath))) {
+    throw std::runtime_error("cannot write the chart " + pngPath);
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,82 @@
+#include "master/ScalingProjection.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "master/TilePlan.h"
+#include "master/TileScheduleSimulator.h"
+#include "wire/Messages.h"
+
+namespace prism {
+namespace {
+
+ScheduleSimulation simulationOf(std::vector<double> tileSeconds, const std::vector<TileRect>& tiles,
+                                int ranks, Schedule schedule, double cpuShare,
+                                const SpeedupReport& r) {
+  ScheduleSimulation s;
+  s.tileSeconds = std::move(tileSeconds);
+  for (const TileRect& t : tiles) s.resultBytes.push_back(tileResultBytes(t.pixelCount()));
+  s.jobBytes = tileJobBytes();
+  s.workers = ranks;
+  s.threadsPerWorker = r.threadsPerRank;
+  s.prefetch = r.prefetch;
+  s.schedule = schedule;
+  s.link = r.link.model;
+  s.cpuShare = cpuShare;
+  return s;
+}
+
+}  // namespace
+
+double tileJobBytes() {
+  return static_cast<double>(wire::encodeTileJob({}).size());
+}
+
+double tileResultBytes(int pixels) {
+  // The envelope and fixed fields, measured on an empty tile, then 3 floats a pixel.
+  static const double fixed = static_cast<double>(wire::encodeTileResult({}).size());
+  return fixed + 3.0 * sizeof(float) * pixels;
+}
+
+double cpuShareOf(int renderThreads, int cores) {
+  return renderThreads > cores ? static_cast<double>(cores) / renderThreads : 1.0;
+}
+
+void predictMeasuredPoints(SpeedupReport& report,
+                           const std::map<int, std::vector<double>>& serialTileSeconds) {
+  for (ScalingPoint& p : report.points) {
+    const auto costs = serialTileSeconds.find(p.tileSize);
+    if (costs == serialTileSeconds.end()) continue;
+    const std::vector<TileRect> tiles = planTiles(report.width, report.height, p.tileSize);
+    const ScheduleSimulation s = simulationOf(costs->second, tiles, p.slaves, p.schedule,
+                                              cpuShareOf(p.workers(), report.cores), report);
+    p.modelSeconds = simulateTileSchedule(s).seconds;
+  }
+}
+
+std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const ProjectionPlan& plan,
+                                           const SpeedupReport& report) {
+  std::vector<ProjectedPoint> points;
+  for (const auto& [width, height] : plan.sizes) {
+    const std::vector<TileRect> tiles = planTiles(width, height, plan.tileSize);
+    const std::vector<double> tileSeconds = costs.tileCosts(width, height, plan.tileSize);
+    const double serial = std::accumulate(tileSeconds.begin(), tileSeconds.end(), 0.0);
+    for (Schedule schedule : plan.schedules) {
+      for (int ranks = 1; ranks * report.threadsPerRank <= plan.maxWorkers; ranks *= 2) {
+        const ScheduleSimulation s = simulationOf(tileSeconds, tiles, ranks, schedule, 1.0, report);
+        ProjectedPoint p;
+        p.width = width;
+        p.height = height;
+        p.tileSize = plan.tileSize;
+        p.schedule = schedule;
+        p.workers = ranks * report.threadsPerRank;
+        p.seconds = simulateTileSchedule(s).seconds;
+        p.serialSeconds = serial;
+        points.push_back(p);
+      }
+    }
+  }
+  return points;
+}
+
+}  // namespace prism

@@ -1,0 +1,41 @@
+// The scheduling model of `prism speedup`: the simulator (master/TileScheduleSimulator.h) fed
+// with the measured tile costs and link, used twice — to predict the measured points (the
+// model's validation) and to project speedup to worker counts and image sizes this machine
+// cannot run.
+#pragma once
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "master/SpeedupReport.h"
+#include "master/TileCostMap.h"
+
+namespace prism {
+
+// Sizes of the wire messages the master and a slave exchange per tile (common/wire).
+double tileJobBytes();
+double tileResultBytes(int pixels);
+
+// The fraction of a core each of `renderThreads` threads gets on `cores` cores.
+double cpuShareOf(int renderThreads, int cores);
+
+// Sets modelSeconds of every measured point: its frame simulated with the per-tile serial
+// times measured at its tile size (serialTileSeconds[tileSize], in plan order), the measured
+// link, and the point's CPU share on report.cores cores.
+void predictMeasuredPoints(SpeedupReport& report,
+                           const std::map<int, std::vector<double>>& serialTileSeconds);
+
+struct ProjectionPlan {
+  std::vector<std::pair<int, int>> sizes;  // width, height
+  int tileSize = 32;
+  int maxWorkers = 1024;  // p = threadsPerRank, 2·threadsPerRank, ... doubling up to this
+  std::vector<Schedule> schedules{Schedule::Dynamic};
+};
+
+// Simulated frames for every size, schedule and worker count of the plan; each render thread
+// has a core of its own.
+std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const ProjectionPlan& plan,
+                                           const SpeedupReport& report);
+
+}  // namespace prism

@@ -1,0 +1,347 @@
+#include "master/SpeedupCommand.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <thread>
+
+#include "caustics/CausticMapEstimator.h"
+#include "caustics/PhotonGather.h"
+#include "caustics/PhotonTracer.h"
+#include "master/CausticPasses.h"
+#include "master/FrameRenderer.h"
+#include "master/LinkProbe.h"
+#include "master/PhotonPass.h"
+#include "master/ProgressBar.h"
+#include "master/ScalingProjection.h"
+#include "master/SlaveShutdown.h"
+#include "master/TileCostMap.h"
+#include "master/TilePlan.h"
+#include "scene/Scene.h"
+#include "slave/SlaveLoop.h"
+#include "slave/TileWorkerPool.h"
+#include "transport/MpiSession.h"
+#include "util/Stopwatch.h"
+#include "wire/Messages.h"
+
+namespace prism {
+namespace {
+
+constexpr double kReadyTimeoutSeconds = 600.0;
+
+// The light terms every measured frame renders, prepared once as set-up.
+struct PreparedPass {
+  std::shared_ptr<const RenderPass> pass;  // null: direct light only
+  std::string stage;                       // what the set-up was, for the report
+  double seconds = 0.0;
+  bool progressiveAsOneFrame = false;
+};
+
+// Caustics as `prism render` would do them for one frame: one photon pass traced by every
+// rank and sent to every slave, or rank 0's caustic maps (each slave builds its own during
+// the warm-up frame). A progressive scene is measured as one k-NN photon-map frame.
+PreparedPass prepareCaustics(const Scene& scene, MpiSession& session, ClusterRoster& roster,
+                             double leaseSeconds) {
+  const CausticSettings& settings = scene.causticSettings();
+  PreparedPass prepared;
+  const auto start = SteadyClock::now();
+  if (settings.method == CausticMethod::CausticMap) {
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, availableCores());
+    prepared.stage = "caustic map (rank 0)";
+    prepared.pass = causticMapPass(0, std::move(maps));
+  } else if (settings.method == CausticMethod::PhotonMap) {
+    const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
+    if (tracer.hasWork()) {
+      PhotonPassStats stats;
+      const auto map = tracePhotonPass(tracer, 0, 1, &session, roster, leaseSeconds, stats);
+      const float radius =
+          settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
+      const PhotonGatherSettings gather{false, settings.gather, radius, settings.filter};
+      sendPhotonMap(*map, 0, gather, &session, roster, stats);
+      prepared.stage = "photon pass (" + std::to_string(map->size()) + " photons)";
+      prepared.pass = std::make_shared<const RenderPass>(
+          RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
+      prepared.progressiveAsOneFrame = settings.progressive;
+    }
+  }
+  prepared.seconds = secondsSince(start);
+  return prepared;
+}
+
+// Waits for every slave's Ready (its scene is built); returns the slowest build time.
+double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
+  const auto start = SteadyClock::now();
+  auto missing = [&] {
+    return std::count_if(roster.threads.begin() + 1, roster.threads.end(),
+                         [](int t) { return t <= 0; });
+  };
+  while (missing() > 0) {
+    if (secondsSince(start) > kReadyTimeoutSeconds) {
+      throw std::runtime_error("slaves did not report ready within " +
+                               std::to_string(static_cast<int>(kReadyTimeoutSeconds)) + " s");
+    }
+    const auto incoming = session.waitForMessage(0.1);
+    if (!incoming) continue;
+    const wire::Message message = wire::decodeMessage(incoming->bytes);
+    if (message.type == wire::MessageType::Error) {
+      throw std::runtime_error("rank " + std::to_string(incoming->source) + ": " +
+                               wire::decodeError(message).text);
+    }
+    if (message.type != wire::MessageType::Ready) continue;
+    const wire::ReadyMessage ready = wire::decodeReady(message);
+    roster.threads[incoming->source] = ready.threads;
+    roster.buildSeconds[incoming->source] = ready.buildSeconds;
+  }
+  return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
+}
+
+// Writes through a temporary name, so no half-written file is left behind.
+template <typename Write>
+void writeFileAtomically(const std::string& path, Write write) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream file(temporary);
+    if (!file) throw std::runtime_error("cannot write " + path);
+    write(file);
+    if (!file.flush()) throw std::runtime_error("cannot write " + path);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+class Measurement {
+ public:
+  Measurement(const Scene& scene, const SpeedupOptions& options, MpiSession& session,
+              ClusterRoster& roster, std::shared_ptr<const RenderPass> pass)
+      : scene_(scene), options_(options), session_(session), roster_(roster), pass_(pass) {}
+
+  // The serial baseline: this process, one thread, no slaves.
+  FrameResult serial(int tileSize) {
+    FrameOptions frame;
+    frame.threads = 1;
+    frame.tileSize = tileSize;
+    frame.pass = pass_;
+    frame.frameId = nextFrame_++;
+    return renderFrame(scene_, frame, nullptr);
+  }
+
+  FrameResult parallel(Schedule schedule, int tileSize, int slaves) {
+    FrameOptions frame;
+    frame.tileSize = tileSize;
+    frame.schedule = schedule;
+    frame.leaseSeconds = options_.render.leaseSeconds;
+    frame.prefetch = options_.render.prefetch;
+    frame.pass = pass_;
+    frame.roster = &roster_;
+    frame.masterRenders = false;
+    frame.activeSlaves = slaves;
+    frame.frameId = nextFrame_++;
+    FrameResult result = renderFrame(scene_, frame, &session_);
+    for (int r = 1; r <= slaves; ++r) {
+      if (result.workers[r].retired) {
+        throw std::runtime_error("rank " + std::to_string(r) +
+                                 " stopped answering during a measured frame; its numbers would "
+                                 "be meaningless");
+      }
+    }
+    return result;
+  }
+
+ private:
+  const Scene& scene_;
+  const SpeedupOptions& options_;
+  MpiSession& session_;
+  ClusterRoster& roster_;
+  std::shared_ptr<const RenderPass> pass_;
+  uint32_t nextFrame_ = 1;
+};
+
+// Per-tile medians over the serial repeats, in plan order.
+std::vector<double> medianTileSeconds(const std::vector<std::vector<double>>& runs) {
+  std::vector<double> medians(runs.front().size());
+  for (size_t tile = 0; tile < medians.size(); ++tile) {
+    std::vector<double> samples;
+    for (const std::vector<double>& run : runs) samples.push_back(run[tile]);
+    medians[tile] = spreadOf(samples).median;
+  }
+  return medians;
+}
+
+void writeOutputs(const SpeedupReport& report, const SpeedupOutputs& files,
+                  const SpeedupChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
+  writeFileAtomically(files.csv, [&](std::ostream& f) { writeSpeedupCsv(report, f); });
+  writeFileAtomically(files.projectionCsv, [&](std::ostream& f) { writeProjectionCsv(report, f); });
+  out << "\n  wrote " << files.csv << " and " << files.projectionCsv << "\n";
+  if (!chartWriter) {
+    err << "prism: note: the charts need Qt5 Charts, which this build lacks; the CSVs hold every "
+           "number\n";
+    return;
+  }
+  chartWriter(measuredChart(report), files.chart);
+  chartWriter(projectionChart(report), files.projectionChart);
+  out << "  wrote " << files.chart << " and " << files.projectionChart << "\n";
+}
+
+}  // namespace
+
+SpeedupOutputs speedupOutputs(const std::string& prefix) {
+  return {prefix + ".csv", prefix + "-projection.csv", prefix + "-speedup.png",
+          prefix + "-projection.png"};
+}
+
+int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
+               MpiSession* session, const SpeedupChartWriter& chartWriter) {
+  if (!session || session->size() < 2) {
+    err << "prism: error: prism speedup measures inside one MPI job and needs at least 2 ranks: "
+           "rank 0 coordinates and ranks 1..N-1 render, so the job measures 1..N-1 slaves.\n"
+           "  Start it as: mpiexec -n N prism speedup "
+        << (options.render.scenePath.empty() ? "scene.yaml" : options.render.scenePath)
+        << "\n  (add --oversubscribe when N exceeds the cores; see docs/scaling.md)\n";
+    return 1;
+  }
+  if (session->rank() != 0) {
+    SlaveOptions slave;
+    slave.threads = options.threadsPerRank;
+    return runSlave(*session, slave);
+  }
+
+  SpeedupReport report;
+  report.scenePath = options.render.scenePath;
+  report.ranks = session->size();
+  report.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  report.threadsPerRank = options.threadsPerRank;
+  report.repeats = options.repeats;
+  report.prefetch = options.render.prefetch;
+  const SpeedupOutputs files = speedupOutputs(
+      options.outputPrefix.empty()
+          ? "speedup-" + std::filesystem::path(options.render.scenePath).stem().string()
+          : options.outputPrefix);
+  SceneDescription description;
+  try {
+    const auto parseStart = SteadyClock::now();
+    description = loadSceneWithOverrides(options.render);
+    report.setup.parseSeconds = secondsSince(parseStart);
+    const std::filesystem::path folder = std::filesystem::path(files.csv).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+      throw std::runtime_error("output folder " + folder.string() + " does not exist");
+    }
+  } catch (const std::exception& e) {
+    return failBeforeScene(session, e.what(), err);
+  }
+
+  int exitCode = 0;
+  std::vector<bool> silent;
+  try {
+    const auto broadcastStart = SteadyClock::now();
+    std::vector<uint8_t> bytes = wire::encodeScene(description);
+    session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+    report.setup.broadcastSeconds = secondsSince(broadcastStart);
+    report.setup.broadcastBytes = bytes.size();
+    const auto buildStart = SteadyClock::now();
+    const Scene scene(description);
+    report.setup.buildSeconds = secondsSince(buildStart);
+    const RenderSettings& settings = scene.settings();
+    report.width = settings.width;
+    report.height = settings.height;
+    report.samplesPerPixel = settings.samplesPerPixel;
+
+    ClusterRoster roster(session->size());
+    report.setup.slaveBuildSeconds = waitForSlaves(*session, roster);
+    const PreparedPass prepared =
+        prepareCaustics(scene, *session, roster, options.render.leaseSeconds);
+    report.setup.causticStage = prepared.stage;
+    report.setup.causticSeconds = prepared.seconds;
+    if (prepared.progressiveAsOneFrame) {
+      err << "prism: note: a progressive scene is measured as one k-NN photon-map frame\n";
+    }
+
+    const int slaves = session->size() - 1;
+    std::vector<int> tileSizes = options.tileSizes;
+    if (tileSizes.empty()) {
+      tileSizes = {
+          automaticTileSize(settings.width, settings.height, slaves * options.threadsPerRank)};
+    }
+    // Bandwidth from messages the size of the largest tile result, and at least 256 kB so
+    // that their transfer time stands out of the latency's noise.
+    const int largestTile = *std::max_element(tileSizes.begin(), tileSizes.end());
+    const size_t probeBytes = std::max<size_t>(
+        size_t{256} << 10, static_cast<size_t>(tileResultBytes(largestTile * largestTile)));
+    report.link = measureLink(*session, roster, probeBytes, options.linkRoundTrips);
+
+    for (int tileSize : tileSizes) report.serial.push_back({tileSize, {}, {}});
+    for (Schedule schedule : options.schedules) {
+      for (int tileSize : tileSizes) {
+        for (int p = 1; p <= slaves; ++p) {
+          ScalingPoint point;
+          point.schedule = schedule;
+          point.tileSize = tileSize;
+          point.slaves = p;
+          point.threadsPerRank = options.threadsPerRank;
+          point.busyFractions.resize(static_cast<size_t>(p));
+          // Rank 0 keeps a process running (it coordinates) beside the render threads.
+          point.oversubscribed = p * options.threadsPerRank + 1 > report.cores;
+          report.points.push_back(point);
+        }
+      }
+    }
+
+    Measurement measure(scene, options, *session, roster, prepared.pass);
+    const size_t frames =
+        1 + static_cast<size_t>(options.repeats) * (report.serial.size() + report.points.size());
+    ProgressBar progress("measuring", frames, "frames", !options.quiet && stderrIsTerminal());
+    size_t done = 0;
+    // Warm-up, not counted: every slave renders once (caches, lazily built caustic maps).
+    measure.parallel(Schedule::Dynamic, tileSizes.front(), slaves);
+    progress.update(++done);
+    std::map<int, std::vector<std::vector<double>>> serialTiles;  // tile size -> runs
+    std::vector<TileRect> costPlan;
+    // Repeats are rounds over every point, so slow drift in the machine's load spreads over
+    // all points instead of biasing the ones measured last.
+    for (int round = 0; round < options.repeats; ++round) {
+      for (SerialPoint& s : report.serial) {
+        const FrameResult f = measure.serial(s.tileSize);
+        s.samples.push_back(f.seconds);
+        serialTiles[s.tileSize].push_back(f.tileSeconds);
+        progress.update(++done);
+      }
+      for (ScalingPoint& p : report.points) {
+        const FrameResult f = measure.parallel(p.schedule, p.tileSize, p.slaves);
+        p.samples.push_back(f.seconds);
+        for (int r = 1; r <= p.slaves; ++r) {
+          const WorkerStats& w = f.workers[r];
+          p.busyFractions[r - 1].push_back(w.busySeconds / (std::max(w.threads, 1) * f.seconds));
+        }
+        progress.update(++done);
+      }
+    }
+    progress.finish();
+
+    deriveStatistics(report);
+    std::map<int, std::vector<double>> costsBySize;
+    for (const auto& [tileSize, runs] : serialTiles)
+      costsBySize[tileSize] = medianTileSeconds(runs);
+    predictMeasuredPoints(report, costsBySize);
+    const TileCostMap costs(report.width, report.height,
+                            planTiles(report.width, report.height, report.serialTileSize),
+                            costsBySize[report.serialTileSize]);
+    ProjectionPlan plan;
+    plan.sizes = {{report.width, report.height}, {1920, 1080}, {3840, 2160}, {7680, 4320}};
+    plan.tileSize = report.serialTileSize;
+    plan.maxWorkers = options.projectWorkers;
+    plan.schedules = options.schedules;
+    report.projection = projectScaling(costs, plan, report);
+
+    printSpeedupTable(report, out);
+    writeOutputs(report, files, chartWriter, out, err);
+    for (int r = 0; r < session->size(); ++r) silent.push_back(roster.retired[r]);
+  } catch (const std::exception& e) {
+    err << "prism: error: " << e.what() << "\n";
+    exitCode = 1;
+  }
+  out.flush();
+  return shutDownSlaves(session, exitCode, silent, err);
+}
+
+}  // namespace prism
