@@ -2,8 +2,10 @@
 
 #include <QApplication>
 #include <QFileInfo>
+#include <QKeyEvent>
 #include <QTimer>
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <exception>
 #include <optional>
@@ -188,6 +190,15 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
       }
       window.close();
     });
+  }
+  for (const char c : options.keys) {  // queued: handled once the event loop runs, in order
+    const int key = std::isalpha(static_cast<unsigned char>(c))
+                        ? Qt::Key_A + (std::toupper(static_cast<unsigned char>(c)) - 'A')
+                        : static_cast<int>(c);
+    const Qt::KeyboardModifiers shift =
+        std::isupper(static_cast<unsigned char>(c)) ? Qt::ShiftModifier : Qt::NoModifier;
+    QCoreApplication::postEvent(&window,
+                                new QKeyEvent(QEvent::KeyPress, key, shift, QString(QChar(c))));
   }
   std::unique_ptr<MoveBenchmark> benchmark;
   if (options.benchmarkMoves > 0) {

@@ -1,6 +1,7 @@
 #include "master/Cli.h"
 
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <iostream>
 #include <map>
 
@@ -209,6 +210,17 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
                    "Save the image here (.png or .exr) when the viewer quits");
   view->add_option("--screenshot", o.screenshotPath,
                    "Save a picture of the whole window (.png) after --screenshot-after, then quit");
+  view->add_option("--keys", o.keys,
+                   "Type these keys into the window at start, in order, as if pressed (scripts "
+                   "and screenshots), e.g. --keys C for the caustic map or --keys bC")
+      ->check([](const std::string& keys) {
+        for (const char c : keys) {
+          if (!std::isalpha(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '=') {
+            return std::string("only letters and + - = can be typed, not '") + c + "'";
+          }
+        }
+        return std::string();
+      });
   view->add_option("--screenshot-after", o.screenshotSeconds,
                    "Seconds after start for --screenshot (default 2)")
       ->check(CLI::Range(0.0, 3600.0));

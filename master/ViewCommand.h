@@ -23,6 +23,7 @@ struct ViewOptions {
   std::string screenshotPath;      // grab the whole window here ...
   double screenshotSeconds = 2.0;  // ... this long after start, then quit
   int benchmarkMoves = 0;          // move the camera this often, print preview latencies, quit
+  std::string keys;                // typed into the window at start, in order (letters, + - =)
 };
 
 class MpiSession;

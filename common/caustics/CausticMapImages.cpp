@@ -13,7 +13,7 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
                               {"caustics", ImageRgb(n * views, n)}};
   // Positions are shown relative to the box the receiver and caster texels span.
   Vec3 lo(1e30f), hi(-1e30f);
-  float brightest = 0.0f;
+  std::vector<float> lit;  // the caustic texels' brightness
   for (int v = 0; v < views; ++v) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -22,11 +22,22 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
         if (r.valid) lo = glm::min(lo, r.position), hi = glm::max(hi, r.position);
         const CasterTexel& c = map.casters()[k];
         if (c.valid) lo = glm::min(lo, c.position), hi = glm::max(hi, c.position);
-        brightest = std::max(brightest, maxComponent(map.irradianceMap()[k]));
+        const float e = maxComponent(map.irradianceMap()[k]);
+        if (e > 0.0f) lit.push_back(e);
       }
     }
   }
   const Vec3 span = glm::max(hi - lo, Vec3(1e-6f));
+  // White at the 99.5th percentile of the lit texels, not the brightest: a focus a few texels
+  // wide would otherwise leave the rest of the caustic too dark to see.
+  float white = 0.0f;
+  if (!lit.empty()) {
+    const size_t at =
+        std::min(lit.size() - 1,
+                 static_cast<size_t>(kCausticWhitePercentile * static_cast<double>(lit.size())));
+    std::nth_element(lit.begin(), lit.begin() + static_cast<std::ptrdiff_t>(at), lit.end());
+    white = lit[at];
+  }
   for (int v = 0; v < views; ++v) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -40,7 +51,7 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
           out[1].image.pixels[px] = (c.position - lo) / span;
           out[2].image.pixels[px] = 0.5f * c.normal + 0.5f;
         }
-        if (brightest > 0.0f) out[3].image.pixels[px] = map.irradianceMap()[k] / brightest;
+        if (white > 0.0f) out[3].image.pixels[px] = map.irradianceMap()[k] / white;
       }
     }
   }

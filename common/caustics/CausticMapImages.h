@@ -1,6 +1,7 @@
 // Debug pictures of a caustic map, each view side by side: receiver positions and caster
-// positions (mapped into the unit cube over the scene's bounds), caster normals (n/2 + 1/2) and
-// the caustic irradiance (scaled so the brightest texel is 1). Empty texels are black.
+// positions (mapped into the unit cube over the texels' bounds), caster normals (n/2 + 1/2) and
+// the caustic irradiance (scaled so the 99.5th percentile of the lit texels is 1; brighter ones
+// exceed 1 and show white). Empty texels are black.
 #pragma once
 
 #include <string>
@@ -10,6 +11,8 @@
 #include "image/ImageRgb.h"
 
 namespace prism {
+
+inline constexpr double kCausticWhitePercentile = 0.995;
 
 struct NamedImage {
   std::string name;  // receivers, casters, normals, caustics

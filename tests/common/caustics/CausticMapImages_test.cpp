@@ -1,0 +1,50 @@
+// The caustic map's debug images: one texel per pixel, rows top down, empty texels black,
+// positions inside the unit cube, and the irradiance white at the 99.5th percentile of the lit
+// texels so the focus does not leave the rest of the caustic black.
+#include "caustics/CausticMapImages.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/common/caustics/BallOverFloorScene.h"
+
+namespace prism {
+namespace {
+
+TEST(CausticMapImages, OnePixelPerTexelWithTheCausticWhiteAtThePercentile) {
+  SceneDescription d = test::ballOverFloorScene(1.5f);
+  d.caustics.mapResolution = 64;
+  const Scene scene(d);
+  const CausticMap map(scene, 0, scene.causticSettings(), 1);
+  const std::vector<NamedImage> images = causticMapImages(map);
+  ASSERT_EQ(images.size(), 4u);
+  const char* names[] = {"receivers", "casters", "normals", "caustics"};
+  for (size_t i = 0; i < images.size(); ++i) {
+    EXPECT_EQ(images[i].name, names[i]);
+    EXPECT_EQ(images[i].image.width, 64);
+    EXPECT_EQ(images[i].image.height, 64);
+  }
+  size_t lit = 0, white = 0;
+  for (int j = 0; j < 64; ++j) {
+    for (int i = 0; i < 64; ++i) {
+      const size_t texel = static_cast<size_t>(j) * 64 + i;
+      const size_t pixel = static_cast<size_t>(63 - j) * 64 + i;  // row 0 is the grid's bottom
+      const Color receiver = images[0].image.pixels[pixel];
+      const Color caster = images[1].image.pixels[pixel];
+      EXPECT_EQ(receiver == Color(0.0f), !map.receivers().at(0, i, j).valid);
+      EXPECT_EQ(caster == Color(0.0f), !map.casters()[texel].valid);
+      for (const Color& c : {receiver, caster}) {
+        EXPECT_GE(std::min({c.x, c.y, c.z}), 0.0f);
+        EXPECT_LE(std::max({c.x, c.y, c.z}), 1.0f + 1e-6f);
+      }
+      const float e = images[3].image.pixels[pixel].x;
+      lit += e > 0.0f;
+      white += e >= 1.0f;
+    }
+  }
+  ASSERT_GT(lit, 1000u);
+  // The texels at or above the percentile: 0.5 % of the lit ones, within one texel's rounding.
+  EXPECT_NEAR(static_cast<double>(white), (1.0 - kCausticWhitePercentile) * lit, 1.5);
+}
+
+}  // namespace
+}  // namespace prism
