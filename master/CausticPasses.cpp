@@ -53,7 +53,8 @@ void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
 
 std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
                                                  std::shared_ptr<const CausticMapEstimator> maps) {
-  if (!maps || maps->empty()) return std::make_shared<const RenderPass>(RenderPass{index, true, nullptr});
+  if (!maps || maps->empty())
+    return std::make_shared<const RenderPass>(RenderPass{index, true, nullptr});
   return std::make_shared<const RenderPass>(RenderPass{index, true, std::move(maps), true});
 }
 

@@ -109,7 +109,7 @@ void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
       ->group(caustics);
   command
       ->add_option("--map-steps", v.mapSteps,
-                   "Caustic map: iterations of the receiver-distance estimate (default 3)")
+                   "Caustic map: iterations of the receiver-distance estimate (default 10)")
       ->check(CLI::Range(1, kMaxCausticMapSteps))
       ->group(caustics);
   command

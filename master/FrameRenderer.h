@@ -25,6 +25,11 @@ struct ClusterRoster {
       : threads(static_cast<size_t>(ranks), 0),
         buildSeconds(static_cast<size_t>(ranks), 0.0),
         retired(static_cast<size_t>(ranks), false) {}
+  // A slave's Ready (it may arrive during any phase that listens to the slaves).
+  void recordReady(int rank, int rankThreads, double rankBuildSeconds) {
+    threads[static_cast<size_t>(rank)] = rankThreads;
+    buildSeconds[static_cast<size_t>(rank)] = rankBuildSeconds;
+  }
   std::vector<int> threads;
   std::vector<double> buildSeconds;
   std::vector<bool> retired;

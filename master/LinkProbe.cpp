@@ -25,8 +25,7 @@ void awaitEcho(MpiSession& session, ClusterRoster& roster, int rank, uint32_t se
         break;  // a late echo of an earlier probe
       case wire::MessageType::Ready: {
         const wire::ReadyMessage ready = wire::decodeReady(message);
-        roster.threads[incoming->source] = ready.threads;
-        roster.buildSeconds[incoming->source] = ready.buildSeconds;
+        roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
         break;
       }
       case wire::MessageType::Error:

@@ -128,8 +128,7 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
       }
       case wire::MessageType::Ready: {
         const wire::ReadyMessage ready = wire::decodeReady(message);
-        roster.threads[incoming->source] = ready.threads;
-        roster.buildSeconds[incoming->source] = ready.buildSeconds;
+        roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
         break;
       }
       case wire::MessageType::Error:

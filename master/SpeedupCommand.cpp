@@ -92,8 +92,7 @@ double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
     }
     if (message.type != wire::MessageType::Ready) continue;
     const wire::ReadyMessage ready = wire::decodeReady(message);
-    roster.threads[incoming->source] = ready.threads;
-    roster.buildSeconds[incoming->source] = ready.buildSeconds;
+    roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
   }
   return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
 }
