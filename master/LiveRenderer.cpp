@@ -170,8 +170,9 @@ std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) 
 }
 
 std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& plan) {
-  // Every rank builds the maps from the scene once per blur setting (the slaves when the first
-  // tile asks for them); they do not depend on the camera, so the preview shows them too.
+  // Every rank builds the maps from the scene once per blur setting (a slave as soon as it has
+  // a caustic-map scene, else when the first tile asks); they do not depend on the camera, so
+  // the preview shows them too.
   const bool blur = plan.view.causticMapBlur;
   const std::shared_ptr<const CausticMapEstimator> maps = causticMaps(blur);
   double buildSeconds = 0.0;
