@@ -147,8 +147,16 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
   out << "rays      " << formatCount(static_cast<double>(f.rays.total()))
       << " total: " << formatCount(static_cast<double>(f.rays.primary)) << " primary, "
       << formatCount(static_cast<double>(f.rays.shadow)) << " shadow, "
-      << formatCount(static_cast<double>(f.rays.secondary)) << " reflected/refracted\n"
-      << "time      render " << fixed(f.seconds, 3) << " s, write " << milliseconds(s.writeSeconds)
+      << formatCount(static_cast<double>(f.rays.secondary)) << " reflected/refracted\n";
+  // Said every time, so a log without it is a log of a run that could not check.
+  if (f.rays.nonFinite == 0) {
+    out << "numbers   every sample finite\n";
+  } else {
+    out << "numbers   " << f.rays.nonFinite
+        << " samples or pixels were NaN or infinite (an extreme light, a light on a surface, "
+           "degenerate geometry?) and are black in the image\n";
+  }
+  out << "time      render " << fixed(f.seconds, 3) << " s, write " << milliseconds(s.writeSeconds)
       << ", total " << fixed(s.totalSeconds, 3) << " s\n"
       << "speed     " << fixed(mrays, 2) << " Mrays/s (" << fixed(mrays / std::max(1, f.threads), 2)
       << " per thread)\n"

@@ -28,14 +28,24 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
     const Vec2 offset = sampler_.offset(i, rng);
     const Ray ray =
         camera_.generateRay(static_cast<float>(x) + offset.x, static_cast<float>(y) + offset.y);
+    Color sample;
     if (debugView_ != DebugView::Image) {
-      sum += debugColor(scene_, ray, debugView_, rays);
-      continue;
+      sample = debugColor(scene_, ray, debugView_, rays);
+    } else {
+      ++rays.primary;
+      sample = integrator_.radiance(ray, 0, Color(1.0f), rays);
     }
-    ++rays.primary;
-    sum += integrator_.radiance(ray, 0, Color(1.0f), rays);
+    // One NaN or infinite sample would poison the pixel and every average it enters.
+    if (isFinite(sample)) {
+      sum += sample;
+    } else {
+      ++rays.nonFinite;
+    }
   }
-  return sum / static_cast<float>(sampler_.count());
+  const Color pixel = sum / static_cast<float>(sampler_.count());
+  if (isFinite(pixel)) return pixel;
+  ++rays.nonFinite;  // finite samples that summed past the float range
+  return Color(0.0f);
 }
 
 TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect) const {

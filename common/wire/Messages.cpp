@@ -205,7 +205,7 @@ std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
   return encodeWith(MessageType::TileResult, [&](ByteWriter& w) {
     const auto& [frame, result] = message;
     const auto& [tileIndex, rect, pixels, rays, seconds] = result;
-    const auto& [primary, shadow, secondary] = rays;
+    const auto& [primary, shadow, secondary, nonFinite] = rays;
     w.writeU32(frame);
     w.writeU32(tileIndex);
     writeRect(w, rect);
@@ -213,6 +213,7 @@ std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
     w.writeU64(primary);
     w.writeU64(shadow);
     w.writeU64(secondary);
+    w.writeU64(nonFinite);
     w.writeF64(seconds);
   });
 }
@@ -222,7 +223,7 @@ TileResultMessage decodeTileResult(const Message& message) {
     TileResultMessage m;
     auto& [frame, result] = m;
     auto& [tileIndex, rect, pixels, rays, seconds] = result;
-    auto& [primary, shadow, secondary] = rays;
+    auto& [primary, shadow, secondary, nonFinite] = rays;
     frame = r.readU32();
     tileIndex = r.readU32();
     rect = readRect(r);
@@ -235,6 +236,7 @@ TileResultMessage decodeTileResult(const Message& message) {
     primary = r.readU64();
     shadow = r.readU64();
     secondary = r.readU64();
+    nonFinite = r.readU64();
     seconds = r.readF64();
     checkSeconds(seconds, "tile render time");
     return m;

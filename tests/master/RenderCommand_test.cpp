@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -19,6 +20,7 @@ namespace fs = std::filesystem;
 
 using test::ProcessRun;
 using test::runPrism;
+using test::runPrismMpi;
 
 class RenderCommandTest : public test::ScratchFolderTest {};
 
@@ -59,6 +61,36 @@ TEST_F(RenderCommandTest, OverridesAndNffInput) {
   const ImageRgb image = readImage(path("balls.png"));
   EXPECT_EQ(image.width, 48);
   EXPECT_EQ(image.height, 32);
+}
+
+// A light too bright for floats makes samples infinite near it. None reaches the image: each
+// such sample is black, and the summary counts them, the same for 1 and 2 ranks; an ordinary
+// scene says every sample was finite.
+TEST_F(RenderCommandTest, NonFiniteSamplesAreBlackAndCounted) {
+  const std::string scene = std::string(PRISM_TEST_DATA_DIR) + "/scenes/non-finite.yaml";
+  const auto count = [](const std::string& output) -> long {
+    const auto at = output.find("numbers   ");
+    if (at == std::string::npos) return -1;
+    return std::strtol(output.c_str() + at + 10, nullptr, 10);
+  };
+  const ProcessRun run = runPrism("render " + scene + " -o " + path("one.exr"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const long nonFinite = count(run.output);
+  EXPECT_GT(nonFinite, 0) << run.output;
+  const ImageRgb image = readImage(path("one.exr"));
+  long black = 0;
+  for (const Color& c : image.pixels) {
+    ASSERT_TRUE(isFinite(c));
+    black += c == Color(0.0f);
+  }
+  EXPECT_EQ(black, nonFinite);  // one sample per pixel, and the floor is lit everywhere else
+  const ProcessRun two = runPrismMpi(2, "render " + scene + " -o " + path("two.exr"));
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  EXPECT_EQ(count(two.output), nonFinite) << two.output;
+
+  const ProcessRun plain =
+      runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("plain.exr"));
+  EXPECT_NE(plain.output.find("numbers   every sample finite"), std::string::npos) << plain.output;
 }
 
 TEST_F(RenderCommandTest, BadSceneGivesLocatedErrorNonZeroExitAndNoImage) {

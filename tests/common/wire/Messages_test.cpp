@@ -20,7 +20,7 @@ TileResultMessage sampleTileResult() {
     m.result.pixels.push_back(Color(0.1f * i, -0.0f, std::numeric_limits<float>::infinity()));
   }
   m.result.pixels[5] = Color(std::bit_cast<float>(0x7FC00001u), 1e-40f, 3.0f);
-  m.result.rays = {6, 12, 0x1234567890ull};
+  m.result.rays = {6, 12, 0x1234567890ull, 3};
   m.result.seconds = 0.015625;
   return m;
 }
@@ -115,6 +115,7 @@ TEST(Messages, TileResultRoundTripsBitExact) {
   EXPECT_EQ(back.result.rays.primary, sent.result.rays.primary);
   EXPECT_EQ(back.result.rays.shadow, sent.result.rays.shadow);
   EXPECT_EQ(back.result.rays.secondary, sent.result.rays.secondary);
+  EXPECT_EQ(back.result.rays.nonFinite, sent.result.rays.nonFinite);
   EXPECT_EQ(back.result.seconds, sent.result.seconds);
 }
 
@@ -540,13 +541,13 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   const char* update =
       "a message struct changed: update common/wire/Messages.cpp and this test's sizes";
   EXPECT_EQ(sizeof(TileRect), 16u) << update;
-  EXPECT_EQ(sizeof(RayCounters), 24u) << update;
-  EXPECT_EQ(sizeof(TileResult), 80u) << update;
+  EXPECT_EQ(sizeof(RayCounters), 32u) << update;
+  EXPECT_EQ(sizeof(TileResult), 88u) << update;
   EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
   EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
-  EXPECT_EQ(sizeof(TileResultMessage), 88u) << update;
+  EXPECT_EQ(sizeof(TileResultMessage), 96u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
   EXPECT_EQ(sizeof(ProgressMessage), 40u) << update;
