@@ -1,9 +1,9 @@
 // Writes the wire fuzzer's seeds into tests/fuzz/corpus/wire: one full message of each type (for
 // the envelope checks) and the same payload behind a type byte (the harness's second form), so
 // the fuzzer starts inside every payload decoder. Scenes come from the example scene files.
+// (the long runs then merged more inputs into that folder):
 //   build/tests/fuzz/prism_fuzz_wire_seeds tests/fuzz/corpus/wire
-//   scenes/caustic-{glass-sphere,ring}.yaml \
-//     scenes/caustic-map-*.yaml scenes/lambert-plane.yaml
+//       scenes/caustic-{glass-sphere,ring}.yaml scenes/caustic-map-*.yaml scenes/lambert-plane.yaml
 #include <cstdio>
 #include <fstream>
 #include <string>
