@@ -143,7 +143,11 @@ bool isBadDataWarning(const std::string& warning) {
 }  // namespace
 
 MeshDesc loadObjMesh(const std::string& path, const FileLoc& referencedFrom) {
-  const std::string text = readObjFile(path, referencedFrom);
+  return parseObjMesh(readObjFile(path, referencedFrom), path, referencedFrom);
+}
+
+MeshDesc parseObjMesh(const std::string& text, const std::string& path,
+                      const FileLoc& referencedFrom) {
   const ObjLines lines = scanObjLines(text, path);
   const FileLoc fileLoc{path, 0, 0};
 

@@ -12,4 +12,9 @@ namespace prism {
 // there when the file is missing and into the OBJ file otherwise. Throws SceneError.
 MeshDesc loadObjMesh(const std::string& path, const FileLoc& referencedFrom);
 
+// The same from OBJ text already in memory (the fuzzer feeds it this way); path names the text in
+// errors and becomes the mesh's source.
+MeshDesc parseObjMesh(const std::string& text, const std::string& path,
+                      const FileLoc& referencedFrom);
+
 }  // namespace prism

@@ -352,11 +352,16 @@ ViewMessage decodeView(const Message& message) {
     if (samplesPerPixel <= 0) {
       throw WireError("invalid samples per pixel " + std::to_string(samplesPerPixel));
     }
-    switch (static_cast<DebugView>(rawView)) {
-      case DebugView::Image:
-      case DebugView::Normals:
-        debugView = static_cast<DebugView>(rawView);
-        return m;
+    // DebugView is a byte: compare before trusting the cast, or 256 would read as Image (found
+    // by the wire fuzzer).
+    const auto known = static_cast<DebugView>(rawView);
+    if (static_cast<uint32_t>(known) == rawView) {
+      switch (known) {
+        case DebugView::Image:
+        case DebugView::Normals:
+          debugView = known;
+          return m;
+      }
     }
     throw WireError("invalid debug view " + std::to_string(rawView));
   });

@@ -75,7 +75,9 @@ Enum readEnum(ByteReader& r, const char* what) {
   const size_t at = r.offset();
   const uint32_t raw = r.readU32();
   const auto value = static_cast<Enum>(raw);  // scoped enums have a fixed type: well defined
-  if (!isKnown(value)) {
+  // The cast keeps only the low bits for a narrower enum (CausticRole is a byte), so 256 would
+  // otherwise read as 0 (found by the wire fuzzer).
+  if (static_cast<uint32_t>(value) != raw || !isKnown(value)) {
     throw WireError("invalid " + std::string(what) + " " + std::to_string(raw) + " at offset " +
                     std::to_string(at));
   }

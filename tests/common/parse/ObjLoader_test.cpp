@@ -117,6 +117,22 @@ TEST_F(ObjFiles, ConcaveFaceIsEarClipped) {
   for (size_t t = 0; t < 4; ++t) EXPECT_GT(geometricNormal(mesh, t).z, 0.0f);
 }
 
+TEST(ObjLoader, TextInMemoryLoadsLikeTheFileAndErrorsNameThePath) {
+  const MeshDesc mesh =
+      parseObjMesh("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", "mem.obj", kReferencedFrom);
+  EXPECT_EQ(mesh.source, "mem.obj");
+  EXPECT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_FLOAT_EQ(meshArea(mesh), 1.0f);
+  try {
+    parseObjMesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "mem.obj", kReferencedFrom);
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& error) {
+    EXPECT_EQ(error.loc().file, "mem.obj");
+    EXPECT_EQ(error.loc().line, 4);
+    EXPECT_EQ(error.message(), "face refers to vertex 9 but the file has 3");
+  }
+}
+
 TEST(ObjLoader, MissingFileIsReportedWhereTheSceneNamesIt) {
   try {
     loadObjMesh("no/such/mesh.obj", kReferencedFrom);

@@ -320,6 +320,14 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   bad.view.debugView = static_cast<DebugView>(77);
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid debug view 77");
   Message flag = decodeMessage(encodeView(m));
+  // The debug view is a u32 before the last byte; DebugView is a byte, so 256 must not read as
+  // Image (tests/fuzz/regressions/wire/view-debug-view-256).
+  Message wide = flag;
+  wide.payload[wide.payload.size() - 5] = 0;  // little-endian: 0 + 1 * 256
+  wide.payload[wide.payload.size() - 4] = 1;
+  expectWireError(
+      [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, wide.payload))); },
+      "invalid debug view 256");
   flag.payload.back() = 2;  // the blur switch is the last byte
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, flag.payload))); },

@@ -352,6 +352,26 @@ TEST(SceneCodec, UnknownEnumValuesAreRejected) {
   expectWireError(d, "invalid caustic role 255");
 }
 
+// CausticRole is a byte on a u32 field: a value past 255 must not wrap to a valid role.
+TEST(SceneCodec, EnumValuesPastANarrowEnumAreNotTruncated) {
+  SceneDescription d = fullScene();
+  d.spheres[1].caustic = CausticRole::Auto;
+  std::vector<uint8_t> bytes = payloadOf(d);
+  d.spheres[1].caustic = CausticRole::Cast;
+  const std::vector<uint8_t> cast = payloadOf(d);
+  ASSERT_EQ(bytes.size(), cast.size());
+  const auto role = std::mismatch(bytes.begin(), bytes.end(), cast.begin()).first;
+  ASSERT_NE(role, bytes.end());
+  *(role + 1) = 1;  // little-endian u32: 0 + 256
+  try {
+    decodeBytes(bytes);
+    ADD_FAILURE() << "no WireError for caustic role 256";
+  } catch (const WireError& e) {
+    EXPECT_NE(std::string(e.what()).find("invalid caustic role 256"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SceneCodec, CausticSettingsThatCannotRunAreRejected) {
   const std::function<void(CausticSettings&)> spoils[] = {
       [](CausticSettings& c) { c.gather = 0; },   [](CausticSettings& c) { c.maxBounces = 0; },
