@@ -290,4 +290,15 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   return result;
 }
 
+bool handleSlaveStatus(const wire::Message& message, int source, ClusterRoster& roster) {
+  if (message.type == wire::MessageType::Error) {
+    throw std::runtime_error("rank " + std::to_string(source) + ": " +
+                             wire::decodeError(message).text);
+  }
+  if (message.type != wire::MessageType::Ready) return false;
+  const wire::ReadyMessage ready = wire::decodeReady(message);
+  roster.recordReady(source, ready.threads, ready.buildSeconds);
+  return true;
+}
+
 }  // namespace prism

@@ -35,6 +35,15 @@ struct ClusterRoster {
   std::vector<bool> retired;
 };
 
+namespace wire {
+struct Message;
+}
+
+// What every phase that listens to the slaves does with their status: a Ready goes into the
+// roster, an Error becomes std::runtime_error("rank k: text"). False for any other message,
+// which the caller handles.
+bool handleSlaveStatus(const wire::Message& message, int source, ClusterRoster& roster);
+
 struct FrameOptions {
   int threads = 0;   // render threads on this rank; 0: every available core
   int tileSize = 0;  // 0: automatic

@@ -19,20 +19,11 @@ void awaitEcho(MpiSession& session, ClusterRoster& roster, int rank, uint32_t se
     const auto incoming = session.waitForMessage(0.1);
     if (!incoming) continue;
     const wire::Message message = wire::decodeMessage(incoming->bytes);
-    switch (message.type) {
-      case wire::MessageType::Echo:
-        if (incoming->source == rank && wire::decodeEcho(message).sequence == sequence) return;
-        break;  // a late echo of an earlier probe
-      case wire::MessageType::Ready: {
-        const wire::ReadyMessage ready = wire::decodeReady(message);
-        roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
-        break;
-      }
-      case wire::MessageType::Error:
-        throw std::runtime_error("rank " + std::to_string(incoming->source) + ": " +
-                                 wire::decodeError(message).text);
-      default:
-        break;  // heartbeats
+    if (handleSlaveStatus(message, incoming->source, roster)) continue;
+    // Other than our echo: a late echo of an earlier probe, or a heartbeat.
+    if (message.type == wire::MessageType::Echo && incoming->source == rank &&
+        wire::decodeEcho(message).sequence == sequence) {
+      return;
     }
   }
   throw std::runtime_error("rank " + std::to_string(rank) + " did not echo a link probe within " +

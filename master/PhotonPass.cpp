@@ -113,6 +113,7 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
     lastHeard[incoming->source] = SteadyClock::now();
     const wire::Message message =
         wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
+    if (handleSlaveStatus(message, incoming->source, roster)) continue;
     switch (message.type) {
       case wire::MessageType::PhotonShare: {
         wire::PhotonShareMessage share = wire::decodePhotonShare(message);
@@ -126,14 +127,6 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
         stats.photonsByRank[incoming->source] += s->count;
         break;
       }
-      case wire::MessageType::Ready: {
-        const wire::ReadyMessage ready = wire::decodeReady(message);
-        roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
-        break;
-      }
-      case wire::MessageType::Error:
-        throw std::runtime_error("rank " + std::to_string(incoming->source) + ": " +
-                                 wire::decodeError(message).text);
       default:
         break;  // heartbeats, and late tiles of a frame already finished
     }

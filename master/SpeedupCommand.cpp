@@ -85,14 +85,7 @@ double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
     }
     const auto incoming = session.waitForMessage(0.1);
     if (!incoming) continue;
-    const wire::Message message = wire::decodeMessage(incoming->bytes);
-    if (message.type == wire::MessageType::Error) {
-      throw std::runtime_error("rank " + std::to_string(incoming->source) + ": " +
-                               wire::decodeError(message).text);
-    }
-    if (message.type != wire::MessageType::Ready) continue;
-    const wire::ReadyMessage ready = wire::decodeReady(message);
-    roster.recordReady(incoming->source, ready.threads, ready.buildSeconds);
+    handleSlaveStatus(wire::decodeMessage(incoming->bytes), incoming->source, roster);
   }
   return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
 }
