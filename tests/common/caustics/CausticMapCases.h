@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "parse/SceneLoader.h"
+#include "tests/common/caustics/BallOverFloorScene.h"
 #include "tests/common/caustics/CausticFluxGrid.h"
 
 namespace prism::test {
@@ -54,20 +55,11 @@ inline CausticCase hiddenReceiverCase() {
 inline CausticCase grazingCase(float elevationDegrees) {
   const float e = elevationDegrees * 3.14159265f / 180.0f;
   const Vec3 centre{0.0f, 1.2f, 0.0f};
-  SceneDescription d;
-  MaterialDesc glass;
-  glass.diffuse = Color(0.0f);
-  glass.transmittance = Color(1.0f);
-  glass.ior = 1.5f;
-  MaterialDesc floor;
-  floor.diffuse = Color(0.75f);
-  d.materials = {glass, floor};
-  d.spheres.push_back({centre, 1.0f, 0, {}});
-  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
-  PointLightDesc light;
-  light.position = centre + 8.0f * Vec3(-std::cos(e), std::sin(e), 0.0f);
-  light.intensity = Color(150.0f);
-  d.lights.push_back(light);
+  SceneDescription d = ballOverFloorScene(1.5f);  // the shared ball, moved and relit
+  d.spheres.at(0).center = centre;
+  d.materials.at(1).diffuse = Color(0.75f);
+  d.lights.at(0).position = centre + 8.0f * Vec3(-std::cos(e), std::sin(e), 0.0f);
+  d.lights.at(0).intensity = Color(150.0f);
   d.caustics.method = CausticMethod::CausticMap;
   // The shadow's centre, and its half-length along x (the ball's radius over sin e, plus room).
   const float middle = centre.y / std::tan(e), half = 1.6f / std::sin(e);
