@@ -314,7 +314,7 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
 }  // namespace
 
 int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer,
-           const SpeedupChartWriter& chartWriter) {
+           const ChartWriter& chartWriter) {
   const bool quietRank = session && session->rank() != 0;
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);

@@ -16,6 +16,6 @@ class MpiSession;
 // `prism view` on rank 0 and chartWriter draws the charts of `prism speedup`; both are empty in
 // a build without Qt.
 int runCli(int argc, char** argv, MpiSession* session = nullptr, const ViewerRunner& viewer = {},
-           const SpeedupChartWriter& chartWriter = {});
+           const ChartWriter& chartWriter = {});
 
 }  // namespace prism

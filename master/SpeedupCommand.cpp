@@ -162,7 +162,7 @@ std::vector<double> medianTileSeconds(const std::vector<std::vector<double>>& ru
 }
 
 void writeOutputs(const SpeedupReport& report, const SpeedupOutputs& files,
-                  const SpeedupChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
+                  const ChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
   writeFileAtomically(files.csv, [&](std::ostream& f) { writeSpeedupCsv(report, f); });
   writeFileAtomically(files.projectionCsv, [&](std::ostream& f) { writeProjectionCsv(report, f); });
   out << "\n  wrote " << files.csv << " and " << files.projectionCsv << "\n";
@@ -184,7 +184,7 @@ SpeedupOutputs speedupOutputs(const std::string& prefix) {
 }
 
 int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
-               MpiSession* session, const SpeedupChartWriter& chartWriter) {
+               MpiSession* session, const ChartWriter& chartWriter) {
   if (!session || session->size() < 2) {
     err << "prism: error: prism speedup measures inside one MPI job and needs at least 2 ranks: "
            "rank 0 coordinates and ranks 1..N-1 render, so the job measures 1..N-1 slaves.\n"
