@@ -2,6 +2,7 @@
 
 #include <QApplication>
 #include <QFile>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QImage>
 #include <QLabel>
@@ -58,6 +59,7 @@ QAbstractAxis* makeAxis(bool log, double base, const QString& title, double low,
   if (log) {
     auto* axis = new QLogValueAxis;
     axis->setBase(base);
+    if (base == 10.0) axis->setMinorTickCount(8);  // grid lines at 2..9 of every decade
     axis->setLabelFormat("%g");
     axis->setRange(low, high);
     axis->setTitleText(title);
@@ -188,7 +190,7 @@ QWidget* drawStrip(const ThumbnailStrip& strip) {
     small.setPointSizeF(small.pointSizeF() * 0.85);
     caption->setFont(small);
     caption->setWordWrap(true);
-    caption->setMaximumWidth(std::max(t.image.width, 60));
+    caption->setMaximumWidth(std::max(t.image.width, 110));
     cell->addWidget(caption);
     cell->addStretch();
     row->addLayout(cell);
@@ -222,14 +224,20 @@ void writeChartImage(const Chart& chart, const std::string& pngPath) {
   auto* row = new QHBoxLayout;
   for (const ChartPanel& panel : chart.panels) row->addWidget(drawPanel(panel));
   layout->addLayout(row, 1);
-  for (const ThumbnailStrip& strip : chart.strips) layout->addWidget(drawStrip(strip));
-  // The panels keep 640 pixels of height; each strip adds its thumbnails, title and captions.
+  // Strips two to a row under the panels; each row adds its thumbnails, titles and captions.
+  auto* strips = new QGridLayout;
   int height = 640;
-  for (const ThumbnailStrip& strip : chart.strips) {
-    int tallest = 0;
-    for (const Thumbnail& t : strip.thumbnails) tallest = std::max(tallest, t.image.height);
-    height += tallest + 110;
+  for (size_t i = 0; i < chart.strips.size(); ++i) {
+    strips->addWidget(drawStrip(chart.strips[i]), static_cast<int>(i / 2), static_cast<int>(i % 2));
+    if (i % 2 == 0) {
+      int tallest = 0;
+      for (size_t j = i; j < std::min(i + 2, chart.strips.size()); ++j)
+        for (const Thumbnail& t : chart.strips[j].thumbnails)
+          tallest = std::max(tallest, t.image.height);
+      height += tallest + 110;
+    }
   }
+  layout->addLayout(strips);
   page.resize(1000 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), height);
   page.show();
   QApplication::processEvents();

@@ -11,6 +11,7 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
+#include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/LinkProbe.h"
@@ -88,19 +89,6 @@ double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
     handleSlaveStatus(wire::decodeMessage(incoming->bytes), incoming->source, roster);
   }
   return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
-}
-
-// Writes through a temporary name, so no half-written file is left behind.
-template <typename Write>
-void writeFileAtomically(const std::string& path, Write write) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary);
-    if (!file) throw std::runtime_error("cannot write " + path);
-    write(file);
-    if (!file.flush()) throw std::runtime_error("cannot write " + path);
-  }
-  std::filesystem::rename(temporary, path);
 }
 
 class Measurement {

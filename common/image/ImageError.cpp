@@ -51,7 +51,9 @@ ImageError imageError(const ImageRgb& test, const ImageRgb& reference, const Ima
     }
   }
   const double values = 3.0 * static_cast<double>(e.pixels);
-  if (values > 0.0) {
+  if (values == 0.0) {  // an empty region has no error to speak of, not an error of 0
+    e.rmse = e.relRmse = e.mrse = e.maxError = std::numeric_limits<double>::quiet_NaN();
+  } else {
     e.rmse = std::sqrt(squared / values);
     e.mrse = relative / values;
     const double mean = referenceSum / values;

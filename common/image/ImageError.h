@@ -28,9 +28,9 @@ struct ImageError {
 // One byte per pixel, nonzero where the pixel counts.
 using PixelMask = std::vector<uint8_t>;
 
-// Compares test with reference over the mask (empty: every pixel). base is the frame without
-// caustics, for the flux ratio (empty image: no flux ratio, NaN). Throws std::invalid_argument
-// when the sizes differ.
+// Compares test with reference over the mask (empty: every pixel; one that selects nothing
+// gives NaN throughout). base is the frame without caustics, for the flux ratio (empty image:
+// no flux ratio, NaN). Throws std::invalid_argument when the sizes differ.
 ImageError imageError(const ImageRgb& test, const ImageRgb& reference, const ImageRgb& base = {},
                       const PixelMask& mask = {});
 

@@ -61,6 +61,11 @@ TEST(ImageError, FluxRatioIsTheCausticLightFoundOverTheCausticLightThere) {
   EXPECT_EQ(masked.pixels, 2u);
   EXPECT_NEAR(masked.fluxRatio, 1.0 / 3.0, 1e-6);
   EXPECT_NEAR(masked.maxError, 2.0 / 3.0, 1e-6);
+  // A region that selects nothing has no numbers rather than perfect ones.
+  const ImageError none = imageError(spread, reference, base, PixelMask(10, 0));
+  EXPECT_EQ(none.pixels, 0u);
+  EXPECT_TRUE(std::isnan(none.rmse));
+  EXPECT_TRUE(std::isnan(none.fluxRatio));
 }
 
 TEST(ImageError, CausticMaskKeepsTheBrightCausticAndGrowsIt) {
