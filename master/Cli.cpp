@@ -344,6 +344,11 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
       ->add_option("--reference-photons", o.reference.photons,
                    "Progressive reference: photons per pass (default 1000000)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  sweep
+      ->add_option("--reference-k", o.reference.k,
+                   "Progressive reference: photons whose mean distance sets the first radius "
+                   "(default 5)")
+      ->check(CLI::Range(1, 100000));
   sweep->add_flag("--refresh-reference", o.reference.refresh,
                   "Render the progressive reference again even when the cached one matches");
   sweep

@@ -39,6 +39,7 @@ SceneDescription progressiveSettings(SceneDescription d, const ReferenceRequest&
   d.caustics.photons = r.photons;
   d.caustics.timeBudgetSeconds = 0.0;
   d.caustics.radius = 0.0f;
+  d.caustics.gather = r.k;
   return d;
 }
 
