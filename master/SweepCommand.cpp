@@ -59,14 +59,20 @@ class Sweep {
     const double cpuStart = processCpuSeconds();
     const auto start = SteadyClock::now();
     ProgressiveSnapshot snapshot;
+    double scoringWall = 0.0, scoringCpu = 0.0;  // spent scoring snapshots: not the method's
     if (run.progressive) {
       snapshot = [&](int passes, const ImageRgb& image) {
         for (const size_t i : run.rows) {
           SweepRow& row = report_.rows[i];
           if (row.point.value != static_cast<uint64_t>(passes)) continue;
-          row.seconds.push_back(secondsSince(start));
-          row.cpuSeconds.push_back(processCpuSeconds() - cpuStart);
-          if (score) scoreRow(row, image);
+          row.seconds.push_back(secondsSince(start) - scoringWall);
+          row.cpuSeconds.push_back(processCpuSeconds() - cpuStart - scoringCpu);
+          if (!score) continue;
+          const double cpuBefore = processCpuSeconds();
+          const auto before = SteadyClock::now();
+          scoreRow(row, image);
+          scoringWall += secondsSince(before);
+          scoringCpu += processCpuSeconds() - cpuBefore;
         }
       };
     }
