@@ -176,6 +176,7 @@ int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, 
     report.threads = options.render.threads > 0 ? options.render.threads : report.cores;
     report.repeats = options.repeats;
     report.cpuAxis = options.cpuAxis;
+    report.metric = options.metric;
     report.exposure = scene.render.exposure;
     report.referenceKind = ref.kind;
     report.referenceDescription = ref.description;

@@ -14,6 +14,7 @@
 #include "master/RenderCommand.h"
 #include "master/SweepPlan.h"
 #include "master/SweepReference.h"
+#include "master/SweepReport.h"
 
 namespace prism {
 
@@ -23,9 +24,10 @@ struct SweepOptions {
   std::vector<SweepFamily> families = defaultSweepFamilies();
   SweepValues values;
   int repeats = 3;
-  ReferenceRequest reference;  // its cacheStem defaults to PREFIX-reference
-  double budgetSeconds = 0.0;  // 0: no limit; else no run starts after this long
-  bool cpuAxis = false;        // chart CPU seconds instead of wall seconds
+  ReferenceRequest reference;              // its cacheStem defaults to PREFIX-reference
+  double budgetSeconds = 0.0;              // 0: no limit; else no run starts after this long
+  bool cpuAxis = false;                    // chart CPU seconds instead of wall seconds
+  SweepMetric metric = SweepMetric::Mrse;  // the chart's error and the Pareto front's
   int thumbnailHeight = 96;
   bool quiet = false;  // no progress bar and no table
 };

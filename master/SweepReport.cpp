@@ -70,15 +70,42 @@ double SweepRow::medianCpuSeconds() const {
   return median(cpuSeconds);
 }
 
-double SweepRow::error() const {
-  return std::isfinite(region.relRmse) ? region.relRmse : image.relRmse;
+const char* metricName(SweepMetric metric) {
+  switch (metric) {
+    case SweepMetric::Mrse:
+      return "MRSE";
+    case SweepMetric::RelRmse:
+      return "relative RMSE";
+    case SweepMetric::Rmse:
+      return "RMSE";
+    case SweepMetric::MaxError:
+      return "max error";
+  }
+  return "?";
+}
+
+double SweepRow::error(SweepMetric metric) const {
+  const auto pick = [metric](const ImageError& e) {
+    switch (metric) {
+      case SweepMetric::Mrse:
+        return e.mrse;
+      case SweepMetric::RelRmse:
+        return e.relRmse;
+      case SweepMetric::Rmse:
+        return e.rmse;
+      case SweepMetric::MaxError:
+        return e.maxError;
+    }
+    return e.mrse;
+  };
+  return region.pixels > 0 ? pick(region) : pick(image);
 }
 
 void markParetoFront(SweepReport& report) {
   std::vector<double> cost, error;
   for (const SweepRow& r : report.rows) {
     cost.push_back(r.cost(report.cpuAxis));
-    error.push_back(r.error());
+    error.push_back(r.error(report.metric));
   }
   const std::vector<bool> front = paretoFront(cost, error);
   for (size_t i = 0; i < report.rows.size(); ++i) report.rows[i].pareto = front[i];
@@ -218,10 +245,10 @@ Chart sweepChart(const SweepReport& report) {
     }
     ChartSeries& f = flux.series[static_cast<size_t>(it - error.series.begin())];
     it->x.push_back(r.cost(report.cpuAxis));
-    it->y.push_back(r.error());
+    it->y.push_back(r.error(report.metric));
     f.x.push_back(r.cost(report.cpuAxis));
     f.y.push_back(std::isfinite(r.region.fluxRatio) ? r.region.fluxRatio : r.image.fluxRatio);
-    if (r.pareto) frontPoints.emplace_back(r.cost(report.cpuAxis), r.error());
+    if (r.pareto) frontPoints.emplace_back(r.cost(report.cpuAxis), r.error(report.metric));
   }
   std::sort(frontPoints.begin(), frontPoints.end());
   for (const auto& [x, y] : frontPoints) {
@@ -243,7 +270,7 @@ Chart sweepChart(const SweepReport& report) {
     if (chart.strips.back().title != name) chart.strips.push_back({name, report.exposure, {}});
     chart.strips.back().thumbnails.push_back(
         {r.thumbnail, valueText(r.point) + formatNumber("\n%.3g s", r.cost(report.cpuAxis)) +
-                          formatNumber(", err %.3f", r.error())});
+                          formatNumber(", err %.3g", r.error(report.metric))});
   }
   return chart;
 }

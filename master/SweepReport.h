@@ -14,6 +14,12 @@
 
 namespace prism {
 
+// The error the chart and the Pareto front use. MRSE by default: per-pixel relative error is
+// not dominated by a few very bright pixels (a focused caustic's peak), which RMSE-based
+// numbers are (docs/accuracy.md).
+enum class SweepMetric { Mrse, RelRmse, Rmse, MaxError };
+const char* metricName(SweepMetric metric);
+
 struct SweepRow {
   SweepPoint point;
   std::vector<double> seconds, cpuSeconds;  // one per timed run
@@ -25,16 +31,17 @@ struct SweepRow {
   double medianCpuSeconds() const;
   // The time the chart and the front use: wall or CPU seconds.
   double cost(bool cpuAxis) const { return cpuAxis ? medianCpuSeconds() : medianSeconds(); }
-  // The error the chart and the front use: relative RMSE in the caustic region, or over the
-  // whole frame when the reference has no caustic light.
-  double error() const;
+  // The metric in the caustic region, or over the whole frame when the reference has no
+  // caustic light.
+  double error(SweepMetric metric) const;
 };
 
 struct SweepReport {
   std::string scenePath;
   int width = 0, height = 0, samplesPerPixel = 0, threads = 0, cores = 0;
-  int repeats = 0;         // runs asked for per point
-  bool cpuAxis = false;    // chart CPU seconds instead of wall seconds
+  int repeats = 0;       // runs asked for per point
+  bool cpuAxis = false;  // chart CPU seconds instead of wall seconds
+  SweepMetric metric = SweepMetric::Mrse;
   bool budgetHit = false;  // --budget-seconds stopped the sweep early
   float exposure = 1.0f;
   std::string referenceKind, referenceDescription;
@@ -56,7 +63,7 @@ void writeSweepCsv(const SweepReport& report, std::ostream& out);
 // One line per point: family, value, median time, errors, flux ratio, front membership.
 void printSweepTable(const SweepReport& report, std::ostream& out);
 
-// Two panels against time (log x): relative RMSE in the caustic region (log y, with the Pareto
+// Two panels against time (log x): the metric in the caustic region (log y, with the Pareto
 // front), and the caustic flux ratio; a thumbnail strip per family and one for the reference.
 Chart sweepChart(const SweepReport& report);
 

@@ -121,6 +121,10 @@ TEST(SweepCsv, HeaderIsTheSchemaAndEveryRowHasEveryColumn) {
   EXPECT_EQ(field("flux_ratio"), "");
   EXPECT_EQ(field("pareto"), "yes");
   EXPECT_EQ(field("reference"), "analytic");
+  // The charted error is the region's, or the frame's when the region is empty.
+  EXPECT_EQ(report.rows[0].error(SweepMetric::RelRmse), 0.5);
+  report.rows[0].region.pixels = 0;
+  EXPECT_EQ(report.rows[0].error(SweepMetric::RelRmse), 0.25);
 }
 
 }  // namespace
