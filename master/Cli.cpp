@@ -8,6 +8,7 @@
 #include "master/RenderCommand.h"
 #include "master/SpeedupCommand.h"
 #include "transport/MpiSession.h"
+#include "util/MemorySize.h"
 
 namespace prism {
 namespace {
@@ -30,6 +31,16 @@ struct RenderOverrideValues {
   float mapBlurSigma = 0.0f;
   CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
+
+void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
+  command
+      ->add_option_function<std::string>(
+          "--memory-limit",
+          [&o](const std::string& text) { o.memoryLimit = parseMemorySize(text); },
+          "Memory a run may plan to use, e.g. 512M, 8G, 1.5T (default: physical memory); "
+          "larger requests are refused before anything is allocated, see docs/reliability.md")
+      ->option_text("SIZE");
+}
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
@@ -72,6 +83,10 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
       ->check(CLI::Range(0.1, 86400.0));
   render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
+  addMemoryLimitOption(render, o);
+  render->add_flag(
+      "--overwrite", o.overwrite,
+      "Replace an existing image file (a finished frame is never replaced without it)");
   // Testing only, so not in --help: makes one slave misbehave.
   render
       ->add_option_function<std::string>(
@@ -180,6 +195,9 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render->add_flag("--save-partial", o.savePartial,
+                   "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
+                   "marked partial; the run exits with status 130 either way");
   addCausticOptions(render, o, v);
 }
 
@@ -282,6 +300,7 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
   speedup->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
       ->check(CLI::Range(1, 1 << 16));
   addCausticMethodOptions(speedup, v);
+  addMemoryLimitOption(speedup, o.render);
   speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
 }
 

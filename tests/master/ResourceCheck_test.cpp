@@ -5,12 +5,14 @@
 namespace prism {
 namespace {
 
+const MemoryLimit k16GiB{16ull << 30, "test"};
+
 TEST(ResourceCheck, RefusesAMillionByMillionImageWithTheMemoryItNeeds) {
   RenderSettings s;
   s.width = 1000000;
   s.height = 1000000;
   try {
-    checkRenderFits(s, 16ull << 30);
+    checkRenderFits(s, k16GiB);
     FAIL() << "expected a refusal";
   } catch (const std::runtime_error& e) {
     const std::string message = e.what();
@@ -24,7 +26,7 @@ TEST(ResourceCheck, AcceptsOrdinaryImages) {
   RenderSettings s;
   s.width = 7680;
   s.height = 4320;
-  EXPECT_NO_THROW(checkRenderFits(s, 16ull << 30));
+  EXPECT_NO_THROW(checkRenderFits(s, k16GiB));
 }
 
 // 10^12 photons at 96 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree) is
@@ -35,7 +37,7 @@ TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 96000000000000ull);
   try {
-    checkCausticsFit(c, 16ull << 30);
+    checkCausticsFit(c, k16GiB);
     FAIL() << "expected a refusal";
   } catch (const std::runtime_error& e) {
     const std::string message = e.what();
@@ -44,11 +46,11 @@ TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
     EXPECT_NE(message.find("--photons"), std::string::npos) << message;
   }
   c.photons = 10000000;  // 10 M photons: under 1 GiB
-  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
   c.method = CausticMethod::None;  // no photon map, no memory, whatever the count says
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 0u);
-  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
 }
 
 TEST(ResourceCheck, FormatsBytesInBinaryUnits) {
