@@ -195,6 +195,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render->add_option("--status-file", o.statusFile, "")->group("");  // tests: tiles done so far
   render->add_flag("--save-partial", o.savePartial,
                    "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
                    "marked partial; the run exits with status 130 either way");

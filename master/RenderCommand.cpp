@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <ostream>
 
@@ -167,6 +168,9 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     std::unique_ptr<ProgressBar> progress;
     std::string stage;
     const auto onProgress = [&](const std::string& label, size_t done, size_t total) {
+      if (!options.statusFile.empty()) {
+        std::ofstream(options.statusFile) << label << ' ' << done << ' ' << total << '\n';
+      }
       if (options.quiet) return;
       if (!progress || label != stage) {
         if (progress) progress->finish();

@@ -42,7 +42,8 @@ struct RenderOptions {
   Schedule schedule = Schedule::Dynamic;
   double leaseSeconds = 30.0;
   int prefetch = 2;
-  FaultInjection fault;  // testing only
+  FaultInjection fault;    // testing only
+  std::string statusFile;  // testing only: "stage done total", rewritten as tiles finish
 };
 
 // Applies the overrides the user gave to the scene's own settings.
