@@ -49,6 +49,15 @@ void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
   for (size_t r = 0; r < p.photonsByRank.size(); ++r) c.photonsByRank[r] += p.photonsByRank[r];
 }
 
+// The progressive estimate after `passes` caustic passes: direct light plus their mean.
+ImageRgb progressiveImage(const ImageRgb& direct, const ImageRgb& causticSum, int passes) {
+  ImageRgb image = direct;
+  const float scale = 1.0f / static_cast<float>(std::max(passes, 1));
+  for (size_t px = 0; px < image.pixels.size(); ++px)
+    image.pixels[px] += causticSum.pixels[px] * scale;
+  return image;
+}
+
 }  // namespace
 
 std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
@@ -92,7 +101,8 @@ float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
 }
 
 CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress) {
+                                ClusterRoster& roster, const PassProgress& progress,
+                                const ProgressiveSnapshot& snapshot) {
   const CausticSettings& settings = scene.causticSettings();
   CausticFrame out;
   CausticRunStats& stats = out.caustics;
@@ -221,12 +231,9 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     addFrame(out.frames, f, false);
     out.lastMap = map;
     ++done;
+    if (snapshot) snapshot(done, progressiveImage(direct.image, causticSum, done));
   }
-  out.image = direct.image;
-  const float scale = 1.0f / static_cast<float>(std::max(done, 1));
-  for (size_t px = 0; px < out.image.pixels.size(); ++px) {
-    out.image.pixels[px] += causticSum.pixels[px] * scale;
-  }
+  out.image = progressiveImage(direct.image, causticSum, done);
   return out;
 }
 

@@ -58,8 +58,14 @@ struct CausticFrame {
 // (stage label, done, total), from the coordinating thread.
 using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 
+// Progressive runs: after each caustic pass, the passes done and the image so far (the direct
+// frame plus the mean of those passes), from the coordinating thread. `prism sweep` scores the
+// progressive estimate pass by pass with it.
+using ProgressiveSnapshot = std::function<void(int passes, const ImageRgb& image)>;
+
 CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress = {});
+                                ClusterRoster& roster, const PassProgress& progress = {},
+                                const ProgressiveSnapshot& snapshot = {});
 
 // A pass of direct light and the caustics of `maps` (direct light alone when they are empty),
 // whose tiles tell the slaves to use the caustic maps they build themselves.

@@ -23,8 +23,8 @@ std::string machineNote(const SpeedupReport& r) {
 
 }  // namespace
 
-SpeedupChart measuredChart(const SpeedupReport& r) {
-  SpeedupChart chart;
+Chart measuredChart(const SpeedupReport& r) {
+  Chart chart;
   chart.title = "prism speedup: " + r.scenePath;
   chart.note = machineNote(r);
   ChartPanel speedup{"Speedup S = T1 / Tp", "p (slaves x threads)", "speedup", false, false, {}};
@@ -43,19 +43,20 @@ SpeedupChart measuredChart(const SpeedupReport& r) {
     ChartSeries& e = efficiency.series[static_cast<size_t>(it - speedup.series.begin())];
     it->x.push_back(p.workers());
     it->y.push_back(p.speedup);
-    it->oversubscribed.push_back(p.oversubscribed);
+    it->marked.push_back(p.oversubscribed);
     e.x.push_back(p.workers());
     e.y.push_back(p.efficiency);
-    e.oversubscribed.push_back(p.oversubscribed);
+    e.marked.push_back(p.oversubscribed);
   }
   speedup.series.insert(speedup.series.begin(), ideal(maxWorkers, false));
   efficiency.series.insert(efficiency.series.begin(), ideal(maxWorkers, true));
+  for (ChartPanel* panel : {&speedup, &efficiency}) panel->markedName = "oversubscribed";
   chart.panels = {speedup, efficiency};
   return chart;
 }
 
-SpeedupChart projectionChart(const SpeedupReport& r) {
-  SpeedupChart chart;
+Chart projectionChart(const SpeedupReport& r) {
+  Chart chart;
   chart.title = "prism speedup, measured and projected: " + r.scenePath;
   char note[256];
   std::snprintf(note, sizeof note,
@@ -100,10 +101,10 @@ SpeedupChart projectionChart(const SpeedupReport& r) {
     if (p.schedule != Schedule::Dynamic || p.tileSize != r.serialTileSize) continue;
     measured.x.push_back(p.workers());
     measured.y.push_back(p.speedup);
-    measured.oversubscribed.push_back(p.oversubscribed);
+    measured.marked.push_back(p.oversubscribed);
     measuredEfficiency.x.push_back(p.workers());
     measuredEfficiency.y.push_back(p.efficiency);
-    measuredEfficiency.oversubscribed.push_back(p.oversubscribed);
+    measuredEfficiency.marked.push_back(p.oversubscribed);
   }
   speedup.series.insert(speedup.series.begin(), ideal(maxWorkers, false));
   efficiency.series.insert(efficiency.series.begin(), ideal(maxWorkers, true));
@@ -111,6 +112,7 @@ SpeedupChart projectionChart(const SpeedupReport& r) {
     speedup.series.push_back(measured);
     efficiency.series.push_back(measuredEfficiency);
   }
+  for (ChartPanel* panel : {&speedup, &efficiency}) panel->markedName = "oversubscribed";
   chart.panels = {speedup, efficiency};
   return chart;
 }
