@@ -187,6 +187,10 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   FrameResult direct =
       frame(std::make_shared<const RenderPass>(RenderPass{0, true, nullptr}), "direct light");
   addFrame(out.frames, direct, true);
+  if (direct.interrupted) {
+    out.image = direct.image;
+    return out;
+  }
   ImageRgb causticSum(direct.image.width, direct.image.height);
   const auto causticStart = SteadyClock::now();
   float radius = settings.radius;
@@ -194,6 +198,11 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   for (int i = 1; i <= settings.passes; ++i) {
     if (i > 1 && settings.timeBudgetSeconds > 0.0 &&
         secondsSince(causticStart) >= settings.timeBudgetSeconds) {
+      break;
+    }
+    // Interrupted between passes: the image of the passes done is whole, so nothing is missing.
+    if (options.stopRequested && options.stopRequested()) {
+      out.frames.interrupted = true;
       break;
     }
     const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
@@ -212,6 +221,10 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     auto pass = std::make_shared<const RenderPass>(RenderPass{
         static_cast<uint32_t>(i), false, std::make_shared<const PhotonGather>(map, gather)});
     FrameResult f = frame(pass, label);
+    if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
+      out.frames.interrupted = true;
+      break;
+    }
     stats.gatherRenderSeconds += f.seconds;
     for (size_t px = 0; px < causticSum.pixels.size(); ++px)
       causticSum.pixels[px] += f.image.pixels[px];

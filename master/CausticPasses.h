@@ -45,6 +45,9 @@ struct CausticRunStats {
 };
 
 struct CausticFrame {
+  // Interrupted (frames.interrupted), image holds the tiles frames.tileDone marks; a
+  // progressive run stopped between or during its caustic passes keeps every tile, with the
+  // mean of the passes it finished (caustics.passes).
   ImageRgb image;
   FrameResult frames;  // every frame of the run added together (tiles, rays, busy time)
   CausticRunStats caustics;

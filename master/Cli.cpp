@@ -9,6 +9,7 @@
 #include "master/SpeedupCommand.h"
 #include "master/SweepCommand.h"
 #include "transport/MpiSession.h"
+#include "util/MemorySize.h"
 
 namespace prism {
 namespace {
@@ -31,6 +32,16 @@ struct RenderOverrideValues {
   float mapBlurSigma = 0.0f;
   CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
+
+void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
+  command
+      ->add_option_function<std::string>(
+          "--memory-limit",
+          [&o](const std::string& text) { o.memoryLimit = parseMemorySize(text); },
+          "Memory a run may plan to use, e.g. 512M, 8G, 1.5T (default: physical memory); "
+          "larger requests are refused before anything is allocated, see docs/reliability.md")
+      ->option_text("SIZE");
+}
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
@@ -73,6 +84,10 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
       ->check(CLI::Range(0.1, 86400.0));
   render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
+  addMemoryLimitOption(render, o);
+  render->add_flag(
+      "--overwrite", o.overwrite,
+      "Replace an existing image file (a finished frame is never replaced without it)");
   // Testing only, so not in --help: makes one slave misbehave.
   render
       ->add_option_function<std::string>(
@@ -181,6 +196,10 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render->add_option("--status-file", o.statusFile, "")->group("");  // tests: tiles done so far
+  render->add_flag("--save-partial", o.savePartial,
+                   "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
+                   "marked partial; the run exits with status 130 either way");
   addCausticOptions(render, o, v);
 }
 
@@ -283,6 +302,7 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
   speedup->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
       ->check(CLI::Range(1, 1 << 16));
   addCausticMethodOptions(speedup, v);
+  addMemoryLimitOption(speedup, o.render);
   speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
 }
 
@@ -331,6 +351,7 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
   list("--spp-list", o.values.samples, "spp (default 1,2,4,8,16)");
   sweep->add_option("-r,--repeats", o.repeats, "Timed runs of every point; medians (default 3)")
       ->check(CLI::Range(1, 1000));
+  addMemoryLimitOption(sweep, o.render);
   sweep
       ->add_option("--reference", o.reference.spec,
                    "auto (default: analytic when the scene allows it, else progressive), "
