@@ -27,9 +27,12 @@ Chart measuredChart(const SpeedupReport& r) {
   Chart chart;
   chart.title = "prism speedup: " + r.scenePath;
   chart.note = machineNote(r);
-  ChartPanel speedup{"Speedup S = T1 / Tp", "p (slaves x threads)", "speedup", false, false, {}};
+  ChartPanel speedup{
+      "Speedup S = T1 / Tp", "p (slaves x threads)", "speedup", false, false, {}, 2.0,
+      "oversubscribed"};
   ChartPanel efficiency{
-      "Efficiency E = S / p", "p (slaves x threads)", "efficiency", false, false, {}};
+      "Efficiency E = S / p", "p (slaves x threads)", "efficiency", false, false, {}, 2.0,
+      "oversubscribed"};
   double maxWorkers = 1.0;
   for (const ScalingPoint& p : r.points) {
     maxWorkers = std::max(maxWorkers, static_cast<double>(p.workers()));
@@ -50,7 +53,6 @@ Chart measuredChart(const SpeedupReport& r) {
   }
   speedup.series.insert(speedup.series.begin(), ideal(maxWorkers, false));
   efficiency.series.insert(efficiency.series.begin(), ideal(maxWorkers, true));
-  for (ChartPanel* panel : {&speedup, &efficiency}) panel->markedName = "oversubscribed";
   chart.panels = {speedup, efficiency};
   return chart;
 }
@@ -71,8 +73,11 @@ Chart projectionChart(const SpeedupReport& r) {
                      "speedup",
                      true,
                      true,
-                     {}};
-  ChartPanel efficiency{"Efficiency E = S / p", "p (workers)", "efficiency", true, false, {}};
+                     {},
+                     2.0,
+                     "oversubscribed"};
+  ChartPanel efficiency{"Efficiency E = S / p", "p (workers)", "efficiency", true, false, {}, 2.0,
+                        "oversubscribed"};
   double maxWorkers = 1.0;
   for (const ProjectedPoint& p : r.projection) {
     if (p.schedule != Schedule::Dynamic) continue;
@@ -112,7 +117,6 @@ Chart projectionChart(const SpeedupReport& r) {
     speedup.series.push_back(measured);
     efficiency.series.push_back(measuredEfficiency);
   }
-  for (ChartPanel* panel : {&speedup, &efficiency}) panel->markedName = "oversubscribed";
   chart.panels = {speedup, efficiency};
   return chart;
 }
