@@ -222,9 +222,16 @@ Chart sweepChart(const SweepReport& report) {
                   std::to_string(report.plannedPoints) + " points.";
   }
   const std::string time = report.cpuAxis ? "CPU seconds" : "seconds";
-  ChartPanel error{
-      "Error against time (caustic region)", time, "relative RMSE", true, true, {}, 10.0, ""};
-  ChartPanel flux{"Caustic flux found (caustic region)",
+  const std::string where = report.regionPixels > 0 ? "caustic region" : "whole frame";
+  ChartPanel error{"Error against time (" + where + ")",
+                   time,
+                   metricName(report.metric),
+                   true,
+                   true,
+                   {},
+                   10.0,
+                   ""};
+  ChartPanel flux{"Caustic flux found (" + where + ")",
                   time,
                   "flux ratio (1 = all of the reference's)",
                   true,

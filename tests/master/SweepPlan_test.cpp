@@ -125,6 +125,14 @@ TEST(SweepCsv, HeaderIsTheSchemaAndEveryRowHasEveryColumn) {
   EXPECT_EQ(report.rows[0].error(SweepMetric::RelRmse), 0.5);
   report.rows[0].region.pixels = 0;
   EXPECT_EQ(report.rows[0].error(SweepMetric::RelRmse), 0.25);
+  // The chart names the metric it plots, and where.
+  report.metric = SweepMetric::RelRmse;
+  const Chart chart = sweepChart(report);
+  ASSERT_EQ(chart.panels.size(), 2u);
+  EXPECT_EQ(chart.panels[0].yTitle, "relative RMSE");
+  EXPECT_EQ(chart.panels[0].title, "Error against time (whole frame)");
+  EXPECT_EQ(chart.panels[0].series.at(0).y.at(0), 0.25);
+  EXPECT_EQ(sweepChart(SweepReport{}).panels[0].yTitle, "MRSE");
 }
 
 }  // namespace
