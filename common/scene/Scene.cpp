@@ -41,14 +41,15 @@ CasterBounds boundingSphere(const Aabb& b) {
 
 }  // namespace
 
-Scene::Scene(const SceneDescription& d)
+Scene::Scene(const SceneDescription& d, Traversal traversal)
     : settings_(d.render),
       caustics_(d.caustics),
       camera_(d.camera, d.render.width, d.render.height),
       background_(d.background),
       ambientLight_(d.ambientLight),
       materials_(d.materials),
-      lights_(d.lights) {
+      lights_(d.lights),
+      traversal_(traversal) {
   if (d.environment) environment_.emplace(*d.environment);
   if (materials_.empty()) materials_.emplace_back();  // primitives default to material 0
 
@@ -139,11 +140,16 @@ Scene::Scene(const SceneDescription& d)
     }
   }
 
+  if (traversal_ != Traversal::BinaryScalar) wideBvh_.build(bvh_);
+  if (traversal_ == Traversal::WideSimd) buildTrianglePacks();
+
   stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
   stats_.cones = cones_.size();
   stats_.triangles = triangles_.size();
   stats_.bvh = bvh_.stats();
+  stats_.wideBvh = wideBvh_.stats();
+  stats_.packBytes = packs_.size() * sizeof(TrianglePack4) + leafPacks_.size() * sizeof(LeafPacks);
   stats_.geometryBytes = triangles_.size() * sizeof(Triangle) + spheres_.size() * sizeof(Sphere) +
                          cones_.size() * sizeof(Cone) + planes_.size() * sizeof(Plane) +
                          leafRefs_.size() * sizeof(uint32_t);
@@ -152,42 +158,112 @@ Scene::Scene(const SceneDescription& d)
   }
 }
 
-template <bool kAnyHit>
-bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
-  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
-  return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
-    bool found = false;
-    for (uint32_t i = first; i < first + count; ++i) {
+void Scene::buildTrianglePacks() {
+  leafPacks_.assign(leafRefs_.size(), {});
+  for (const BvhNode& node : bvh_.nodes()) {
+    if (!node.isLeaf()) continue;
+    LeafPacks& leaf = leafPacks_[node.offset];
+    leaf.firstPack = static_cast<uint32_t>(packs_.size());
+    int lane = TrianglePack4::kWidth;
+    for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
       const uint32_t ref = leafRefs_[i];
-      const uint32_t index = PrimitiveRef::index(ref);
-      float t, u = 0.0f, v = 0.0f;
-      bool hitThis = false;
-      switch (PrimitiveRef::kind(ref)) {
-        case PrimitiveKind::Triangle: {
-          const Triangle& tri = triangles_[index];
-          hitThis = classicTriangleTest
-                        ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v)
-                        : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v);
-          break;
-        }
-        case PrimitiveKind::Sphere:
-          hitThis = spheres_[index].intersect(ray, leafTMax, t);
-          break;
-        case PrimitiveKind::Cone:
-          hitThis = cones_[index].intersect(ray, leafTMax, t);
-          break;
-        case PrimitiveKind::Plane:
-          break;
+      if (PrimitiveRef::kind(ref) != PrimitiveKind::Triangle) {
+        leaf.hasOtherKinds = true;
+        continue;
       }
-      if (hitThis) {
-        leafTMax = t;
-        hit = {t, ref, u, v};
+      if (lane == TrianglePack4::kWidth) {
+        packs_.emplace_back();
+        ++leaf.packCount;
+        lane = 0;
+      }
+      const uint32_t index = PrimitiveRef::index(ref);
+      packs_.back().set(lane++, triangles_[index], index);
+    }
+  }
+}
+
+template <bool kAnyHit>
+bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
+                          float& tMax, HitRecord& hit) const {
+  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
+  bool found = false;
+  for (uint32_t i = first; i < first + count; ++i) {
+    const uint32_t ref = leafRefs_[i];
+    const uint32_t index = PrimitiveRef::index(ref);
+    float t, u = 0.0f, v = 0.0f;
+    bool hitThis = false;
+    switch (PrimitiveRef::kind(ref)) {
+      case PrimitiveKind::Triangle: {
+        if (skipTriangles) break;
+        const Triangle& tri = triangles_[index];
+        hitThis = classicTriangleTest
+                      ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v)
+                      : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v);
+        break;
+      }
+      case PrimitiveKind::Sphere:
+        hitThis = spheres_[index].intersect(ray, tMax, t);
+        break;
+      case PrimitiveKind::Cone:
+        hitThis = cones_[index].intersect(ray, tMax, t);
+        break;
+      case PrimitiveKind::Plane:
+        break;
+    }
+    if (hitThis) {
+      tMax = t;
+      hit = {t, ref, u, v};
+      found = true;
+      if constexpr (kAnyHit) return true;
+    }
+  }
+  return found;
+}
+
+template <bool kAnyHit>
+bool Scene::intersectLeafPacked(const Ray& ray, uint32_t first, uint32_t count, float& tMax,
+                                HitRecord& hit) const {
+  const LeafPacks& leaf = leafPacks_[first];
+  bool found = false;
+  for (uint32_t p = leaf.firstPack; p < leaf.firstPack + leaf.packCount; ++p) {
+    const TrianglePack4& pack = packs_[p];
+    if constexpr (kAnyHit) {
+      simd::Float4 t, u, v;
+      if (intersectMollerTrumbore4(ray, pack, tMax, t, u, v) != 0) return true;
+    } else {
+      const PackHit best = closestInPack(ray, pack, tMax);
+      if (best.lane >= 0) {
+        tMax = best.t;
+        hit = {best.t, PrimitiveRef::make(PrimitiveKind::Triangle, pack.triangle[best.lane]),
+               best.u, best.v};
         found = true;
-        if constexpr (kAnyHit) return true;
       }
     }
-    return found;
+  }
+  if (leaf.hasOtherKinds) found |= intersectLeaf<kAnyHit>(ray, first, count, true, tMax, hit);
+  return found;
+}
+
+template <bool kAnyHit>
+bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
+  if (traversal_ == Traversal::BinaryScalar) {
+    return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
+      return intersectLeaf<kAnyHit>(ray, first, count, false, leafTMax, hit);
+    });
+  }
+  if (traversal_ == Traversal::WideScalarLeaves ||
+      settings_.triangleTest == TriangleTest::PlaneThenInside) {
+    return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
+      return intersectLeaf<kAnyHit>(ray, first, count, false, t, hit);
+    });
+  }
+  return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
+    return intersectLeafPacked<kAnyHit>(ray, first, count, t, hit);
   });
+}
+
+uint32_t Scene::meshFace(const HitRecord& hit) const {
+  return triangles_[PrimitiveRef::index(hit.primitive)].face;
 }
 
 bool Scene::intersect(const Ray& ray, HitRecord& hit) const {

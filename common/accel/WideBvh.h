@@ -1,0 +1,146 @@
+// An 8-wide BVH collapsed from the binary SAH BVH (accel/Bvh.h): each node holds the boxes of up
+// to eight children in structure-of-arrays form, so one ray tests all eight with a few SIMD
+// instructions (accel/Simd.h). The collapse keeps the binary BVH's leaves and primitive order,
+// so the same leaf visitor serves both, and the closest hit is the same primitive test.
+//
+// Collapsing: starting from a binary node, the child with the largest surface area that is not a
+// leaf is replaced by its two children until eight slots are used (after Wald et al., "Getting
+// Rid of Packets", 2008, and Embree's BVH8 built the same way from a binary SAH build).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "accel/Bvh.h"
+#include "accel/Simd.h"
+
+namespace prism {
+
+struct alignas(64) WideBvhNode {
+  static constexpr int kWidth = 8;
+  // bounds[2 * axis] is the lower, bounds[2 * axis + 1] the upper plane of each child. Unused
+  // slots hold an inverted box (lower +inf, upper -inf) that no ray enters.
+  float bounds[6][kWidth];
+  uint32_t child[kWidth];  // interior child: node index; leaf child: first primitive entry
+  uint8_t count[kWidth];   // leaf child: primitive count (> 0); interior child or unused: 0
+};
+static_assert(sizeof(WideBvhNode) == 256);
+
+// What a ray needs for the slab test of every node: origin, reciprocal direction, and which
+// plane of each axis it meets first.
+struct WideRay {
+  simd::Float8 origin[3];
+  simd::Float8 invDir[3];
+  int nearSide[3];  // 0: lower plane first (direction >= +0), 1: upper plane first
+
+  explicit WideRay(const Ray& ray);
+};
+
+// Entry distances of the children a ray enters within [tMin, tMax] (bit i of the result); the
+// other lanes of entry are unspecified. NaN (a ray in a slab's plane, parallel to it) counts as
+// entering, so the test never rejects a box the scalar test would accept.
+inline uint32_t intersectChildren(const WideBvhNode& node, const WideRay& ray, float tMin,
+                                  float tMax, simd::Float8& entry) {
+  using simd::Float8;
+  Float8 enter = simd::broadcast<Float8>(tMin);
+  Float8 leave = simd::broadcast<Float8>(tMax);
+  for (int a = 0; a < 3; ++a) {
+    const Float8 nearPlane = simd::load<Float8>(node.bounds[2 * a + ray.nearSide[a]]);
+    const Float8 farPlane = simd::load<Float8>(node.bounds[2 * a + 1 - ray.nearSide[a]]);
+    // The slab distances go first: a NaN there leaves enter and leave as they were.
+    enter = simd::maxLanes((nearPlane - ray.origin[a]) * ray.invDir[a], enter);
+    leave = simd::minLanes((farPlane - ray.origin[a]) * ray.invDir[a], leave);
+  }
+  entry = enter;
+  return simd::laneMask(enter <= leave);
+}
+
+// The same slab test one child at a time, for testing the SIMD path against.
+uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float tMin, float tMax,
+                                 float entry[WideBvhNode::kWidth]);
+
+struct WideBvhStats {
+  size_t nodeCount = 0;
+  size_t memoryBytes = 0;  // wide nodes only (the primitive order belongs to the binary BVH)
+  double seconds = 0.0;
+};
+
+class WideBvh {
+ public:
+  // Collapses the given binary BVH; an empty one gives an empty wide BVH that nothing hits.
+  void build(const Bvh& binary);
+
+  const std::vector<WideBvhNode>& nodes() const { return nodes_; }
+  const WideBvhStats& stats() const { return stats_; }
+
+  // Same contract as Bvh::traverse: leafVisitor(first, count, tMax) tests primitives
+  // first..first+count-1, shrinks tMax on a hit and returns true if it hit. Closest-hit walks
+  // visit children nearest first; any-hit walks skip the sort and stop at the first hit.
+  template <bool kAnyHit, class LeafVisitor>
+  bool traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) const;
+
+ private:
+  std::vector<WideBvhNode> nodes_;
+  WideBvhStats stats_;
+};
+
+template <bool kAnyHit, class LeafVisitor>
+bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) const {
+  if (nodes_.empty()) return false;
+  const WideRay wide(ray);
+  struct Pending {
+    uint32_t child;
+    uint32_t count;  // 0: interior node
+    float entry;
+  };
+  // Each level of the walk leaves at most seven entries behind; the depth is at most the binary
+  // BVH's, which is at most 2 * kMaxDepth (see Bvh::traverse).
+  Pending stack[WideBvhNode::kWidth * 2 * Bvh::kMaxDepth];
+  int stackSize = 0;
+  stack[stackSize++] = {0, 0, ray.tMin};
+  bool hitAnything = false;
+  while (stackSize > 0) {
+    const Pending item = stack[--stackSize];
+    if (item.entry > tMax) continue;  // lies beyond a hit found since it was pushed
+    if (item.count > 0) {
+      if (leafVisitor(item.child, item.count, tMax)) {
+        hitAnything = true;
+        if constexpr (kAnyHit) return true;
+      }
+      continue;
+    }
+    const WideBvhNode& node = nodes_[item.child];
+    simd::Float8 entryLanes;
+    uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entryLanes);
+    if (mask == 0) continue;
+    float entry[WideBvhNode::kWidth];
+    std::memcpy(entry, &entryLanes, sizeof(entry));
+    if constexpr (kAnyHit) {
+      while (mask != 0) {
+        const int i = simd::firstLane(mask);
+        mask &= mask - 1;
+        stack[stackSize++] = {node.child[i], node.count[i], entry[i]};
+      }
+      continue;
+    }
+    // Push the hit children farthest first so the nearest is popped next: an insertion sort of
+    // at most eight entries, descending by entry distance, on top of the stack.
+    const int base = stackSize;
+    while (mask != 0) {
+      const int i = simd::firstLane(mask);
+      mask &= mask - 1;
+      const Pending incoming{node.child[i], node.count[i], entry[i]};
+      int at = stackSize++;
+      while (at > base && stack[at - 1].entry < incoming.entry) {
+        stack[at] = stack[at - 1];
+        --at;
+      }
+      stack[at] = incoming;
+    }
+  }
+  return hitAnything;
+}
+
+}  // namespace prism
