@@ -34,14 +34,43 @@ inline V broadcast(float x) {
   return V{} + x;
 }
 
-template <class V>
-inline V minLanes(V a, V b) {
+// Written with intrinsics where the vector width has them: GCC does not turn a vector `?:`
+// wider than the target's registers into paired min/max instructions but into one scalar
+// comparison per lane.
+inline Float4 minLanes(Float4 a, Float4 b) {
+#if defined(__SSE__)
+  return reinterpret_cast<Float4>(
+      _mm_min_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+#else
   return a < b ? a : b;
+#endif
 }
 
-template <class V>
-inline V maxLanes(V a, V b) {
+inline Float4 maxLanes(Float4 a, Float4 b) {
+#if defined(__SSE__)
+  return reinterpret_cast<Float4>(
+      _mm_max_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+#else
   return a > b ? a : b;
+#endif
+}
+
+inline Float8 minLanes(Float8 a, Float8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<Float8>(
+      _mm256_min_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a < b ? a : b;  // used only where 8-wide registers exist (see WideBvh.h)
+#endif
+}
+
+inline Float8 maxLanes(Float8 a, Float8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<Float8>(
+      _mm256_max_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a > b ? a : b;
+#endif
 }
 
 // Bit i is set when lane i of the comparison result is true (all ones).

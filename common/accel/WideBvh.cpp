@@ -17,15 +17,6 @@ struct Slot {
 
 }  // namespace
 
-WideRay::WideRay(const Ray& ray) {
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / ray.direction[a];
-    origin[a] = simd::broadcast<simd::Float8>(ray.origin[a]);
-    invDir[a] = simd::broadcast<simd::Float8>(inv);
-    nearSide[a] = std::signbit(inv) ? 1 : 0;  // -0 gives -inf: the upper plane comes first
-  }
-}
-
 uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float tMin, float tMax,
                                  float entry[WideBvhNode::kWidth]) {
   uint32_t mask = 0;

@@ -8,6 +8,7 @@
 // Rid of Packets", 2008, and Embree's BVH8 built the same way from a binary SAH build).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -31,30 +32,49 @@ static_assert(sizeof(WideBvhNode) == 256);
 // What a ray needs for the slab test of every node: origin, reciprocal direction, and which
 // plane of each axis it meets first.
 struct WideRay {
-  simd::Float8 origin[3];
-  simd::Float8 invDir[3];
+  float origin[3];
+  float invDir[3];
   int nearSide[3];  // 0: lower plane first (direction >= +0), 1: upper plane first
 
-  explicit WideRay(const Ray& ray);
+  explicit WideRay(const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = ray.origin[a];
+      invDir[a] = 1.0f / ray.direction[a];
+      nearSide[a] = std::signbit(invDir[a]) ? 1 : 0;  // -0 gives -inf: upper plane first
+    }
+  }
 };
 
+// The slab test on the lanes firstLane..firstLane+|V|-1 of a node, one vector at a time.
+template <class V>
+inline uint32_t slabTest(const WideBvhNode& node, int firstLane, const WideRay& ray, float tMin,
+                         float tMax, float* entry) {
+  V enter = simd::broadcast<V>(tMin);
+  V leave = simd::broadcast<V>(tMax);
+  for (int a = 0; a < 3; ++a) {
+    const V origin = simd::broadcast<V>(ray.origin[a]);
+    const V invDir = simd::broadcast<V>(ray.invDir[a]);
+    const V nearPlane = simd::load<V>(&node.bounds[2 * a + ray.nearSide[a]][firstLane]);
+    const V farPlane = simd::load<V>(&node.bounds[2 * a + 1 - ray.nearSide[a]][firstLane]);
+    // The slab distances go first: a NaN there leaves enter and leave as they were.
+    enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
+    leave = simd::minLanes((farPlane - origin) * invDir, leave);
+  }
+  std::memcpy(entry + firstLane, &enter, sizeof(V));
+  return simd::laneMask(enter <= leave) << firstLane;
+}
+
 // Entry distances of the children a ray enters within [tMin, tMax] (bit i of the result); the
-// other lanes of entry are unspecified. NaN (a ray in a slab's plane, parallel to it) counts as
+// other entries are unspecified. NaN (a ray in a slab's plane, parallel to it) counts as
 // entering, so the test never rejects a box the scalar test would accept.
 inline uint32_t intersectChildren(const WideBvhNode& node, const WideRay& ray, float tMin,
-                                  float tMax, simd::Float8& entry) {
-  using simd::Float8;
-  Float8 enter = simd::broadcast<Float8>(tMin);
-  Float8 leave = simd::broadcast<Float8>(tMax);
-  for (int a = 0; a < 3; ++a) {
-    const Float8 nearPlane = simd::load<Float8>(node.bounds[2 * a + ray.nearSide[a]]);
-    const Float8 farPlane = simd::load<Float8>(node.bounds[2 * a + 1 - ray.nearSide[a]]);
-    // The slab distances go first: a NaN there leaves enter and leave as they were.
-    enter = simd::maxLanes((nearPlane - ray.origin[a]) * ray.invDir[a], enter);
-    leave = simd::minLanes((farPlane - ray.origin[a]) * ray.invDir[a], leave);
-  }
-  entry = enter;
-  return simd::laneMask(enter <= leave);
+                                  float tMax, float entry[WideBvhNode::kWidth]) {
+#if defined(__AVX__)
+  return slabTest<simd::Float8>(node, 0, ray, tMin, tMax, entry);
+#else
+  return slabTest<simd::Float4>(node, 0, ray, tMin, tMax, entry) |
+         slabTest<simd::Float4>(node, 4, ray, tMin, tMax, entry);
+#endif
 }
 
 // The same slab test one child at a time, for testing the SIMD path against.
@@ -112,11 +132,9 @@ bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) c
       continue;
     }
     const WideBvhNode& node = nodes_[item.child];
-    simd::Float8 entryLanes;
-    uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entryLanes);
-    if (mask == 0) continue;
     float entry[WideBvhNode::kWidth];
-    std::memcpy(entry, &entryLanes, sizeof(entry));
+    uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entry);
+    if (mask == 0) continue;
     if constexpr (kAnyHit) {
       while (mask != 0) {
         const int i = simd::firstLane(mask);

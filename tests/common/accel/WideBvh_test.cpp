@@ -115,7 +115,7 @@ TEST(WideBvh, SimdSlabTestMatchesTheScalarOne) {
     }
     if (i % 16 == 0) ray.origin.x = node.bounds[0][i % 7];  // in a slab plane
     const float tMax = (i % 3 == 0) ? 5.0f : kInf;
-    simd::Float8 entryLanes;
+    float entryLanes[WideBvhNode::kWidth];
     const uint32_t mask = intersectChildren(node, WideRay(ray), 0.0f, tMax, entryLanes);
     float entry[WideBvhNode::kWidth];
     const uint32_t scalarMask = intersectChildrenScalar(node, ray, 0.0f, tMax, entry);
