@@ -19,6 +19,9 @@ struct Builder {
   std::vector<uint32_t>& order;
   std::vector<BvhNode>& nodes;
   BvhBuildStats& stats;
+  uint32_t block = 1;
+
+  float blocks(uint32_t count) const { return static_cast<float>((count + block - 1) / block); }
 
   uint32_t build(uint32_t begin, uint32_t end, size_t depth) {
     const uint32_t nodeIndex = static_cast<uint32_t>(nodes.size());
@@ -57,7 +60,7 @@ struct Builder {
   void chooseSplit(uint32_t begin, uint32_t end, const Aabb& box, const Aabb& centerBox, int& axis,
                    uint32_t& middle) {
     const uint32_t count = end - begin;
-    const float leafCost = kIntersectionCost * static_cast<float>(count);
+    const float leafCost = kIntersectionCost * blocks(count);
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
     int bestBin = 0;
@@ -89,8 +92,8 @@ struct Builder {
         left.extend(binBoxes[b - 1]);
         leftCount += binCounts[b - 1];
         if (leftCount == 0 || rightCount[b] == 0) continue;
-        const float cost = left.surfaceArea() * static_cast<float>(leftCount) +
-                           rightArea[b] * static_cast<float>(rightCount[b]);
+        const float cost =
+            left.surfaceArea() * blocks(leftCount) + rightArea[b] * blocks(rightCount[b]);
         if (cost < bestCost) {
           bestCost = cost;
           bestAxis = a;
@@ -127,14 +130,15 @@ struct Builder {
 
 }  // namespace
 
-void Bvh::build(const std::vector<Aabb>& primitiveBounds) {
+void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   nodes_.clear();
   order_.resize(primitiveBounds.size());
   stats_ = {};
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
   if (!primitiveBounds.empty()) {
-    Builder builder{primitiveBounds, {}, order_, nodes_, stats_};
+    Builder builder{primitiveBounds, {},     order_,
+                    nodes_,          stats_, std::max(1u, options.primitiveBlock)};
     builder.centers.reserve(primitiveBounds.size());
     for (const Aabb& b : primitiveBounds) builder.centers.push_back(b.center());
     nodes_.reserve(2 * primitiveBounds.size());

@@ -93,6 +93,21 @@ class WideBvh {
   void build(const Bvh& binary);
 
   const std::vector<WideBvhNode>& nodes() const { return nodes_; }
+
+  // Lets the caller give leaves its own numbering: relabel(first, count) returns the (child,
+  // count) the leaf visitor will receive instead, count staying in 1..255. The scene points
+  // leaves straight at its triangle packs this way, saving a lookup per leaf.
+  template <class Relabel>
+  void relabelLeaves(Relabel&& relabel) {
+    for (WideBvhNode& node : nodes_) {
+      for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+        if (node.count[i] == 0) continue;
+        const auto [child, count] = relabel(node.child[i], node.count[i]);
+        node.child[i] = child;
+        node.count[i] = static_cast<uint8_t>(count);
+      }
+    }
+  }
   const WideBvhStats& stats() const { return stats_; }
 
   // Same contract as Bvh::traverse: leafVisitor(first, count, tMax) tests primitives

@@ -115,7 +115,12 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
   }
   for (const Aabb& b : bounds) bounds_.extend(b);
 
-  bvh_.build(bounds);
+  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs.
+  const bool packed =
+      traversal_ == Traversal::WideSimd && settings_.triangleTest == TriangleTest::MollerTrumbore;
+  BvhBuildOptions buildOptions;
+  buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
+  bvh_.build(bounds, buildOptions);
   leafRefs_.reserve(refs.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
     const uint32_t ref = refs[original];
@@ -141,7 +146,7 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
   }
 
   if (traversal_ != Traversal::BinaryScalar) wideBvh_.build(bvh_);
-  if (traversal_ == Traversal::WideSimd) buildTrianglePacks();
+  if (packed) buildTrianglePacks();
 
   stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
@@ -149,7 +154,7 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
   stats_.triangles = triangles_.size();
   stats_.bvh = bvh_.stats();
   stats_.wideBvh = wideBvh_.stats();
-  stats_.packBytes = packs_.size() * sizeof(TrianglePack4) + leafPacks_.size() * sizeof(LeafPacks);
+  stats_.packBytes = packs_.size() * sizeof(LeafPack);
   stats_.geometryBytes = triangles_.size() * sizeof(Triangle) + spheres_.size() * sizeof(Sphere) +
                          cones_.size() * sizeof(Cone) + planes_.size() * sizeof(Plane) +
                          leafRefs_.size() * sizeof(uint32_t);
@@ -159,27 +164,30 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
 }
 
 void Scene::buildTrianglePacks() {
-  leafPacks_.assign(leafRefs_.size(), {});
-  for (const BvhNode& node : bvh_.nodes()) {
-    if (!node.isLeaf()) continue;
-    LeafPacks& leaf = leafPacks_[node.offset];
-    leaf.firstPack = static_cast<uint32_t>(packs_.size());
-    int lane = TrianglePack4::kWidth;
-    for (uint32_t i = node.offset; i < node.offset + node.count; ++i) {
+  // Leaves are relabelled to (first pack, pack count); every leaf gets at least one pack, if
+  // only to carry its entries for the spheres and cones.
+  wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
+    const uint32_t firstPack = static_cast<uint32_t>(packs_.size());
+    packs_.emplace_back();
+    packs_.back().leafFirst = first;
+    packs_.back().leafCount = static_cast<uint16_t>(count);
+    int lane = 0;
+    for (uint32_t i = first; i < first + count; ++i) {
       const uint32_t ref = leafRefs_[i];
       if (PrimitiveRef::kind(ref) != PrimitiveKind::Triangle) {
-        leaf.hasOtherKinds = true;
+        packs_[firstPack].hasOtherKinds = true;
         continue;
       }
       if (lane == TrianglePack4::kWidth) {
         packs_.emplace_back();
-        ++leaf.packCount;
         lane = 0;
       }
       const uint32_t index = PrimitiveRef::index(ref);
-      packs_.back().set(lane++, triangles_[index], index);
+      packs_.back().triangles.set(lane++, triangles_[index], index);
     }
-  }
+    return std::pair<uint32_t, uint32_t>(firstPack,
+                                         static_cast<uint32_t>(packs_.size()) - firstPack);
+  });
 }
 
 template <bool kAnyHit>
@@ -221,12 +229,11 @@ bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool s
 }
 
 template <bool kAnyHit>
-bool Scene::intersectLeafPacked(const Ray& ray, uint32_t first, uint32_t count, float& tMax,
+bool Scene::intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
                                 HitRecord& hit) const {
-  const LeafPacks& leaf = leafPacks_[first];
   bool found = false;
-  for (uint32_t p = leaf.firstPack; p < leaf.firstPack + leaf.packCount; ++p) {
-    const TrianglePack4& pack = packs_[p];
+  for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
+    const TrianglePack4& pack = packs_[p].triangles;
     if constexpr (kAnyHit) {
       simd::Float4 t, u, v;
       if (intersectMollerTrumbore4(ray, pack, tMax, t, u, v) != 0) return true;
@@ -240,7 +247,10 @@ bool Scene::intersectLeafPacked(const Ray& ray, uint32_t first, uint32_t count, 
       }
     }
   }
-  if (leaf.hasOtherKinds) found |= intersectLeaf<kAnyHit>(ray, first, count, true, tMax, hit);
+  const LeafPack& leaf = packs_[firstPack];
+  if (leaf.hasOtherKinds) {
+    found |= intersectLeaf<kAnyHit>(ray, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
+  }
   return found;
 }
 
@@ -251,8 +261,7 @@ bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const 
       return intersectLeaf<kAnyHit>(ray, first, count, false, leafTMax, hit);
     });
   }
-  if (traversal_ == Traversal::WideScalarLeaves ||
-      settings_.triangleTest == TriangleTest::PlaneThenInside) {
+  if (packs_.empty()) {
     return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
       return intersectLeaf<kAnyHit>(ray, first, count, false, t, hit);
     });

@@ -83,10 +83,12 @@ class Scene {
     uint8_t caustic;
   };
 
-  // Where a leaf's triangles sit in packs_, keyed by the leaf's first primitive entry.
-  struct LeafPacks {
-    uint32_t firstPack = 0;
-    uint8_t packCount = 0;
+  // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH
+  // points at the first. The leaf's primitive entries are kept for the other kinds it holds.
+  struct alignas(16) LeafPack {
+    TrianglePack4 triangles;
+    uint32_t leafFirst = 0;
+    uint16_t leafCount = 0;
     bool hasOtherKinds = false;  // spheres or cones share the leaf
   };
 
@@ -96,7 +98,7 @@ class Scene {
   bool intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
                      float& tMax, HitRecord& hit) const;
   template <bool kAnyHit>
-  bool intersectLeafPacked(const Ray& ray, uint32_t first, uint32_t count, float& tMax,
+  bool intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
                            HitRecord& hit) const;
   void buildTrianglePacks();
 
@@ -120,8 +122,7 @@ class Scene {
   Bvh bvh_;
   Traversal traversal_;
   WideBvh wideBvh_;
-  std::vector<TrianglePack4> packs_;
-  std::vector<LeafPacks> leafPacks_;  // indexed by leaf entry; only leaves' first entries used
+  std::vector<LeafPack> packs_;
   SceneBuildStats stats_;
 };
 
