@@ -134,46 +134,51 @@ bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) c
   // BVH's, which is at most 2 * kMaxDepth (see Bvh::traverse).
   Pending stack[WideBvhNode::kWidth * 2 * Bvh::kMaxDepth];
   int stackSize = 0;
-  stack[stackSize++] = {0, 0, ray.tMin};
+  Pending current{0, 0, ray.tMin};
   bool hitAnything = false;
-  while (stackSize > 0) {
-    const Pending item = stack[--stackSize];
-    if (item.entry > tMax) continue;  // lies beyond a hit found since it was pushed
-    if (item.count > 0) {
-      if (leafVisitor(item.child, item.count, tMax)) {
+  for (;;) {
+    if (current.count > 0) {
+      if (leafVisitor(current.child, current.count, tMax)) {
         hitAnything = true;
         if constexpr (kAnyHit) return true;
       }
-      continue;
-    }
-    const WideBvhNode& node = nodes_[item.child];
-    float entry[WideBvhNode::kWidth];
-    uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entry);
-    if (mask == 0) continue;
-    if constexpr (kAnyHit) {
-      while (mask != 0) {
-        const int i = simd::firstLane(mask);
+    } else {
+      const WideBvhNode& node = nodes_[current.child];
+      float entry[WideBvhNode::kWidth];
+      uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entry);
+      if (mask != 0) {
+        int i = simd::firstLane(mask);
         mask &= mask - 1;
+        if (mask == 0) {  // one child entered, the common case deep in the tree: no stack
+          current = {node.child[i], node.count[i], entry[i]};
+          continue;
+        }
+        const int base = stackSize;
         stack[stackSize++] = {node.child[i], node.count[i], entry[i]};
+        while (mask != 0) {
+          i = simd::firstLane(mask);
+          mask &= mask - 1;
+          const Pending incoming{node.child[i], node.count[i], entry[i]};
+          if constexpr (kAnyHit) {
+            stack[stackSize++] = incoming;  // any hit will do: no order needed
+          } else {
+            // Insertion sort, descending by entry distance, so the nearest is popped first.
+            int at = stackSize++;
+            while (at > base && stack[at - 1].entry < incoming.entry) {
+              stack[at] = stack[at - 1];
+              --at;
+            }
+            stack[at] = incoming;
+          }
+        }
       }
-      continue;
     }
-    // Push the hit children farthest first so the nearest is popped next: an insertion sort of
-    // at most eight entries, descending by entry distance, on top of the stack.
-    const int base = stackSize;
-    while (mask != 0) {
-      const int i = simd::firstLane(mask);
-      mask &= mask - 1;
-      const Pending incoming{node.child[i], node.count[i], entry[i]};
-      int at = stackSize++;
-      while (at > base && stack[at - 1].entry < incoming.entry) {
-        stack[at] = stack[at - 1];
-        --at;
-      }
-      stack[at] = incoming;
-    }
+    // Pop the next pending child that still starts before the closest hit.
+    do {
+      if (stackSize == 0) return hitAnything;
+      current = stack[--stackSize];
+    } while (current.entry > tMax);
   }
-  return hitAnything;
 }
 
 }  // namespace prism
