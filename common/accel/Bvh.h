@@ -3,9 +3,11 @@
 // Hierarchies", 2007). The BVH knows only boxes; the caller intersects primitives in leaves.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "math/Aabb.h"
@@ -29,6 +31,8 @@ static_assert(sizeof(BvhNode) == 32);
 // builder fills blocks instead of making leaves of one or two.
 struct BvhBuildOptions {
   uint32_t primitiveBlock = 1;
+  // Threads the build may use; the tree is the same for any number.
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
 };
 
 struct BvhBuildStats {
