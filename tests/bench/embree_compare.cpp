@@ -379,7 +379,7 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   const EmbreeScene embree(mesh);
   const SceneBuildStats& st = prism.buildStats();
   std::printf(
-      "build (CPU s, one thread): Prism %.3f (binary SAH %.3f + collapse %.3f + packs), "
+      "build (wall s, all cores): Prism scene %.3f (binary SAH %.3f, collapse %.3f), "
       "Embree %.3f\n",
       prismBuild, st.bvh.seconds, st.wideBvh.seconds, embree.buildSeconds);
   std::printf(
