@@ -4,8 +4,9 @@
 //   build/prism_embree_compare [--runs N] [--quick] [--threads 1,2] [mesh.obj ...]
 //
 // Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
-// coherent primary rays from a camera, incoherent random rays, and shadow rays from the primary
-// hits towards a light. Prism runs its renderer's own Scene::intersect / Scene::occluded in
+// coherent primary rays from a camera (1024 × 768, in 4 × 4 pixel tiles), incoherent rays
+// (diffuse bounces from the primary hits, shuffled), and shadow rays from the primary hits
+// towards a light. Prism runs its renderer's own Scene::intersect / Scene::occluded in
 // each traversal mode; Embree runs single rays (rtcIntersect1/rtcOccluded1) and 16-ray packets
 // (rtcIntersect16/rtcOccluded16, which its AVX-512 path prefers here). Times are CPU seconds of
 // the tracing threads (CLOCK_THREAD_CPUTIME_ID), and every number is the median of --runs
@@ -148,17 +149,27 @@ std::vector<Ray> primaryRays(const Aabb& bounds, int width, int height) {
   return rays;
 }
 
-// Origins anywhere in the mesh's box, directions uniform on the sphere.
-std::vector<Ray> incoherentRays(const Aabb& bounds, size_t count, uint64_t seed) {
+// Diffuse bounces: from each primary hit, a direction uniform over the hemisphere around the
+// surface normal, the rays shuffled so that neighbours share nothing. A primary miss gives a
+// ray with an empty interval, which every tracer skips.
+std::vector<Ray> incoherentRays(const Scene& scene, const std::vector<Ray>& primary,
+                                uint64_t seed) {
   Pcg32 rng(seed, 2);
   std::vector<Ray> rays;
-  for (size_t i = 0; i < count; ++i) {
-    const Vec3 o =
-        bounds.lower + Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()) * bounds.extent();
-    const float z = 2.0f * rng.nextFloat() - 1.0f, phi = 6.2831853f * rng.nextFloat();
-    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    rays.push_back({o, Vec3(r * std::cos(phi), r * std::sin(phi), z)});
+  for (const Ray& p : primary) {
+    HitRecord hit;
+    Ray r{p.origin, p.direction, 0.0f, -1.0f};
+    if (scene.intersect(p, hit)) {
+      const SurfaceHit s = scene.surface(p, hit);
+      const float z = 2.0f * rng.nextFloat() - 1.0f, phi = 6.2831853f * rng.nextFloat();
+      const float radius = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      Vec3 d(radius * std::cos(phi), radius * std::sin(phi), z);
+      if (glm::dot(d, s.geometricNormal) < 0.0f) d = -d;
+      r = {offsetRayOrigin(s.position, s.geometricNormal, d), d};
+    }
+    rays.push_back(r);
   }
+  for (size_t i = rays.size(); i > 1; --i) std::swap(rays[i - 1], rays[rng.nextUint() % i]);
   return rays;
 }
 
@@ -393,7 +404,7 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   const int width = options.quick ? 256 : 1024, height = options.quick ? 192 : 768;
   std::vector<RaySet> sets;
   sets.push_back({"primary", primaryRays(bounds, width, height), width});
-  sets.push_back({"incoherent", incoherentRays(bounds, options.quick ? 50000 : 500000, 9), 0});
+  sets.push_back({"incoherent", incoherentRays(prism, sets[0].rays, 9), 0});
   sets.push_back({"shadow", shadowRays(prism, sets[0].rays, bounds), width});
 
   for (const RaySet& set : sets) {
