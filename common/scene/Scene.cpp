@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include "accel/WideBvhPacket.h"
+
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TrianglePlaneInside.h"
 #include "scene/PrimitiveRef.h"
@@ -297,6 +299,86 @@ bool Scene::occluded(const Ray& ray) const {
   }
   HitRecord ignored;
   return intersectBounded<true>(ray, tMax, ignored);
+}
+
+namespace {
+
+uint32_t liveRays(const Ray* rays, int count) {
+  uint32_t mask = 0;
+  for (int i = 0; i < count; ++i) mask |= (rays[i].tMax >= rays[i].tMin ? 1u : 0u) << i;
+  return mask;
+}
+
+}  // namespace
+
+void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
+  const uint32_t live = liveRays(rays, count);
+  for (int i = 0; i < count; ++i) found[i] = false;
+  if (packs_.empty()) {  // no packed wide walk: one ray at a time
+    for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
+    return;
+  }
+  const RayPacket8 packet(rays, live);
+  if (!packet.coherent) {
+    for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
+    return;
+  }
+  float tMax[RayPacket8::kSize];
+  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  const uint32_t hitMask = traversePacket<false>(
+      wideBvh_, packet, live, tMax,
+      [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
+        uint32_t hitRays = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int i = simd::firstLane(mask);
+          if (intersectLeafPacked<false>(rays[i], firstPack, packCount, rayTMax[i], hits[i])) {
+            hitRays |= 1u << i;
+          }
+        }
+        return hitRays;
+      });
+  for (int i = 0; i < count; ++i) {
+    if (!(live >> i & 1u)) continue;
+    found[i] = (hitMask >> i & 1u) != 0;
+    for (uint32_t p = 0; p < planes_.size(); ++p) {
+      float t;
+      if (planes_[p].intersect(rays[i], tMax[i], t)) {
+        tMax[i] = t;
+        hits[i] = {t, PrimitiveRef::make(PrimitiveKind::Plane, p), 0.0f, 0.0f};
+        found[i] = true;
+      }
+    }
+  }
+}
+
+void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
+  const uint32_t live = liveRays(rays, count);
+  for (int i = 0; i < count; ++i) blocked[i] = false;
+  if (packs_.empty() || !planes_.empty()) {  // planes first, as occluded() does: one at a time
+    for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
+    return;
+  }
+  const RayPacket8 packet(rays, live);
+  if (!packet.coherent) {
+    for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
+    return;
+  }
+  float tMax[RayPacket8::kSize];
+  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  HitRecord ignored;
+  const uint32_t hitMask = traversePacket<true>(
+      wideBvh_, packet, live, tMax,
+      [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
+        uint32_t hitRays = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int i = simd::firstLane(mask);
+          if (intersectLeafPacked<true>(rays[i], firstPack, packCount, rayTMax[i], ignored)) {
+            hitRays |= 1u << i;
+          }
+        }
+        return hitRays;
+      });
+  for (int i = 0; i < count; ++i) blocked[i] = (hitMask >> i & 1u) != 0;
 }
 
 SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {

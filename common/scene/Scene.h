@@ -53,6 +53,11 @@ class Scene {
   bool intersect(const Ray& ray, HitRecord& hit) const;
   // Whether anything lies on the ray within (ray.tMin, ray.tMax): for shadow rays.
   bool occluded(const Ray& ray) const;
+  // Up to eight rays at once, for coherent rays (a pixel tile's primary rays or their shadow
+  // rays): the same answers as intersect() and occluded() ray by ray. A ray with tMax < tMin is
+  // skipped (found/blocked false).
+  void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
+  void occluded8(const Ray* rays, int count, bool* blocked) const;
   // Position, oriented normals and material of a hit found by intersect().
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 

@@ -431,6 +431,25 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
       };
     };
     contenders.push_back({"Prism wide+SIMD", prismTracer(prism), {}, {}});
+    // Eight consecutive rays at a time: half a 4 × 4 pixel tile for primary and shadow rays.
+    contenders.push_back({"Prism packet8",
+                          [&prism, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
+                            size_t hits = 0;
+                            HitRecord hit[8];
+                            bool found[8];
+                            for (size_t i = b; i < e; i += 8) {
+                              const int n = static_cast<int>(std::min<size_t>(8, e - i));
+                              if (shadow) {
+                                prism.occluded8(&rays[i], n, found);
+                              } else {
+                                prism.intersect8(&rays[i], n, hit, found);
+                              }
+                              for (int k = 0; k < n; ++k) hits += found[k];
+                            }
+                            return hits;
+                          },
+                          {},
+                          {}});
     if (options.withVariants) {
       contenders.push_back({"Prism wide, scalar tri", prismTracer(prismLeaves), {}, {}});
       contenders.push_back({"Prism binary (main)", prismTracer(prismBinary), {}, {}});
