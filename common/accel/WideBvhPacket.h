@@ -19,6 +19,9 @@ namespace prism {
 
 struct RayPacket8 {
   static constexpr int kSize = 8;
+  // Largest difference of unit-direction components within a coherent packet: a 4 × 2 pixel
+  // block of a camera differs by about 0.01, shadow rays towards one light by little more.
+  static constexpr float kMaxDirectionSpread = 0.1f;
   // Per axis, the bounds of the packet's origins and reciprocal directions.
   float originLow[3], originHigh[3], invLow[3], invHigh[3];
   int nearSide[3];  // as in WideRay: 1 when every direction is negative on that axis
@@ -55,6 +58,14 @@ struct RayPacket8 {
         if (a == 0) tMin = std::min(tMin, r.tMin);
       }
       if (negative != 0 && negative != count) coherent = false;
+      // Spread-out directions make the interval test pass nearly everywhere: such packets
+      // would walk most of the tree, so they take the single-ray walk instead.
+      float low = std::numeric_limits<float>::infinity(), high = -low;
+      for (uint32_t m = live; m != 0; m &= m - 1) {
+        low = std::min(low, rays[simd::firstLane(m)].direction[a]);
+        high = std::max(high, rays[simd::firstLane(m)].direction[a]);
+      }
+      if (high - low > kMaxDirectionSpread) coherent = false;
       nearSide[a] = negative != 0 ? 1 : 0;
     }
   }
