@@ -38,7 +38,7 @@ inline V broadcast(float x) {
 // wider than the target's registers into paired min/max instructions but into one scalar
 // comparison per lane.
 inline Float4 minLanes(Float4 a, Float4 b) {
-#if defined(__SSE__)
+#if defined(__SSE2__)
   return reinterpret_cast<Float4>(
       _mm_min_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
 #else
@@ -47,7 +47,7 @@ inline Float4 minLanes(Float4 a, Float4 b) {
 }
 
 inline Float4 maxLanes(Float4 a, Float4 b) {
-#if defined(__SSE__)
+#if defined(__SSE2__)
   return reinterpret_cast<Float4>(
       _mm_max_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
 #else
@@ -60,7 +60,7 @@ inline Float8 minLanes(Float8 a, Float8 b) {
   return reinterpret_cast<Float8>(
       _mm256_min_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
 #else
-  return a < b ? a : b;  // used only where 8-wide registers exist (see WideBvh.h)
+  return a < b ? a : b;  // targets without AVX (WideBvh.h uses 8 lanes only with AVX)
 #endif
 }
 

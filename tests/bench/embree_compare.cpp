@@ -1,16 +1,19 @@
 // Rays per CPU-second: Prism's traversal against Intel Embree 3 on the same triangles and the
 // same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
 //
-//   build/prism_embree_compare [--runs N] [--quick] [--threads 1,2] [mesh.obj ...]
+//   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
+//                                    [mesh.obj ...]
 //
 // Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
 // coherent primary rays from a camera (1024 × 768, in 4 × 4 pixel tiles), incoherent rays
 // (diffuse bounces from the primary hits, shuffled), and shadow rays from the primary hits
-// towards a light. Prism runs its renderer's own Scene::intersect / Scene::occluded in
-// each traversal mode; Embree runs single rays (rtcIntersect1/rtcOccluded1) and 16-ray packets
-// (rtcIntersect16/rtcOccluded16, which its AVX-512 path prefers here). Times are CPU seconds of
-// the tracing threads (CLOCK_THREAD_CPUTIME_ID), and every number is the median of --runs
-// rounds in which all contenders run one after another, in a rotating order.
+// towards a light. Prism runs its renderer's own Scene::intersect / Scene::occluded in each
+// traversal mode (--no-variants leaves out the intermediate ones), and Scene::intersect8 /
+// occluded8 on packets of eight consecutive rays; Embree runs single rays
+// (rtcIntersect1/rtcOccluded1) and 16-ray packets (rtcIntersect16/rtcOccluded16, which its AVX-512
+// path prefers here). Times are CPU seconds of the tracing threads (CLOCK_THREAD_CPUTIME_ID), and
+// every number is the median of
+// --runs rounds in which all contenders run one after another, in a rotating order.
 #include <embree3/rtcore.h>
 #include <time.h>
 
@@ -257,7 +260,7 @@ RTCRayHit toEmbree(const Ray& r) {
 }
 
 template <class Packet>
-void fillPacket(Packet& p, int valid[16], const Ray* rays, int count, bool closest) {
+void fillPacket(Packet& p, int valid[16], const Ray* rays, int count) {
   for (int i = 0; i < 16; ++i) {
     const bool live = i < count && rays[i].tMax >= rays[i].tMin;
     valid[i] = live ? -1 : 0;
@@ -282,7 +285,6 @@ void fillPacket(Packet& p, int valid[16], const Ray* rays, int count, bool close
     ray.flags[i] = 0;
     if constexpr (std::is_same_v<Packet, RTCRayHit16>) p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
   }
-  (void)closest;
 }
 
 // ---- the contest ----------------------------------------------------------------------------
@@ -501,12 +503,12 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
                               const int n = static_cast<int>(std::min<size_t>(16, e - i));
                               if (shadow) {
                                 alignas(64) RTCRay16 packet;
-                                fillPacket(packet, valid, &rays[i], n, false);
+                                fillPacket(packet, valid, &rays[i], n);
                                 rtcOccluded16(valid, es, &context, &packet);
                                 for (int k = 0; k < n; ++k) hits += valid[k] && packet.tfar[k] < 0;
                               } else {
                                 alignas(64) RTCRayHit16 packet;
-                                fillPacket(packet, valid, &rays[i], n, true);
+                                fillPacket(packet, valid, &rays[i], n);
                                 rtcIntersect16(valid, es, &context, &packet);
                                 for (int k = 0; k < n; ++k) {
                                   hits +=
