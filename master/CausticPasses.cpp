@@ -49,6 +49,15 @@ void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
   for (size_t r = 0; r < p.photonsByRank.size(); ++r) c.photonsByRank[r] += p.photonsByRank[r];
 }
 
+// The progressive estimate after `passes` caustic passes: direct light plus their mean.
+ImageRgb progressiveImage(const ImageRgb& direct, const ImageRgb& causticSum, int passes) {
+  ImageRgb image = direct;
+  const float scale = 1.0f / static_cast<float>(std::max(passes, 1));
+  for (size_t px = 0; px < image.pixels.size(); ++px)
+    image.pixels[px] += causticSum.pixels[px] * scale;
+  return image;
+}
+
 }  // namespace
 
 std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
@@ -92,7 +101,8 @@ float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
 }
 
 CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress) {
+                                ClusterRoster& roster, const PassProgress& progress,
+                                const ProgressiveSnapshot& snapshot) {
   const CausticSettings& settings = scene.causticSettings();
   CausticFrame out;
   CausticRunStats& stats = out.caustics;
@@ -177,6 +187,10 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   FrameResult direct =
       frame(std::make_shared<const RenderPass>(RenderPass{0, true, nullptr}), "direct light");
   addFrame(out.frames, direct, true);
+  if (direct.interrupted) {
+    out.image = direct.image;
+    return out;
+  }
   ImageRgb causticSum(direct.image.width, direct.image.height);
   const auto causticStart = SteadyClock::now();
   float radius = settings.radius;
@@ -184,6 +198,11 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   for (int i = 1; i <= settings.passes; ++i) {
     if (i > 1 && settings.timeBudgetSeconds > 0.0 &&
         secondsSince(causticStart) >= settings.timeBudgetSeconds) {
+      break;
+    }
+    // Interrupted between passes: the image of the passes done is whole, so nothing is missing.
+    if (options.stopRequested && options.stopRequested()) {
+      out.frames.interrupted = true;
       break;
     }
     const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
@@ -202,18 +221,19 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     auto pass = std::make_shared<const RenderPass>(RenderPass{
         static_cast<uint32_t>(i), false, std::make_shared<const PhotonGather>(map, gather)});
     FrameResult f = frame(pass, label);
+    if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
+      out.frames.interrupted = true;
+      break;
+    }
     stats.gatherRenderSeconds += f.seconds;
     for (size_t px = 0; px < causticSum.pixels.size(); ++px)
       causticSum.pixels[px] += f.image.pixels[px];
     addFrame(out.frames, f, false);
     out.lastMap = map;
     ++done;
+    if (snapshot) snapshot(done, progressiveImage(direct.image, causticSum, done));
   }
-  out.image = direct.image;
-  const float scale = 1.0f / static_cast<float>(std::max(done, 1));
-  for (size_t px = 0; px < out.image.pixels.size(); ++px) {
-    out.image.pixels[px] += causticSum.pixels[px] * scale;
-  }
+  out.image = progressiveImage(direct.image, causticSum, done);
   return out;
 }
 

@@ -45,6 +45,9 @@ struct CausticRunStats {
 };
 
 struct CausticFrame {
+  // Interrupted (frames.interrupted), image holds the tiles frames.tileDone marks; a
+  // progressive run stopped between or during its caustic passes keeps every tile, with the
+  // mean of the passes it finished (caustics.passes).
   ImageRgb image;
   FrameResult frames;  // every frame of the run added together (tiles, rays, busy time)
   CausticRunStats caustics;
@@ -55,8 +58,14 @@ struct CausticFrame {
 // (stage label, done, total), from the coordinating thread.
 using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 
+// Progressive runs: after each caustic pass, the passes done and the image so far (the direct
+// frame plus the mean of those passes), from the coordinating thread. `prism sweep` scores the
+// progressive estimate pass by pass with it.
+using ProgressiveSnapshot = std::function<void(int passes, const ImageRgb& image)>;
+
 CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress = {});
+                                ClusterRoster& roster, const PassProgress& progress = {},
+                                const ProgressiveSnapshot& snapshot = {});
 
 // A pass of direct light and the caustics of `maps` (direct light alone when they are empty),
 // whose tiles tell the slaves to use the caustic maps they build themselves.

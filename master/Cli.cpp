@@ -7,7 +7,9 @@
 
 #include "master/RenderCommand.h"
 #include "master/SpeedupCommand.h"
+#include "master/SweepCommand.h"
 #include "transport/MpiSession.h"
+#include "util/MemorySize.h"
 
 namespace prism {
 namespace {
@@ -30,6 +32,16 @@ struct RenderOverrideValues {
   float mapBlurSigma = 0.0f;
   CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
+
+void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
+  command
+      ->add_option_function<std::string>(
+          "--memory-limit",
+          [&o](const std::string& text) { o.memoryLimit = parseMemorySize(text); },
+          "Memory a run may plan to use, e.g. 512M, 8G, 1.5T (default: physical memory); "
+          "larger requests are refused before anything is allocated, see docs/reliability.md")
+      ->option_text("SIZE");
+}
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
@@ -72,6 +84,10 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
       ->check(CLI::Range(0.1, 86400.0));
   render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
+  addMemoryLimitOption(render, o);
+  render->add_flag(
+      "--overwrite", o.overwrite,
+      "Replace an existing image file (a finished frame is never replaced without it)");
   // Testing only, so not in --help: makes one slave misbehave.
   render
       ->add_option_function<std::string>(
@@ -180,6 +196,10 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render->add_option("--status-file", o.statusFile, "")->group("");  // tests: tiles done so far
+  render->add_flag("--save-partial", o.savePartial,
+                   "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
+                   "marked partial; the run exits with status 130 either way");
   addCausticOptions(render, o, v);
 }
 
@@ -282,7 +302,102 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
   speedup->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
       ->check(CLI::Range(1, 1 << 16));
   addCausticMethodOptions(speedup, v);
+  addMemoryLimitOption(speedup, o.render);
   speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
+}
+
+void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "Chart speed against accuracy: render the scene with each caustic method over a range of\n"
+      "budgets, time every point (median of --repeats runs, taken in rounds) and score it\n"
+      "against a reference: RMSE, relative RMSE, MRSE, max error and caustic flux ratio, over\n"
+      "the whole frame and the caustic region. Families (--families):\n"
+      "  photons     photon map: photons per pass     k           photon map: photons gathered\n"
+      "  passes      progressive photon map: passes   resolution  caustic map: texels per side\n"
+      "  steps       caustic map: distance iterations blur        caustic map: blur half-width\n"
+      "  spp         samples per pixel, with the scene's own method\n"
+      "Reference (--reference): analytic for scenes whose casters are flat mirrors in one plane\n"
+      "(scenes/caustic-mirror.yaml), else progressive photon mapping at a high budget, cached\n"
+      "as PREFIX-reference.exr/.csv, or an image file. Writes PREFIX.csv and the chart\n"
+      "PREFIX.png (error against time, log-log, Pareto front, thumbnails; needs Qt).\n"
+      "One process; see docs/accuracy.md.");
+  sweep->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  sweep->add_option("-o,--output", o.outputPrefix,
+                    "Prefix of the files written (default: sweep-<scene name>)");
+  const std::map<std::string, SweepFamily> families{
+      {"photons", SweepFamily::Photons}, {"k", SweepFamily::Gather},
+      {"passes", SweepFamily::Passes},   {"resolution", SweepFamily::Resolution},
+      {"steps", SweepFamily::Steps},     {"blur", SweepFamily::Blur},
+      {"spp", SweepFamily::Samples}};
+  sweep
+      ->add_option("--families", o.families,
+                   "Families to sweep, comma-separated (default: "
+                   "photons,k,passes,resolution,steps,blur)")
+      ->delimiter(',')
+      ->transform(CLI::CheckedTransformer(families, CLI::ignore_case))
+      ->option_text("photons,k,passes,resolution,steps,blur,spp");
+  const char* values = "Values swept (comma-separated; each overrides its family's defaults)";
+  const auto list = [&](const char* name, std::vector<uint64_t>& target, const char* help) {
+    sweep->add_option(name, target, help)->delimiter(',')->group(values);
+  };
+  list("--photons-list", o.values.photons,
+       "photons (default 25000,50000,100000,200000,400000,800000,1600000)");
+  list("--k-list", o.values.gather, "k (default 10,25,50,100,200,400)");
+  list("--passes-list", o.values.passes, "passes (default 1,2,4,8,16,32)");
+  list("--resolution-list", o.values.resolution, "resolution (default 64,128,256,512,1024)");
+  list("--steps-list", o.values.steps, "steps (default 1,2,3,5,10,20)");
+  list("--blur-list", o.values.blur, "blur half-width, sigma = half (default 0,1,2,4,8)");
+  list("--spp-list", o.values.samples, "spp (default 1,2,4,8,16)");
+  sweep->add_option("-r,--repeats", o.repeats, "Timed runs of every point; medians (default 3)")
+      ->check(CLI::Range(1, 1000));
+  addMemoryLimitOption(sweep, o.render);
+  sweep
+      ->add_option("--reference", o.reference.spec,
+                   "auto (default: analytic when the scene allows it, else progressive), "
+                   "analytic, progressive, or an image file (.exr) of the same size")
+      ->option_text("auto|analytic|progressive|FILE");
+  sweep
+      ->add_option("--reference-passes", o.reference.passes,
+                   "Progressive reference: passes (default 64)")
+      ->check(CLI::Range(2, 1 << 20));
+  sweep
+      ->add_option("--reference-photons", o.reference.photons,
+                   "Progressive reference: photons per pass (default 1000000)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  sweep
+      ->add_option("--reference-k", o.reference.k,
+                   "Progressive reference: photons whose mean distance sets the first radius "
+                   "(default 5)")
+      ->check(CLI::Range(1, 100000));
+  sweep->add_flag("--refresh-reference", o.reference.refresh,
+                  "Render the progressive reference again even when the cached one matches");
+  sweep
+      ->add_option("--budget-seconds", o.budgetSeconds,
+                   "Start no timed run after this many seconds of sweeping (the reference not "
+                   "counted); the chart says how many points were measured")
+      ->check(CLI::PositiveNumber);
+  sweep
+      ->add_option_function<std::string>(
+          "--time-axis", [&o](const std::string& axis) { o.cpuAxis = axis == "cpu"; },
+          "Time charted: wall (default) or cpu seconds of the process")
+      ->check(CLI::IsMember({"wall", "cpu"}));
+  sweep
+      ->add_option("--thumbnail-height", o.thumbnailHeight,
+                   "Height of the chart's thumbnails in pixels (default 96)")
+      ->check(CLI::Range(16, 1024));
+  sweep
+      ->add_option("-t,--threads", o.render.threads,
+                   "Render threads (default 0: all available cores)")
+      ->check(CLI::Range(0, 4096));
+  sweep->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
+      ->check(CLI::Range(1, 1 << 16));
+  addCausticMethodOptions(sweep, v);
+  sweep->add_flag("-q,--quiet", o.quiet, "No progress bar and no table");
 }
 
 void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& overrides,
@@ -298,7 +413,7 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--map-blur-sigma")) options.mapBlurSigma = overrides.mapBlurSigma;
   if (given("--map-blur-radius")) options.mapBlurRadius = overrides.mapBlurRadius;
   if (given("--map-paths")) options.mapPaths = overrides.mapPaths;
-  if (!command->get_option_no_throw("--max-depth")) return;  // `speedup` has only those above
+  if (!command->get_option_no_throw("--max-depth")) return;  // `speedup`, `sweep`: only those
   if (given("--max-depth")) options.maxDepth = overrides.maxDepth;
   if (given("--seed")) options.seed = overrides.seed;
   if (given("--exposure")) options.exposure = overrides.exposure;
@@ -314,7 +429,7 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
 }  // namespace
 
 int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer,
-           const SpeedupChartWriter& chartWriter) {
+           const ChartWriter& chartWriter) {
   const bool quietRank = session && session->rank() != 0;
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
@@ -330,6 +445,9 @@ int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewe
   SpeedupOptions speedupOptions;
   RenderOverrideValues speedupOverrides;
   addSpeedupCommand(app, speedupOptions, speedupOverrides);
+  SweepOptions sweepOptions;
+  RenderOverrideValues sweepOverrides;
+  addSweepCommand(app, sweepOptions, sweepOverrides);
 
   try {
     app.parse(argc, argv);
@@ -355,6 +473,11 @@ int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewe
   if (speedup->parsed()) {
     applyGivenOverrides(speedup, speedupOverrides, speedupOptions.render);
     return runSpeedup(speedupOptions, std::cout, std::cerr, session, chartWriter);
+  }
+  CLI::App* sweep = app.get_subcommand("sweep");
+  if (sweep->parsed()) {
+    applyGivenOverrides(sweep, sweepOverrides, sweepOptions.render);
+    return runSweep(sweepOptions, std::cout, std::cerr, session, chartWriter);
   }
   return 1;
 }

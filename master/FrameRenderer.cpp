@@ -1,5 +1,6 @@
 #include "master/FrameRenderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -144,6 +145,7 @@ class FrameState {
 
   // Only after every thread has stopped.
   const ImageRgb& image() const { return framebuffer_.image(); }
+  const std::vector<bool>& tileDone() const { return framebuffer_.received(); }
   std::vector<WorkerStats>& stats() { return stats_; }
   const std::vector<double>& tileSeconds() const { return tileSeconds_; }
   size_t reissued() const { return scheduler_.reissuedCount(); }
@@ -250,6 +252,11 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
     auto lastProgress = Clock::now();
     while (!state.complete()) {
       if (pool.failed()) break;  // join() below rethrows the thread's exception
+      if (options.stopRequested && options.stopRequested()) {
+        result.interrupted = true;
+        pool.cancel();
+        break;
+      }
       if (cluster && ranks > 1) {
         serviceSlaves(*cluster, state, options.prefetch);
       } else {
@@ -267,9 +274,10 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   }
   state.abandon();  // releases threads still waiting after a failure
   pool.join();
-  if (options.progress) options.progress(rects.size(), rects.size());
+  if (options.progress && !result.interrupted) options.progress(rects.size(), rects.size());
 
   result.image = state.image();
+  result.tileDone = state.tileDone();
   result.workers = state.stats();
   result.tiles = rects;
   result.tileSeconds = state.tileSeconds();
@@ -288,6 +296,10 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, MpiSess
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
+}
+
+size_t FrameResult::tilesDone() const {
+  return static_cast<size_t>(std::count(tileDone.begin(), tileDone.end(), true));
 }
 
 bool handleSlaveStatus(const wire::Message& message, int source, ClusterRoster& roster) {

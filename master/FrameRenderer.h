@@ -63,6 +63,9 @@ struct FrameOptions {
   // Tags the frame's messages; every frame of a run needs its own, so that a late tile or
   // heartbeat from an earlier frame is recognised and ignored.
   uint32_t frameId = 0;
+  // Polled by the coordinating loop; once true the frame stops: no more tiles are handed out,
+  // the tiles being rendered here are abandoned and the result is marked interrupted.
+  std::function<bool()> stopRequested;
 };
 
 // What one rank did for the frame.
@@ -90,6 +93,9 @@ struct FrameResult {
   std::vector<TileRect> tiles;       // the frame's tiles, in plan order
   std::vector<double> tileSeconds;   // index = tile: the time its render thread spent on it
   size_t reissuedTiles = 0;
+  bool interrupted = false;    // stopped by FrameOptions::stopRequested
+  std::vector<bool> tileDone;  // index = tile: in the image (all, unless interrupted)
+  size_t tilesDone() const;
 };
 
 // Throws std::runtime_error when a slave reports an error (the message names the rank).

@@ -21,6 +21,7 @@ class Framebuffer {
   size_t tileCount() const { return received_.size(); }
   bool complete() const { return tilesDone_ == received_.size(); }
   const ImageRgb& image() const { return image_; }
+  const std::vector<bool>& received() const { return received_; }  // index = tile
 
  private:
   ImageRgb image_;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <ostream>
 
@@ -10,6 +11,7 @@
 #include "image/ImageIo.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
+#include "master/PartialFrame.h"
 #include "master/ProgressBar.h"
 #include "master/ResourceCheck.h"
 #include "master/RunSummary.h"
@@ -18,6 +20,7 @@
 #include "scene/Scene.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiSession.h"
+#include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -58,11 +61,15 @@ void applyOverrides(const RenderOptions& o, CausticSettings& c) {
 }
 
 SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
-  SceneDescription description = loadScene(options.scenePath);
+  const MemoryLimit limit = memoryLimitOrPhysical(options.memoryLimit);
+  SceneDescription description = loadScene(options.scenePath, limit);
   applyOverrides(options, description.render);
   applyOverrides(options, description.caustics);
-  checkRenderFits(description.render, physicalMemoryBytes());
-  checkCausticsFit(description.caustics, physicalMemoryBytes());
+  checkSettingsSane(description.render);
+  checkRenderFits(description.render, limit);
+  checkTilesFit(description.render, options.tileSize, limit);
+  checkCausticsFit(description.caustics, limit);
+  checkSceneFits(description, options.tileSize, limit);
   return description;
 }
 
@@ -74,6 +81,35 @@ int failBeforeScene(MpiSession* session, const std::string& what, std::ostream& 
   err << "prism: error: " << what << "\n";
   return 1;
 }
+
+namespace {
+
+// Ctrl-C (or mpiexec's SIGTERM): writes the finished tiles first when asked, because under
+// mpiexec a SIGKILL follows a second later; then says what happened. Returns exit status 130.
+int finishInterruptedRender(const CausticFrame& result, const RenderOptions& options,
+                            const std::string& output, float exposure, std::ostream& err) {
+  const FrameResult& frame = result.frames;
+  const size_t done = frame.tilesDone();
+  std::string outcome = "nothing written (--save-partial keeps the finished tiles)";
+  if (options.savePartial && done > 0) {
+    const std::string partial = partialOutputPath(output);
+    ImageRgb image = result.image;
+    markUnfinishedTiles(image, frame.tiles, frame.tileDone);
+    writeImage(image, partial, exposure, partialFrameMetadata(done, frame.tiles.size()));
+    outcome = "wrote " + partial + " (partial; unfinished tiles striped magenta)";
+  } else if (options.savePartial) {
+    outcome = "nothing finished, nothing written";
+  }
+  err << "prism: interrupted by " << interruptSignalName() << ": " << done << " of "
+      << frame.tiles.size() << " tiles finished";
+  if (result.caustics.progressive && done == frame.tiles.size()) {
+    err << " (caustics: the mean of the progressive passes finished)";
+  }
+  err << "; " << outcome << "\n";
+  return kInterruptedExitCode;
+}
+
+}  // namespace
 
 std::string defaultOutputPath(const std::string& scenePath) {
   return std::filesystem::path(scenePath).stem().string() + ".png";
@@ -87,6 +123,8 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     slave.fault = options.fault;
     return runSlave(*session, slave);
   }
+  // From here on Ctrl-C stops the run (at the first tile boundary) instead of the process.
+  installInterruptHandlers();
   const auto start = std::chrono::steady_clock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
@@ -95,6 +133,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   try {
     std::string why;
     if (!isWritableImagePath(output, &why)) throw std::runtime_error(why);
+    checkMayWriteFrame(output, options.overwrite);
     if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
       throw std::runtime_error("--photon-image: " + why);
     }
@@ -125,9 +164,13 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     frameOptions.schedule = options.schedule;
     frameOptions.leaseSeconds = options.leaseSeconds;
     frameOptions.prefetch = options.prefetch;
+    frameOptions.stopRequested = interruptRequested;
     std::unique_ptr<ProgressBar> progress;
     std::string stage;
     const auto onProgress = [&](const std::string& label, size_t done, size_t total) {
+      if (!options.statusFile.empty()) {
+        std::ofstream(options.statusFile) << label << ' ' << done << ' ' << total << '\n';
+      }
       if (options.quiet) return;
       if (!progress || label != stage) {
         if (progress) progress->finish();
@@ -143,6 +186,15 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     if (progress) progress->finish();
     const FrameResult& frame = result.frames;
     for (const WorkerStats& w : frame.workers) silentRanks.push_back(w.retired);
+    if (frame.interrupted) {
+      exitCode = finishInterruptedRender(result, options, output, description.render.exposure, err);
+      out.flush();
+      err.flush();
+      if (session && interruptSignalName() == std::string("SIGTERM")) {
+        leaveEndingJob(*session, exitCode);
+      }
+      return shutDownSlaves(session, exitCode, silentRanks, err);
+    }
     if (result.caustics.noCasters && !options.quiet) {
       err << "prism: warning: caustics asked for, but no light reaches a caustic caster "
              "(a reflective or transparent object): rendered without photons\n";

@@ -33,13 +33,17 @@ struct RenderOptions {
   std::optional<int> mapResolution, mapSteps, mapBlurRadius;  // caustic mapping
   std::optional<float> mapBlurSigma;
   std::optional<CausticMapPaths> mapPaths;
-  std::string causticMapDebugPrefix;  // debug: the caustic maps as images
-  bool quiet = false;                 // no progress bar and no summary
+  std::string causticMapDebugPrefix;    // debug: the caustic maps as images
+  bool quiet = false;                   // no progress bar and no summary
+  bool overwrite = false;               // replace a finished frame at the output path
+  bool savePartial = false;             // interrupted: write the finished tiles (PartialFrame.h)
+  std::optional<uint64_t> memoryLimit;  // bytes a run may plan to use; default: physical memory
   // Distribution (MPI runs): how tiles are handed out and when a silent slave is given up on.
   Schedule schedule = Schedule::Dynamic;
   double leaseSeconds = 30.0;
   int prefetch = 2;
-  FaultInjection fault;  // testing only
+  FaultInjection fault;    // testing only
+  std::string statusFile;  // testing only: "stage done total", rewritten as tiles finish
 };
 
 // Applies the overrides the user gave to the scene's own settings.
@@ -54,8 +58,10 @@ class MpiSession;
 // How long rank 0's scene broadcast may wait for the slaves (they may still be starting).
 inline constexpr double kSceneBroadcastTimeoutSeconds = 600.0;
 
-// Loads the scene the options name, applies their overrides, and refuses an image or a photon
-// map that cannot fit in memory. Throws on any of these.
+// Loads the scene the options name (refusing meshes past the memory limit before reading
+// them), applies their overrides, and refuses settings, an image, tiles, a photon map or
+// geometry that cannot fit (master/ResourceCheck.h), all before the scene is broadcast or
+// built, so no rank allocates for a refused request. Throws on any of these.
 SceneDescription loadSceneWithOverrides(const RenderOptions& options);
 
 // Rank 0 could not produce a scene: the slaves, waiting for one, get the error instead and stop

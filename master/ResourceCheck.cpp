@@ -2,15 +2,28 @@
 
 #include <unistd.h>
 
-#include <cstdio>
-#include <stdexcept>
+#include <string>
+
+#include "scene/MeshBudget.h"
 
 namespace prism {
+namespace {
+
+std::string dimensions(const RenderSettings& s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
+
+void require(uint64_t needed, const MemoryLimit& limit, const std::string& what,
+             const std::string& hint) {
+  if (needed > limit.bytes) throw ResourceLimitError(memoryRefusal(what, needed, limit, hint));
+}
+
+}  // namespace
 
 uint64_t frameMemoryBytes(const RenderSettings& s) {
-  const double pixels = static_cast<double>(s.width) * static_cast<double>(s.height);
-  const double bytes = 2.0 * pixels * sizeof(Color);  // frame buffer + tiles in flight
-  return bytes >= 1.8e19 ? UINT64_MAX : static_cast<uint64_t>(bytes);
+  const uint64_t pixels = saturatingMultiply(static_cast<uint64_t>(std::max(s.width, 0)),
+                                             static_cast<uint64_t>(std::max(s.height, 0)));
+  return saturatingMultiply(pixels, 2 * sizeof(Color));  // frame buffer + tiles in flight
 }
 
 uint64_t physicalMemoryBytes() {
@@ -20,26 +33,49 @@ uint64_t physicalMemoryBytes() {
   return static_cast<uint64_t>(pages) * static_cast<uint64_t>(pageSize);
 }
 
-std::string formatBytes(double bytes) {
-  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
-  int unit = 0;
-  while (bytes >= 1024.0 && unit < 6) {
-    bytes /= 1024.0;
-    ++unit;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
-  return text;
+MemoryLimit memoryLimitOrPhysical(const std::optional<uint64_t>& givenBytes) {
+  if (givenBytes) return {*givenBytes, "--memory-limit"};
+  return {physicalMemoryBytes(), "this machine's memory; --memory-limit SIZE changes it"};
 }
 
-void checkRenderFits(const RenderSettings& s, uint64_t availableBytes) {
-  const uint64_t needed = frameMemoryBytes(s);
-  // Leave room for the scene, the BVH and the rest of the system.
-  if (needed > availableBytes / 2) {
-    throw std::runtime_error(
-        "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image needs " +
-        formatBytes(static_cast<double>(needed)) + " for its frame buffer; this machine has " +
-        formatBytes(static_cast<double>(availableBytes)) + " of memory (reduce --width/--height)");
+void checkRenderFits(const RenderSettings& s, const MemoryLimit& limit) {
+  require(frameMemoryBytes(s), limit, "a " + dimensions(s) + " image's frame buffer",
+          "reduce --width/--height");
+}
+
+uint64_t tileCount(const RenderSettings& s, int tileSize) {
+  const uint64_t edge = tileSize > 0 ? static_cast<uint64_t>(tileSize) : 8;  // automatic: >= 8
+  const uint64_t across = (static_cast<uint64_t>(std::max(s.width, 0)) + edge - 1) / edge;
+  const uint64_t down = (static_cast<uint64_t>(std::max(s.height, 0)) + edge - 1) / edge;
+  return saturatingMultiply(across, down);
+}
+
+uint64_t tileMemoryBytes(uint64_t tiles) {
+  return saturatingMultiply(tiles, 64);
+}
+
+void checkTilesFit(const RenderSettings& s, int tileSize, const MemoryLimit& limit) {
+  const uint64_t tiles = tileCount(s, tileSize);
+  if (tiles > kMaxTileCount) {
+    throw ResourceLimitError("a " + dimensions(s) + " image in " +
+                             (tileSize > 0 ? std::to_string(tileSize) + "-pixel" : "automatic") +
+                             " tiles makes " + std::to_string(tiles) + " tiles; at most " +
+                             std::to_string(kMaxTileCount) + " are allowed (raise --tile-size)");
+  }
+  require(tileMemoryBytes(tiles), limit, std::to_string(tiles) + " tiles' bookkeeping",
+          "raise --tile-size");
+}
+
+void checkSettingsSane(const RenderSettings& s) {
+  if (s.samplesPerPixel > kMaxSamplesPerPixel) {
+    throw ResourceLimitError(std::to_string(s.samplesPerPixel) +
+                             " samples per pixel is more than the " +
+                             std::to_string(kMaxSamplesPerPixel) + " allowed (reduce --spp)");
+  }
+  if (s.maxDepth > kMaxRecursionDepth) {
+    throw ResourceLimitError("a recursion depth of " + std::to_string(s.maxDepth) +
+                             " is more than the " + std::to_string(kMaxRecursionDepth) +
+                             " allowed (reduce --max-depth)");
   }
 }
 
@@ -47,20 +83,46 @@ uint64_t photonMemoryBytes(const CausticSettings& c) {
   if (c.method != CausticMethod::PhotonMap) return 0;
   // 28-byte photons held three times (shares, map, outgoing message) plus a 4-byte tree index
   // and about one 8-byte node share per photon.
-  constexpr double kBytesPerPhoton = 3.0 * 28.0 + 4.0 + 8.0;
-  const double bytes = static_cast<double>(c.photons) * kBytesPerPhoton;
-  return bytes >= 1.8e19 ? UINT64_MAX : static_cast<uint64_t>(bytes);
+  constexpr uint64_t kBytesPerPhoton = 3 * 28 + 4 + 8;
+  return saturatingMultiply(c.photons, kBytesPerPhoton);
 }
 
-void checkCausticsFit(const CausticSettings& c, uint64_t availableBytes) {
-  const uint64_t needed = photonMemoryBytes(c);
-  if (needed > availableBytes / 2) {
-    throw std::runtime_error(std::to_string(c.photons) + " photons per pass may need " +
-                             formatBytes(static_cast<double>(needed)) +
-                             " for the photon map; this machine has " +
-                             formatBytes(static_cast<double>(availableBytes)) +
-                             " of memory (reduce --photons, or use more --passes of fewer)");
+void checkCausticsFit(const CausticSettings& c, const MemoryLimit& limit) {
+  require(photonMemoryBytes(c), limit, std::to_string(c.photons) + " photons per pass",
+          "reduce --photons, or use more --passes of fewer");
+}
+
+uint64_t geometryMemoryBytes(const SceneDescription& d) {
+  uint64_t bytes = 0;
+  for (const MeshDesc& m : d.meshes) {
+    bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
   }
+  const uint64_t primitives = d.spheres.size() + d.planes.size() + d.cones.size();
+  bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
+  if (d.environment) {
+    for (const ImageRgb& face : d.environment->faces) {
+      // The description's copy, its wire copy and the scene's.
+      bytes = saturatingAdd(bytes, 3 * face.pixels.size() * sizeof(Color));
+    }
+  }
+  return bytes;
+}
+
+void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& limit) {
+  const uint64_t geometry = geometryMemoryBytes(d);
+  require(geometry, limit,
+          "the scene's geometry (" + std::to_string(d.triangleCount()) + " triangles)",
+          "simplify the meshes");
+  const uint64_t frame = frameMemoryBytes(d.render);
+  const uint64_t tiles = tileMemoryBytes(tileCount(d.render, tileSize));
+  const uint64_t photons = photonMemoryBytes(d.caustics);
+  const uint64_t total =
+      saturatingAdd(saturatingAdd(geometry, frame), saturatingAdd(tiles, photons));
+  require(total, limit,
+          "the run (geometry " + formatBytes(static_cast<double>(geometry)) + ", frame " +
+              formatBytes(static_cast<double>(frame)) + ", photons " +
+              formatBytes(static_cast<double>(photons)) + ")",
+          "reduce what is largest");
 }
 
 }  // namespace prism

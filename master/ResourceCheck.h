@@ -1,32 +1,57 @@
-// Refuses absurd requests before any work starts, saying what they would need.
+// Refuses absurd requests before any work starts, saying what they would need. Every check
+// compares an estimate of the bytes a part of the run needs with the run's memory limit
+// (--memory-limit, default the machine's physical memory) and throws ResourceLimitError with
+// the bytes and the limit; where memory is not what runs out (samples per pixel, recursion
+// depth, tile count) a fixed bound applies. docs/reliability.md, "Limits", gives the formulas.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
 #include "scene/SceneDescription.h"
+#include "util/MemorySize.h"
 
 namespace prism {
 
+inline constexpr int kMaxSamplesPerPixel = 1 << 16;  // 65536: days per frame at any resolution
+inline constexpr int kMaxRecursionDepth = 256;       // as the scene parser allows
+inline constexpr uint64_t kMaxTileCount = 1u << 24;  // tile indices and job counts stay small
+
 // Bytes a render of these settings needs at least: the frame buffer and, at worst, every tile
-// result in flight at once.
+// result in flight at once: 2 · width · height · 12.
 uint64_t frameMemoryBytes(const RenderSettings& settings);
 
 // Physical memory of this machine in bytes.
 uint64_t physicalMemoryBytes();
 
-// Throws std::runtime_error when the render cannot fit: the message names the size needed and
-// the memory available.
-void checkRenderFits(const RenderSettings& settings, uint64_t availableBytes);
+// The limit a run was given, or this machine's physical memory.
+MemoryLimit memoryLimitOrPhysical(const std::optional<uint64_t>& givenBytes);
+
+// Throws when the frame buffer cannot fit.
+void checkRenderFits(const RenderSettings& settings, const MemoryLimit& limit);
+
+// Tiles of a frame with this tile edge (0: automatic, at most as many as 8-pixel tiles).
+uint64_t tileCount(const RenderSettings& settings, int tileSize);
+// Bytes of per-tile bookkeeping on rank 0 (plan, scheduler, frame buffer flags): 64 per tile.
+uint64_t tileMemoryBytes(uint64_t tiles);
+// Throws past kMaxTileCount tiles or when their bookkeeping cannot fit.
+void checkTilesFit(const RenderSettings& settings, int tileSize, const MemoryLimit& limit);
+
+// Throws when samples per pixel or the recursion depth exceed their bounds.
+void checkSettingsSane(const RenderSettings& settings);
 
 // Bytes a photon pass of these settings may need on rank 0 at worst (every photon stored): the
 // shares as they arrive, the assembled map with its kd-tree, and the message that sends it on.
 uint64_t photonMemoryBytes(const CausticSettings& caustics);
 
-// Throws std::runtime_error when the photon map cannot fit, naming the bytes and the memory.
-void checkCausticsFit(const CausticSettings& caustics, uint64_t availableBytes);
+// Throws when the photon map cannot fit, naming the bytes and the limit.
+void checkCausticsFit(const CausticSettings& caustics, const MemoryLimit& limit);
 
-// "1.5 GiB", "312 KiB", ...
-std::string formatBytes(double bytes);
+// Bytes a rank needs to hold and build this scene's geometry (meshes with their BVH, the other
+// primitives, cube-map faces), counting the description and its wire copy (MeshBudget.h).
+uint64_t geometryMemoryBytes(const SceneDescription& description);
+
+// Throws when the geometry cannot fit, and then when everything together cannot.
+void checkSceneFits(const SceneDescription& description, int tileSize, const MemoryLimit& limit);
 
 }  // namespace prism

@@ -1,7 +1,10 @@
 #include "master/SlaveShutdown.h"
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <ostream>
+#include <thread>
 
 #include "transport/MpiSession.h"
 #include "util/Stopwatch.h"
@@ -49,6 +52,16 @@ int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& s
   }
   err.flush();
   session->abortJob(exitCode);
+}
+
+void leaveEndingJob(MpiSession& session, int exitCode) {
+  for (int rank = 1; rank < session.size(); ++rank) session.send(rank, wire::encodeShutdown());
+  const auto start = std::chrono::steady_clock::now();
+  while (session.progressSends() > 0 && secondsSince(start) < 0.1) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::fflush(nullptr);
+  std::_Exit(exitCode);
 }
 
 }  // namespace prism

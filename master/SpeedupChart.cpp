@@ -23,13 +23,16 @@ std::string machineNote(const SpeedupReport& r) {
 
 }  // namespace
 
-SpeedupChart measuredChart(const SpeedupReport& r) {
-  SpeedupChart chart;
+Chart measuredChart(const SpeedupReport& r) {
+  Chart chart;
   chart.title = "prism speedup: " + r.scenePath;
   chart.note = machineNote(r);
-  ChartPanel speedup{"Speedup S = T1 / Tp", "p (slaves x threads)", "speedup", false, false, {}};
+  ChartPanel speedup{
+      "Speedup S = T1 / Tp", "p (slaves x threads)", "speedup", false, false, {}, 2.0,
+      "oversubscribed"};
   ChartPanel efficiency{
-      "Efficiency E = S / p", "p (slaves x threads)", "efficiency", false, false, {}};
+      "Efficiency E = S / p", "p (slaves x threads)", "efficiency", false, false, {}, 2.0,
+      "oversubscribed"};
   double maxWorkers = 1.0;
   for (const ScalingPoint& p : r.points) {
     maxWorkers = std::max(maxWorkers, static_cast<double>(p.workers()));
@@ -43,10 +46,10 @@ SpeedupChart measuredChart(const SpeedupReport& r) {
     ChartSeries& e = efficiency.series[static_cast<size_t>(it - speedup.series.begin())];
     it->x.push_back(p.workers());
     it->y.push_back(p.speedup);
-    it->oversubscribed.push_back(p.oversubscribed);
+    it->marked.push_back(p.oversubscribed);
     e.x.push_back(p.workers());
     e.y.push_back(p.efficiency);
-    e.oversubscribed.push_back(p.oversubscribed);
+    e.marked.push_back(p.oversubscribed);
   }
   speedup.series.insert(speedup.series.begin(), ideal(maxWorkers, false));
   efficiency.series.insert(efficiency.series.begin(), ideal(maxWorkers, true));
@@ -54,8 +57,8 @@ SpeedupChart measuredChart(const SpeedupReport& r) {
   return chart;
 }
 
-SpeedupChart projectionChart(const SpeedupReport& r) {
-  SpeedupChart chart;
+Chart projectionChart(const SpeedupReport& r) {
+  Chart chart;
   chart.title = "prism speedup, measured and projected: " + r.scenePath;
   char note[256];
   std::snprintf(note, sizeof note,
@@ -70,8 +73,11 @@ SpeedupChart projectionChart(const SpeedupReport& r) {
                      "speedup",
                      true,
                      true,
-                     {}};
-  ChartPanel efficiency{"Efficiency E = S / p", "p (workers)", "efficiency", true, false, {}};
+                     {},
+                     2.0,
+                     "oversubscribed"};
+  ChartPanel efficiency{"Efficiency E = S / p", "p (workers)", "efficiency", true, false, {}, 2.0,
+                        "oversubscribed"};
   double maxWorkers = 1.0;
   for (const ProjectedPoint& p : r.projection) {
     if (p.schedule != Schedule::Dynamic) continue;
@@ -100,10 +106,10 @@ SpeedupChart projectionChart(const SpeedupReport& r) {
     if (p.schedule != Schedule::Dynamic || p.tileSize != r.serialTileSize) continue;
     measured.x.push_back(p.workers());
     measured.y.push_back(p.speedup);
-    measured.oversubscribed.push_back(p.oversubscribed);
+    measured.marked.push_back(p.oversubscribed);
     measuredEfficiency.x.push_back(p.workers());
     measuredEfficiency.y.push_back(p.efficiency);
-    measuredEfficiency.oversubscribed.push_back(p.oversubscribed);
+    measuredEfficiency.marked.push_back(p.oversubscribed);
   }
   speedup.series.insert(speedup.series.begin(), ideal(maxWorkers, false));
   efficiency.series.insert(efficiency.series.begin(), ideal(maxWorkers, true));

@@ -11,6 +11,7 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
+#include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/LinkProbe.h"
@@ -90,19 +91,6 @@ double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
   return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
 }
 
-// Writes through a temporary name, so no half-written file is left behind.
-template <typename Write>
-void writeFileAtomically(const std::string& path, Write write) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary);
-    if (!file) throw std::runtime_error("cannot write " + path);
-    write(file);
-    if (!file.flush()) throw std::runtime_error("cannot write " + path);
-  }
-  std::filesystem::rename(temporary, path);
-}
-
 class Measurement {
  public:
   Measurement(const Scene& scene, const SpeedupOptions& options, MpiSession& session,
@@ -162,7 +150,7 @@ std::vector<double> medianTileSeconds(const std::vector<std::vector<double>>& ru
 }
 
 void writeOutputs(const SpeedupReport& report, const SpeedupOutputs& files,
-                  const SpeedupChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
+                  const ChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
   writeFileAtomically(files.csv, [&](std::ostream& f) { writeSpeedupCsv(report, f); });
   writeFileAtomically(files.projectionCsv, [&](std::ostream& f) { writeProjectionCsv(report, f); });
   out << "\n  wrote " << files.csv << " and " << files.projectionCsv << "\n";
@@ -184,7 +172,7 @@ SpeedupOutputs speedupOutputs(const std::string& prefix) {
 }
 
 int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
-               MpiSession* session, const SpeedupChartWriter& chartWriter) {
+               MpiSession* session, const ChartWriter& chartWriter) {
   if (!session || session->size() < 2) {
     err << "prism: error: prism speedup measures inside one MPI job and needs at least 2 ranks: "
            "rank 0 coordinates and ranks 1..N-1 render, so the job measures 1..N-1 slaves.\n"

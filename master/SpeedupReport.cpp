@@ -6,26 +6,17 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "master/NumberText.h"
+
 namespace prism {
 namespace {
-
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
-// Empty for an undefined value (Karp–Flatt at p = 1, no model), so the CSV has no "nan".
-std::string csvNumber(double value, const char* pattern = "%.6g") {
-  return std::isfinite(value) ? format(pattern, value) : std::string();
-}
 
 std::string joinBusy(const std::vector<double>& busy, const char* separator, double scale,
                      const char* pattern) {
   std::string text;
   for (size_t i = 0; i < busy.size(); ++i) {
     if (i > 0) text += separator;
-    text += format(pattern, busy[i] * scale);
+    text += formatNumber(pattern, busy[i] * scale);
   }
   return text;
 }
@@ -102,10 +93,11 @@ void writeSpeedupCsv(const SpeedupReport& r, std::ostream& out) {
       << r.samplesPerPixel << " spp; " << r.ranks << " MPI ranks (rank 0 coordinates), "
       << r.threadsPerRank << " thread(s) per slave, " << r.cores << " cores; medians of "
       << r.repeats << " runs\n";
-  out << "# T1 = " << format("%.6g", r.serialSeconds) << " s: 1 process, 1 thread, no MPI, tile "
-      << r.serialTileSize << "; p = slaves x threads per slave; set-up not in seconds\n";
-  out << "# link: latency " << format("%.3g", r.link.model.latencySeconds * 1e3)
-      << " ms one way, bandwidth " << format("%.3g", r.link.model.bytesPerSecond / 1e6)
+  out << "# T1 = " << formatNumber("%.6g", r.serialSeconds)
+      << " s: 1 process, 1 thread, no MPI, tile " << r.serialTileSize
+      << "; p = slaves x threads per slave; set-up not in seconds\n";
+  out << "# link: latency " << formatNumber("%.3g", r.link.model.latencySeconds * 1e3)
+      << " ms one way, bandwidth " << formatNumber("%.3g", r.link.model.bytesPerSecond / 1e6)
       << " MB/s\n";
   const std::vector<std::string>& columns = speedupCsvColumns();
   for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
@@ -129,7 +121,7 @@ void writeProjectionCsv(const SpeedupReport& r, std::ostream& out) {
   out << "# prism speedup projection: " << r.scenePath
       << "; simulated pull queue replaying the measured tile costs and link; "
          "one core per render thread; model error on the measured points "
-      << format("%.1f", r.modelError(false) * 100) << "% (not oversubscribed)\n";
+      << formatNumber("%.1f", r.modelError(false) * 100) << "% (not oversubscribed)\n";
   out << "width,height,tile_size,schedule,p,seconds,serial_seconds,speedup,efficiency\n";
   for (const ProjectedPoint& p : r.projection) {
     out << p.width << "," << p.height << "," << p.tileSize << "," << scheduleName(p.schedule) << ","
@@ -153,7 +145,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
                 s.slaveBuildSeconds);
   out << line;
   if (!s.causticStage.empty())
-    out << ", " << s.causticStage << " " << format("%.3f", s.causticSeconds) << " s";
+    out << ", " << s.causticStage << " " << formatNumber("%.3f", s.causticSeconds) << " s";
   out << "\n";
   std::snprintf(line, sizeof line,
                 "  link (Echo through the transport, %d round trips per size and slave): latency "
@@ -167,7 +159,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
                   p.seconds.min, p.seconds.max);
     out << line;
   }
-  out << " T1 = " << format("%.3f", r.serialSeconds) << " s\n\n";
+  out << " T1 = " << formatNumber("%.3f", r.serialSeconds) << " s\n\n";
   std::snprintf(line, sizeof line, "  %-8s %5s %5s %22s %7s %6s %7s %7s %8s  %s\n", "schedule",
                 "tile", "p", "frame s [min-max]", "S", "E", "K-F e", "model s", "model err",
                 "busy % per slave");
@@ -176,11 +168,12 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
     char time[64];
     std::snprintf(time, sizeof time, "%.3f [%.3f-%.3f]", p.seconds.median, p.seconds.min,
                   p.seconds.max);
-    const std::string kf = std::isfinite(p.karpFlatt) ? format("%.3f", p.karpFlatt) : "-";
-    const std::string model = std::isfinite(p.modelSeconds) ? format("%.3f", p.modelSeconds) : "-";
+    const std::string kf = std::isfinite(p.karpFlatt) ? formatNumber("%.3f", p.karpFlatt) : "-";
+    const std::string model =
+        std::isfinite(p.modelSeconds) ? formatNumber("%.3f", p.modelSeconds) : "-";
     const std::string error =
         std::isfinite(p.modelSeconds)
-            ? format("%+.1f%%", (p.modelSeconds - p.seconds.median) / p.seconds.median * 100)
+            ? formatNumber("%+.1f%%", (p.modelSeconds - p.seconds.median) / p.seconds.median * 100)
             : "-";
     std::snprintf(line, sizeof line, "  %-8s %5d %5d %22s %7.3f %6.3f %7s %7s %8s  %s%s\n",
                   scheduleName(p.schedule), p.tileSize, p.workers(), time, p.speedup, p.efficiency,
@@ -197,7 +190,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   for (const ScalingPoint& p : r.points) {
     if (std::find(seen.begin(), seen.end(), p.series()) != seen.end()) continue;
     seen.push_back(p.series());
-    out << " " << p.series() << " f = " << format("%.3f", p.amdahlFraction);
+    out << " " << p.series() << " f = " << formatNumber("%.3f", p.amdahlFraction);
   }
   out << "\n";
   std::snprintf(line, sizeof line,
@@ -231,7 +224,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
         for (const ProjectedPoint& q : r.projection) {
           if (q.workers == p && q.width == size.first && q.height == size.second &&
               q.schedule == Schedule::Dynamic) {
-            cell = format("%.1f", q.speedup());
+            cell = formatNumber("%.1f", q.speedup());
           }
         }
         std::snprintf(line, sizeof line, " %12s", cell.c_str());

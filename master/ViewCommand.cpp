@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "image/ImageIo.h"
+#include "master/PartialFrame.h"
 #include "master/ResourceCheck.h"
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
@@ -30,6 +31,7 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Mp
     if (!options.savePath.empty()) {
       std::string why;
       if (!isWritableImagePath(options.savePath, &why)) throw std::runtime_error(why);
+      checkMayWriteFrame(options.savePath, options.render.overwrite);
     }
     description = loadSceneWithOverrides(options.render);  // --caustics, --photons too
   } catch (const std::exception& e) {

@@ -7,7 +7,7 @@
 #include "master/Cli.h"
 #include "transport/MpiSession.h"
 #ifdef PRISM_HAVE_VIEWER
-#include "gui/SpeedupChartImage.h"
+#include "gui/ChartImage.h"
 #include "gui/Viewer.h"
 #endif
 
@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     }
   }
 #ifdef PRISM_HAVE_VIEWER
-  return prism::runCli(argc, argv, session.get(), prism::runViewer, prism::writeSpeedupChartImage);
+  return prism::runCli(argc, argv, session.get(), prism::runViewer, prism::writeChartImage);
 #else
   return prism::runCli(argc, argv, session.get());
 #endif

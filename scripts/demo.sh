@@ -3,5 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
-./build/prism render scenes/default.yaml -o default.png
+./build/prism render scenes/default.yaml -o default.png --overwrite  # a re-run replaces it
 echo "demo: open default.png"

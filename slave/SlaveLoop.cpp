@@ -18,6 +18,7 @@
 #include "slave/JobQueue.h"
 #include "slave/TileWorkerPool.h"
 #include "transport/MpiSession.h"
+#include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -25,6 +26,8 @@ namespace prism {
 namespace {
 
 using Clock = SteadyClock;
+
+constexpr double kInterruptedShutdownSeconds = 0.8;
 
 // Finished tiles, with the frame they belong to, waiting for the main thread, the only one
 // that calls MPI. The main thread sleeps on it between polls, so a finished tile wakes it and
@@ -170,6 +173,7 @@ void awaitShutdown(MpiSession& session, double timeoutSeconds) {
 }  // namespace
 
 int runSlave(MpiSession& session, const SlaveOptions& options) {
+  installInterruptHandlers();
   std::vector<uint8_t> bytes;
   try {
     session.broadcast(bytes, options.masterTimeoutSeconds);
@@ -215,11 +219,16 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   auto lastHeartbeat = Clock::now();
   bool shutdownReceived = false;
   bool masterSilent = false;
+  bool interrupted = false;
   auto lastHeard = Clock::now();
   int exitCode = 0;
   try {
     for (;;) {
       if (pool.failed()) break;
+      if (interruptRequested()) {
+        interrupted = true;
+        break;
+      }
       bool masterReachable = true;
       for (wire::TileResultMessage& result : outbox.take()) {
         if (result.frame != frame) continue;  // finished after the viewer moved on: stale
@@ -311,6 +320,7 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   }
   jobs.clear();
   jobs.close();
+  pool.cancel();  // nobody will take a tile still being rendered: stop it after its row
   photons.wait();
   try {
     pool.join();
@@ -321,6 +331,15 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
   }
   if (shutdownReceived) {
     session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+  } else if (interrupted) {
+    // Usually every rank got the signal (mpiexec sends SIGTERM to all) and rank 0 is writing
+    // its partial frame: wait for its shutdown a little, well inside mpiexec's one second
+    // before SIGKILL. A slave interrupted alone tells rank 0, which ends the run with an error.
+    session.send(0, wire::encodeError({std::string("stopped by ") + interruptSignalName()}));
+    awaitShutdown(session, kInterruptedShutdownSeconds);
+    // SIGTERM comes from mpiexec ending the job: MPI_Finalize would wait for the SIGKILL.
+    if (interruptSignalName() == std::string("SIGTERM")) std::_Exit(kInterruptedExitCode);
+    return kInterruptedExitCode;
   } else if (!masterSilent) {
     awaitShutdown(session, options.masterTimeoutSeconds);  // after an error this rank reported
   }

@@ -41,7 +41,9 @@ void TileWorkerPool::start(JobSource source, JobResultHandler onResult) {
           const LightTerms terms = job->pass ? job->pass->terms() : LightTerms{};
           const TileRenderer renderer =
               job->view ? TileRenderer(scene_, *job->view, terms) : TileRenderer(scene_, terms);
-          onResult(*job, renderer.render(job->tileIndex, job->rect));
+          TileResult tile = renderer.render(job->tileIndex, job->rect, &cancelled_);
+          if (cancelled_) break;  // possibly incomplete
+          onResult(*job, std::move(tile));
         }
       } catch (...) {
         const std::lock_guard<std::mutex> lock(failureMutex_);

@@ -5,6 +5,7 @@
 // the scheduling lives in the source, and the calling thread stays free for MPI and progress.
 #pragma once
 
+#include <atomic>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -56,6 +57,9 @@ class TileWorkerPool {
   void join();
   // Whether a thread has stopped on an exception (join() will rethrow it).
   bool failed();
+  // Abandons the tiles being rendered (each after its current row; no result is handed on), so
+  // an interrupted run stops within a row's time rather than a tile's.
+  void cancel() { cancelled_ = true; }
 
  private:
   const Scene& scene_;
@@ -63,6 +67,7 @@ class TileWorkerPool {
   std::vector<std::thread> threads_;
   std::mutex failureMutex_;
   std::exception_ptr failure_;
+  std::atomic<bool> cancelled_{false};
 };
 
 // Threads to use when the user asks for 0 ("all"): the cores this process may run on.

@@ -3,14 +3,24 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "image/ImageRgb.h"
 
 namespace prism {
 
+// Text stored with the pixels (PNG tEXt chunks, EXR string attributes): (name, value) pairs.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
 // Writes image to path via a temporary file in the same folder that is renamed on success, so a
 // failed or interrupted write never leaves a half-written file. Throws std::runtime_error.
-void writeImage(const ImageRgb& image, const std::string& path, float exposure = 1.0f);
+void writeImage(const ImageRgb& image, const std::string& path, float exposure = 1.0f,
+                const ImageMetadata& metadata = {});
+
+// A text attribute of an image file written with metadata; "" when the file has none of that
+// name or cannot be read.
+std::string readImageText(const std::string& path, const std::string& name);
 
 // Reads any format OpenImageIO knows into linear RGB (sRGB-encoded 8-bit files are linearised).
 // Throws std::runtime_error naming the file.

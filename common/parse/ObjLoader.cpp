@@ -19,18 +19,25 @@
 
 #include "parse/PolygonTriangulator.h"
 #include "parse/PrintableText.h"
+#include "scene/MeshBudget.h"
 
 namespace prism {
 
 namespace {
 
-std::string readObjFile(const std::string& path, const FileLoc& referencedFrom) {
+std::string readObjFile(const std::string& path, const FileLoc& referencedFrom,
+                        const MemoryLimit& limit) {
   auto fail = [&](int error) {
     throw SceneError(referencedFrom,
                      "cannot open mesh file '" + path + "': " + std::strerror(error));
   };
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(EISDIR);
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > limit.bytes) {
+    throw SceneError(referencedFrom, memoryRefusal("reading mesh file '" + path + "'", size, limit,
+                                                   "simplify the mesh or raise --memory-limit"));
+  }
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) fail(errno);
   std::string text;
@@ -50,6 +57,9 @@ std::string readObjFile(const std::string& path, const FileLoc& referencedFrom) 
 struct ObjLines {
   std::vector<int> vertexLines;  // line of each 'v' statement
   std::vector<int> faceLines;    // line of each 'f' statement
+  size_t normals = 0;            // 'vn' statements
+  size_t corners = 0;            // face corners, over all faces
+  size_t triangles = 0;          // after triangulation
 };
 
 struct Word {
@@ -107,6 +117,10 @@ ObjLines scanObjLines(const std::string& text, const std::string& path) {
     } else if (words[0].text == "f") {
       lines.faceLines.push_back(lineNumber);
       if (words.size() < 4) throw SceneError(loc(words[0]), "face needs at least 3 vertices");
+      lines.corners += words.size() - 1;
+      lines.triangles += words.size() - 3;
+    } else if (words[0].text == "vn") {
+      ++lines.normals;
     }
   }
   return lines;
@@ -142,14 +156,27 @@ bool isBadDataWarning(const std::string& warning) {
 
 }  // namespace
 
-MeshDesc loadObjMesh(const std::string& path, const FileLoc& referencedFrom) {
-  return parseObjMesh(readObjFile(path, referencedFrom), path, referencedFrom);
+MeshDesc loadObjMesh(const std::string& path, const FileLoc& referencedFrom,
+                     const MemoryLimit& limit) {
+  return parseObjMesh(readObjFile(path, referencedFrom, limit), path, referencedFrom, limit);
 }
 
 MeshDesc parseObjMesh(const std::string& text, const std::string& path,
-                      const FileLoc& referencedFrom) {
+                      const FileLoc& referencedFrom, const MemoryLimit& limit) {
   const ObjLines lines = scanObjLines(text, path);
   const FileLoc fileLoc{path, 0, 0};
+  const size_t positions = lines.vertexLines.size();
+  const uint64_t needed =
+      saturatingAdd(objReadBytes(text.size(), positions, lines.normals, lines.corners,
+                                 lines.faceLines.size(), lines.triangles),
+                    meshBuildBytes(lines.triangles, positions));
+  if (needed > limit.bytes) {
+    throw SceneError(
+        referencedFrom.file.empty() ? fileLoc : referencedFrom,
+        memoryRefusal("mesh file '" + path + "' (" + std::to_string(lines.triangles) +
+                          " triangles, " + std::to_string(positions) + " vertices) read and built",
+                      needed, limit, "simplify the mesh or raise --memory-limit"));
+  }
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // see the note at the top of this file

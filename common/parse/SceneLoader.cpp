@@ -13,6 +13,7 @@
 
 #include "parse/NffParser.h"
 #include "parse/YamlSceneParser.h"
+#include "scene/MeshBudget.h"
 
 namespace prism {
 
@@ -50,12 +51,27 @@ std::string readTextFile(const std::string& path, const FileLoc& referencedFrom)
   return text;
 }
 
-SceneDescription loadScene(const std::string& path) {
+SceneDescription loadScene(const std::string& path, const MemoryLimit& limit) {
   const std::string extension = lowercase(std::filesystem::path(path).extension().string());
+  const auto checkReadFits = [&](uint64_t bytesPerFileByte, const char* parser) {
+    std::error_code error;
+    const uintmax_t size = std::filesystem::file_size(path, error);
+    const uint64_t needed = saturatingMultiply(error ? 0 : size, bytesPerFileByte);
+    if (needed > limit.bytes) {
+      throw SceneError(FileLoc{path},
+                       memoryRefusal(std::string("reading this ") + std::to_string(size) +
+                                         "-byte " + parser + " file",
+                                     needed, limit, "split or simplify the scene"));
+    }
+  };
   if (extension == ".yaml" || extension == ".yml") {
-    return parseYamlScene(readTextFile(path), path);
+    checkReadFits(kYamlParseBytesPerFileByte, "YAML");
+    return parseYamlScene(readTextFile(path), path, limit);
   }
-  if (extension == ".nff") return parseNff(readTextFile(path), path);
+  if (extension == ".nff") {
+    checkReadFits(kNffParseBytesPerFileByte, "NFF");
+    return parseNff(readTextFile(path), path);
+  }
   if (extension.empty()) {
     throw SceneError(FileLoc{path}, "scene file has no extension (expected .yaml, .yml or .nff)");
   }

@@ -24,6 +24,7 @@
 #include "image/ImageIo.h"
 #include "parse/ObjLoader.h"
 #include "parse/PrintableText.h"
+#include "scene/MeshBudget.h"
 
 namespace prism {
 namespace {
@@ -198,8 +199,8 @@ class DocumentStarts : public YAML::EventHandler {
 
 class YamlSceneReader {
  public:
-  explicit YamlSceneReader(const std::string& path)
-      : path_(path), baseDir_(std::filesystem::path(path).parent_path()) {}
+  YamlSceneReader(const std::string& path, const MemoryLimit& limit)
+      : path_(path), baseDir_(std::filesystem::path(path).parent_path()), limit_(limit) {}
 
   SceneDescription read(const std::string& text) {
     YAML::Node root;
@@ -226,6 +227,7 @@ class YamlSceneReader {
  private:
   std::string path_;
   std::filesystem::path baseDir_;
+  MemoryLimit limit_;  // less what the meshes read so far need
   SceneDescription scene_;
   std::map<std::string, MaterialId, std::less<>> materialIds_;
   std::optional<MaterialId> defaultMaterial_;
@@ -854,7 +856,11 @@ class YamlSceneReader {
                                (exists ? " is not a regular file" : " not found") +
                                " (looked for '" + resolved.string() + "')");
     }
-    MeshDesc mesh = loadObjMesh(resolved.string(), loc(fileEntry));
+    MeshDesc mesh = loadObjMesh(resolved.string(), loc(fileEntry), limit_);
+    const uint64_t meshBytes = meshBuildBytes(mesh.triangleCount(), mesh.positions.size());
+    limit_.bytes -= std::min(limit_.bytes, meshBytes);
+    if (limit_.source.find("less the meshes") == std::string::npos)
+      limit_.source += ", less the meshes before this one";
     if (mesh.triangleCount() == 0)
       fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");
     if (mesh.source.empty()) mesh.source = resolved.string();
@@ -906,8 +912,9 @@ std::vector<std::string> toStrings(KeyTable keys) {
 
 }  // namespace
 
-SceneDescription parseYamlScene(const std::string& text, const std::string& path) {
-  return YamlSceneReader(path).read(text);
+SceneDescription parseYamlScene(const std::string& text, const std::string& path,
+                                const MemoryLimit& limit) {
+  return YamlSceneReader(path, limit).read(text);
 }
 
 const std::map<std::string, std::vector<std::string>>& yamlSceneKeys() {

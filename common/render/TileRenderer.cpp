@@ -48,7 +48,8 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   return Color(0.0f);
 }
 
-TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect) const {
+TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
+                                const std::atomic<bool>* cancel) const {
   const auto start = std::chrono::steady_clock::now();
   TileResult result;
   result.tileIndex = tileIndex;
@@ -56,6 +57,7 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect) const 
   result.pixels.resize(static_cast<size_t>(rect.pixelCount()));
   size_t i = 0;
   for (int y = rect.y; y < rect.y + rect.height; ++y) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) break;
     for (int x = rect.x; x < rect.x + rect.width; ++x) {
       result.pixels[i++] = renderPixel(x, y, result.rays);
     }

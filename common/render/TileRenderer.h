@@ -3,6 +3,8 @@
 // the thread that renders it or the order of tiles: images are bit-identical for any schedule.
 #pragma once
 
+#include <atomic>
+
 #include "render/PixelSampler.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
@@ -18,7 +20,10 @@ class TileRenderer {
   // scene's own.
   TileRenderer(const Scene& scene, const RenderView& view, const LightTerms& terms = {});
 
-  TileResult render(uint32_t tileIndex, const TileRect& rect) const;
+  // cancel, when given and set, ends the tile after the current row (an interrupted run); the
+  // result is then incomplete and must be dropped.
+  TileResult render(uint32_t tileIndex, const TileRect& rect,
+                    const std::atomic<bool>* cancel = nullptr) const;
 
  private:
   Color renderPixel(int x, int y, RayCounters& rays) const;

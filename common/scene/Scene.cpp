@@ -13,8 +13,15 @@ bool anyPositive(const Color& c) {
   return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f;
 }
 
-// The caustic bits of an object: what its role asks for, limited by what its material can do
-// only under Auto (a forced role is taken at its word).
+CasterBounds boundingSphere(const Aabb& b) {
+  CasterBounds c;
+  c.center = b.center();
+  c.radius = 0.5f * glm::length(b.extent());
+  return c;
+}
+
+}  // namespace
+
 uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
   const bool specular = anyPositive(m.reflectance) || anyPositive(m.transmittance);
   const bool diffuse = m.checker.has_value() || anyPositive(m.diffuse);
@@ -33,15 +40,6 @@ uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
   }
   return 0;
 }
-
-CasterBounds boundingSphere(const Aabb& b) {
-  CasterBounds c;
-  c.center = b.center();
-  c.radius = 0.5f * glm::length(b.extent());
-  return c;
-}
-
-}  // namespace
 
 Scene::Scene(const SceneDescription& d, Traversal traversal)
     : settings_(d.render),

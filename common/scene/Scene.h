@@ -45,6 +45,10 @@ struct SceneBuildStats {
   size_t geometryBytes = 0;  // primitive arrays and mesh shading data, excluding the BVH
 };
 
+// The caustic bits (kCastsCaustics | kReceivesCaustics) of an object: what its role asks for,
+// limited by what its material can do only under Auto (a forced role is taken at its word).
+uint8_t causticFlags(CausticRole role, const MaterialDesc& material);
+
 class Scene {
  public:
   explicit Scene(const SceneDescription& description, Traversal traversal = Traversal::WideSimd);

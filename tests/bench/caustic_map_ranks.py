@@ -38,7 +38,7 @@ def mpi_env():
 
 def run(prism, ranks, resolution, out):
     args = [prism, "render", SCENE, "--caustics", "map", "--map-resolution", str(resolution),
-            "--width", "640", "--height", "480", "--spp", "4", "--threads", "1", "-o", out]
+            "--width", "640", "--height", "480", "--spp", "4", "--threads", "1", "-o", out, "--overwrite"]
     if ranks > 1:
         args = ["mpiexec", "-n", str(ranks), "--bind-to", "none"] + args
     done = subprocess.run(args, env=mpi_env(), capture_output=True, text=True, timeout=600)

@@ -49,7 +49,7 @@ def main():
 
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     out = "/tmp/prism-scaling-%d.png" % os.getpid()
-    base = [args.prism, "render", args.scene, "-o", out, "--spp", str(args.spp)]
+    base = [args.prism, "render", args.scene, "-o", out, "--overwrite", "--spp", str(args.spp)]
     configs = [
         ("serial: 1 process x 1 thread", 1, base + ["--threads", "1"]),
         ("threads: 1 process x 2 threads", 2, base + ["--threads", "2"]),

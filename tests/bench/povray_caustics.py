@@ -266,7 +266,7 @@ def run_timed(cmd, log_path, timeout):
 
 def prism_cmd(a, yaml, out, size, extra):
     return [a.prism, "render", yaml, "-t", str(a.threads), "-W", str(size), "-H", str(size),
-            "--spp", "1", "-q", "-o", out] + extra
+            "--spp", "1", "-q", "-o", out, "--overwrite"] + extra
 
 
 def pov_cmd(a, pov, out, size):

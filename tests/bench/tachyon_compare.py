@@ -186,7 +186,7 @@ def run_timed(cmd, env, log_path, timeout):
 
 
 def prism_cmd(args, nff, png, quiet=True):
-    cmd = [args.prism, "render", nff, "-o", png, "--threads", "1", "--width", str(args.width),
+    cmd = [args.prism, "render", nff, "-o", png, "--overwrite", "--threads", "1", "--width", str(args.width),
            "--height", str(args.height), "--spp", "1", "--max-depth", str(args.depth)]
     return cmd + (["--quiet"] if quiet else [])
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "PrismProcess.h"
 #include "image/ImageIo.h"
@@ -211,6 +212,113 @@ TEST_F(RenderCommandTest, CausticOptionsAreListedAndChecked) {
     EXPECT_NE(run.exitCode, 0) << bad << "\n" << run.output;
     EXPECT_FALSE(fs::exists(path("x.exr"))) << bad;
   }
+}
+
+// --- Limits (docs/reliability.md, "Limits"): refused before anything is allocated, with the
+// bytes and the limit, one line, exit 1, no file.
+
+TEST_F(RenderCommandTest, MemoryLimitRefusesTheFrameWithItsBytesAndWritesNothing) {
+  const ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("o.png") +
+                                  " -W 1000 -H 1000 --memory-limit 1M");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.output,
+            "prism: error: a 1000x1000 image's frame buffer needs 22.9 MiB (24000000 bytes); the "
+            "memory limit is 1.0 MiB (1048576 bytes, --memory-limit): reduce --width/--height\n");
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(RenderCommandTest, MemoryLimitRefusesAMeshBeforeReadingItWithTheSceneLine) {
+  const ProcessRun run =
+      runPrism("render " + kSceneDir + "default.yaml -o " + path("o.png") + " --memory-limit 2M");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("default.yaml:70:13: mesh file '"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("trefoil.obj' (9600 triangles, 4800 vertices) read and built needs "
+                            "3.8 MiB (4009071 bytes); the memory limit is 2.0 MiB (2097152 bytes, "
+                            "--memory-limit)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(RenderCommandTest, TileCountAndSampleBoundsAreRefused) {
+  ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("o.png") +
+                            " -W 100000 -H 100000 --tile-size 1 --memory-limit 1T");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.output,
+            "prism: error: a 100000x100000 image in 1-pixel tiles makes 10000000000 tiles; at most "
+            "16777216 are allowed (raise --tile-size)\n");
+  // --spp has the same bound as a range; a scene file can ask for more.
+  std::ifstream in(kSceneDir + "lambert-plane.yaml");
+  std::string scene((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  scene.replace(scene.find("samples: 1"), 10, "samples: 100000");
+  std::ofstream(path("many-samples.yaml")) << scene;
+  run = runPrism("render " + path("many-samples.yaml") + " -o " + path("o.png"));
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.output,
+            "prism: error: 100000 samples per pixel is more than the 65536 allowed (reduce "
+            "--spp)\n");
+  EXPECT_FALSE(fs::exists(path("o.png")));
+}
+
+TEST_F(RenderCommandTest, MemoryLimitIsCheckedUnderMpiBeforeTheSlavesGetAScene) {
+  const ProcessRun run = runPrismMpi(2, "render " + kSceneDir + "lambert-plane.yaml -o " +
+                                            path("o.png") + " -W 1000 -H 1000 --memory-limit 1M");
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_NE(run.output.find("prism: error: a 1000x1000 image's frame buffer needs 22.9 MiB"),
+            std::string::npos)
+      << run.output;
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(RenderCommandTest, MemoryLimitMustBeASize) {
+  const ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("o.png") +
+                                  " --memory-limit 12Q");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.output,
+            "prism: error: --memory-limit: '12Q' is not a size (examples: 512M, 8G, 1.5T, "
+            "1000000)\n");
+}
+
+// --- Overwriting (docs/reliability.md, "Nothing lost").
+
+TEST_F(RenderCommandTest, AFinishedFrameIsNotOverwrittenWithoutOverwrite) {
+  const std::string render = "render " + kSceneDir + "lambert-plane.yaml -W 16 -H 8 -q -o ";
+  ASSERT_EQ(runPrism(render + path("o.exr")).exitCode, 0);
+  const auto written = fs::last_write_time(path("o.exr"));
+  const ProcessRun again = runPrism(render + path("o.exr") + " --spp 2");
+  EXPECT_EQ(again.exitCode, 1);
+  EXPECT_EQ(again.output, "prism: error: '" + path("o.exr") +
+                              "' already exists; pass --overwrite to replace it (nothing "
+                              "rendered)\n");
+  EXPECT_EQ(fs::last_write_time(path("o.exr")), written);
+  const ProcessRun replaced = runPrism(render + path("o.exr") + " --spp 2 --overwrite");
+  EXPECT_EQ(replaced.exitCode, 0) << replaced.output;
+}
+
+TEST_F(RenderCommandTest, APartialFrameAtTheOutputPathMayBeReplaced) {
+  writeImage(ImageRgb(2, 2), path("o.png"), 1.0f, {{"PrismPartial", "1/4"}});
+  const ProcessRun run =
+      runPrism("render " + kSceneDir + "lambert-plane.yaml -W 16 -H 8 -q -o " + path("o.png"));
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(readImage(path("o.png")).width, 16);
+}
+
+#ifdef PRISM_HAVE_VIEWER
+TEST_F(RenderCommandTest, ViewSaveDoesNotOverwriteAFinishedFrameEither) {
+  writeImage(ImageRgb(2, 2), path("v.png"));
+  const ProcessRun run =
+      runPrism("view " + kSceneDir + "lambert-plane.yaml --save " + path("v.png"));
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("already exists; pass --overwrite"), std::string::npos) << run.output;
+}
+#endif
+
+TEST_F(RenderCommandTest, HelpListsTheReliabilityOptions) {
+  const ProcessRun run = runPrism("render --help");
+  for (const char* option : {"--memory-limit", "--overwrite", "--save-partial"}) {
+    EXPECT_NE(run.output.find(option), std::string::npos) << option;
+  }
+  EXPECT_EQ(run.output.find("--status-file"), std::string::npos);  // for tests only
 }
 
 }  // namespace

@@ -2,29 +2,72 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 namespace prism {
 namespace {
+
+const MemoryLimit k16GiB{16ull << 30, "test"};
+
+std::string refusal(const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const ResourceLimitError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
 
 TEST(ResourceCheck, RefusesAMillionByMillionImageWithTheMemoryItNeeds) {
   RenderSettings s;
   s.width = 1000000;
   s.height = 1000000;
-  try {
-    checkRenderFits(s, 16ull << 30);
-    FAIL() << "expected a refusal";
-  } catch (const std::runtime_error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("1000000x1000000"), std::string::npos) << message;
-    EXPECT_NE(message.find("21.8 TiB"), std::string::npos) << message;
-    EXPECT_NE(message.find("16.0 GiB"), std::string::npos) << message;
-  }
+  EXPECT_EQ(frameMemoryBytes(s), 24000000000000ull);  // 2 x 10^12 pixels x 12 bytes
+  EXPECT_EQ(refusal([&] { checkRenderFits(s, k16GiB); }),
+            "a 1000000x1000000 image's frame buffer needs 21.8 TiB (24000000000000 bytes); the "
+            "memory limit is 16.0 GiB (17179869184 bytes, test): reduce --width/--height");
 }
 
 TEST(ResourceCheck, AcceptsOrdinaryImages) {
   RenderSettings s;
   s.width = 7680;
   s.height = 4320;
-  EXPECT_NO_THROW(checkRenderFits(s, 16ull << 30));
+  EXPECT_NO_THROW(checkRenderFits(s, k16GiB));
+  EXPECT_NO_THROW(checkTilesFit(s, 0, k16GiB));
+  EXPECT_NO_THROW(checkSettingsSane(s));
+}
+
+TEST(ResourceCheck, TileCountHasABoundAndItsBookkeepingAMemoryCost) {
+  RenderSettings s;
+  s.width = 100000;
+  s.height = 100000;
+  EXPECT_EQ(tileCount(s, 1), 10000000000ull);
+  EXPECT_EQ(tileCount(s, 0), 12500ull * 12500ull);  // automatic: tiles of at least 8 pixels
+  EXPECT_EQ(refusal([&] { checkTilesFit(s, 1, k16GiB); }),
+            "a 100000x100000 image in 1-pixel tiles makes 10000000000 tiles; at most 16777216 "
+            "are allowed (raise --tile-size)");
+  s.width = s.height = 4096;  // 2^24 one-pixel tiles: the bound itself
+  EXPECT_EQ(tileMemoryBytes(tileCount(s, 1)), 1073741824ull);
+  EXPECT_EQ(refusal([&] {
+              checkTilesFit(s, 1, {512ull << 20, "test"});
+            }),
+            "16777216 tiles' bookkeeping needs 1.0 GiB (1073741824 bytes); the memory limit is "
+            "512.0 MiB (536870912 bytes, test): raise --tile-size");
+  EXPECT_NO_THROW(checkTilesFit(s, 1, k16GiB));
+}
+
+TEST(ResourceCheck, SamplesAndDepthHaveFixedBounds) {
+  RenderSettings s;
+  s.samplesPerPixel = kMaxSamplesPerPixel;
+  s.maxDepth = kMaxRecursionDepth;
+  EXPECT_NO_THROW(checkSettingsSane(s));
+  s.samplesPerPixel = 100000;
+  EXPECT_EQ(refusal([&] { checkSettingsSane(s); }),
+            "100000 samples per pixel is more than the 65536 allowed (reduce --spp)");
+  s.samplesPerPixel = 1;
+  s.maxDepth = 300;
+  EXPECT_EQ(refusal([&] { checkSettingsSane(s); }),
+            "a recursion depth of 300 is more than the 256 allowed (reduce --max-depth)");
 }
 
 // 10^12 photons at 96 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree) is
@@ -34,27 +77,40 @@ TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
   c.method = CausticMethod::PhotonMap;
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 96000000000000ull);
-  try {
-    checkCausticsFit(c, 16ull << 30);
-    FAIL() << "expected a refusal";
-  } catch (const std::runtime_error& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("87.3 TiB"), std::string::npos) << message;
-    EXPECT_NE(message.find("16.0 GiB"), std::string::npos) << message;
-    EXPECT_NE(message.find("--photons"), std::string::npos) << message;
-  }
+  EXPECT_EQ(refusal([&] { checkCausticsFit(c, k16GiB); }),
+            "1000000000000 photons per pass needs 87.3 TiB (96000000000000 bytes); the memory "
+            "limit is 16.0 GiB (17179869184 bytes, test): reduce --photons, or use more --passes "
+            "of fewer");
   c.photons = 10000000;  // 10 M photons: under 1 GiB
-  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
   c.method = CausticMethod::None;  // no photon map, no memory, whatever the count says
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 0u);
-  EXPECT_NO_THROW(checkCausticsFit(c, 16ull << 30));
+  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
 }
 
-TEST(ResourceCheck, FormatsBytesInBinaryUnits) {
-  EXPECT_EQ(formatBytes(512), "512 B");
-  EXPECT_EQ(formatBytes(1536), "1.5 KiB");
-  EXPECT_EQ(formatBytes(3.0 * (1ull << 30)), "3.0 GiB");
+TEST(ResourceCheck, GeometryCountsTrianglesVerticesAndPrimitives) {
+  SceneDescription d;
+  MeshDesc mesh;
+  mesh.positions.resize(600);
+  mesh.indices.resize(3 * 1000);
+  d.meshes.push_back(mesh);
+  d.spheres.resize(2);
+  // 1000 x 240 + 600 x 64 + 2 x 256
+  EXPECT_EQ(geometryMemoryBytes(d), 278912u);
+  d.render.width = 100;
+  d.render.height = 100;  // frame 240000, 169 automatic tiles: 10816
+  EXPECT_NO_THROW(checkSceneFits(d, 0, {278912 + 240000 + 10816, "test"}));
+  EXPECT_EQ(refusal([&] {
+              checkSceneFits(d, 0, {278911, "test"});
+            }),
+            "the scene's geometry (1000 triangles) needs 272.4 KiB (278912 bytes); the memory "
+            "limit is 272.4 KiB (278911 bytes, test): simplify the meshes");
+  EXPECT_EQ(refusal([&] {
+              checkSceneFits(d, 0, {500000, "test"});
+            }),
+            "the run (geometry 272.4 KiB, frame 234.4 KiB, photons 0 B) needs 517.3 KiB (529728 "
+            "bytes); the memory limit is 488.3 KiB (500000 bytes, test): reduce what is largest");
 }
 
 }  // namespace

@@ -217,3 +217,37 @@ INSTANTIATE_TEST_SUITE_P(Obj, ObjBadInput, testing::ValuesIn(kBadObj),
 
 }  // namespace
 }  // namespace prism
+
+namespace prism {
+namespace {
+
+// Four positions, one quad (4 corners, 2 triangles), 42 bytes of text. Reading: 42 + 4 x 36 +
+// 4 x 12 + 9 + 2 x 12 = 267; building: 2 x 240 + 4 x 64 = 736; 1003 bytes in all.
+constexpr std::string_view kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+TEST_F(ObjFiles, AMeshPastTheMemoryLimitIsRefusedBeforeItIsRead) {
+  const std::string path = write("quad.obj", kQuad);
+  EXPECT_EQ(loadObjMesh(path, kReferencedFrom, {1003, "test"}).triangleCount(), 2u);
+  try {
+    loadObjMesh(path, kReferencedFrom, {1002, "test"});
+    FAIL() << "expected a refusal";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.yaml:7:11: mesh file '" + path +
+                  "' (2 triangles, 4 vertices) read and built needs 1003 B (1003 bytes); the "
+                  "memory limit is 1002 B (1002 bytes, test): simplify the mesh or raise "
+                  "--memory-limit");
+  }
+  try {  // smaller than the file itself: refused before a byte is read
+    loadObjMesh(path, kReferencedFrom, {41, "test"});
+    FAIL() << "expected a refusal";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "scene.yaml:7:11: reading mesh file '" + path +
+                  "' needs 42 B (42 bytes); the memory limit is 41 B (41 bytes, test): simplify "
+                  "the mesh or raise --memory-limit");
+  }
+}
+
+}  // namespace
+}  // namespace prism

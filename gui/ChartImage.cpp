@@ -1,8 +1,10 @@
-#include "gui/SpeedupChartImage.h"
+#include "gui/ChartImage.h"
 
 #include <QApplication>
 #include <QFile>
+#include <QGridLayout>
 #include <QHBoxLayout>
+#include <QImage>
 #include <QLabel>
 #include <QPixmap>
 #include <QVBoxLayout>
@@ -17,6 +19,8 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+
+#include "image/ToneMap.h"
 
 using namespace QtCharts;
 
@@ -51,10 +55,11 @@ QColor seriesColour(size_t index) {
   return colours[index % (sizeof colours / sizeof colours[0])];
 }
 
-QAbstractAxis* makeAxis(bool log, const QString& title, double low, double high) {
+QAbstractAxis* makeAxis(bool log, double base, const QString& title, double low, double high) {
   if (log) {
     auto* axis = new QLogValueAxis;
-    axis->setBase(2.0);
+    axis->setBase(base);
+    if (base == 10.0) axis->setMinorTickCount(8);  // grid lines at 2..9 of every decade
     axis->setLabelFormat("%g");
     axis->setRange(low, high);
     axis->setTitleText(title);
@@ -74,19 +79,38 @@ QChartView* drawPanel(const ChartPanel& panel) {
   chart->legend()->setAlignment(Qt::AlignRight);
   double xLow = 1e300, xHigh = -1e300, yLow = 1e300, yHigh = -1e300;
   std::vector<QAbstractSeries*> all;
-  auto* oversubscribed = new QScatterSeries;
-  oversubscribed->setName("oversubscribed");
-  oversubscribed->setMarkerShape(QScatterSeries::MarkerShapeRectangle);
-  oversubscribed->setMarkerSize(13);
-  oversubscribed->setColor(Qt::transparent);
-  oversubscribed->setBorderColor(Qt::black);
+  auto* marked = new QScatterSeries;
+  marked->setName(QString::fromStdString(panel.markedName));
+  marked->setMarkerShape(QScatterSeries::MarkerShapeRectangle);
+  marked->setMarkerSize(13);
+  marked->setColor(Qt::transparent);
+  marked->setBorderColor(Qt::black);
   size_t colour = 0;
-  for (const ChartSeries& s : panel.series) {
+  // A front goes first, so the curves are drawn over it.
+  std::vector<const ChartSeries*> ordered;
+  for (const ChartSeries& s : panel.series)
+    if (s.kind == ChartSeries::Kind::Front) ordered.push_back(&s);
+  for (const ChartSeries& s : panel.series)
+    if (s.kind != ChartSeries::Kind::Front) ordered.push_back(&s);
+  for (const ChartSeries* series : ordered) {
+    const ChartSeries& s = *series;
     auto* line = new QLineSeries;
     line->setName(QString::fromStdString(s.name));
-    QPen pen(s.kind == ChartSeries::Kind::Ideal ? QColor(120, 120, 120) : seriesColour(colour++));
-    pen.setWidthF(s.kind == ChartSeries::Kind::Measured ? 2.5 : 1.8);
-    if (s.kind != ChartSeries::Kind::Measured) pen.setStyle(Qt::DashLine);
+    QPen pen;
+    switch (s.kind) {
+      case ChartSeries::Kind::Measured:
+        pen = QPen(seriesColour(colour++), 2.5);
+        break;
+      case ChartSeries::Kind::Model:
+        pen = QPen(seriesColour(colour++), 1.8, Qt::DashLine);
+        break;
+      case ChartSeries::Kind::Ideal:
+        pen = QPen(QColor(120, 120, 120), 1.8, Qt::DashLine);
+        break;
+      case ChartSeries::Kind::Front:
+        pen = QPen(QColor(0, 0, 0, 70), 11.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin);
+        break;
+    }
     line->setPen(pen);
     line->setPointsVisible(s.kind == ChartSeries::Kind::Measured);
     for (size_t i = 0; i < s.x.size(); ++i) {
@@ -95,15 +119,14 @@ QChartView* drawPanel(const ChartPanel& panel) {
       xHigh = std::max(xHigh, s.x[i]);
       yLow = std::min(yLow, s.y[i]);
       yHigh = std::max(yHigh, s.y[i]);
-      if (i < s.oversubscribed.size() && s.oversubscribed[i])
-        oversubscribed->append(s.x[i], s.y[i]);
+      if (i < s.marked.size() && s.marked[i]) marked->append(s.x[i], s.y[i]);
     }
     all.push_back(line);
   }
-  if (oversubscribed->count() > 0) {
-    all.push_back(oversubscribed);
+  if (marked->count() > 0) {
+    all.push_back(marked);
   } else {
-    delete oversubscribed;
+    delete marked;
   }
   for (QAbstractSeries* s : all) chart->addSeries(s);
   if (xLow > xHigh) xLow = 0.0, xHigh = 1.0, yLow = 0.0, yHigh = 1.0;
@@ -121,8 +144,10 @@ QChartView* drawPanel(const ChartPanel& panel) {
     yLow = std::min(0.0, yLow);
     yHigh = yHigh * 1.1 + 1e-9;
   }
-  QAbstractAxis* x = makeAxis(panel.logX, QString::fromStdString(panel.xTitle), xLow, xHigh);
-  QAbstractAxis* y = makeAxis(panel.logY, QString::fromStdString(panel.yTitle), yLow, yHigh);
+  QAbstractAxis* x =
+      makeAxis(panel.logX, panel.logBase, QString::fromStdString(panel.xTitle), xLow, xHigh);
+  QAbstractAxis* y =
+      makeAxis(panel.logY, panel.logBase, QString::fromStdString(panel.yTitle), yLow, yHigh);
   chart->addAxis(x, Qt::AlignBottom);
   chart->addAxis(y, Qt::AlignLeft);
   for (QAbstractSeries* s : all) {
@@ -134,9 +159,50 @@ QChartView* drawPanel(const ChartPanel& panel) {
   return view;
 }
 
+// A strip's thumbnails side by side, each with its caption under it.
+QWidget* drawStrip(const ThumbnailStrip& strip) {
+  auto* box = new QWidget;
+  auto* column = new QVBoxLayout(box);
+  auto* title = new QLabel(QString::fromStdString(strip.title));
+  QFont font = title->font();
+  font.setBold(true);
+  title->setFont(font);
+  column->addWidget(title);
+  auto* row = new QHBoxLayout;
+  const DisplayEncoder encode(strip.exposure);
+  for (const Thumbnail& t : strip.thumbnails) {
+    QImage picture(t.image.width, t.image.height, QImage::Format_RGB888);
+    for (int y = 0; y < t.image.height; ++y) {
+      uchar* line = picture.scanLine(y);
+      for (int x = 0; x < t.image.width; ++x) {
+        const Color& c = t.image.at(x, y);
+        line[3 * x] = encode(c.x);
+        line[3 * x + 1] = encode(c.y);
+        line[3 * x + 2] = encode(c.z);
+      }
+    }
+    auto* cell = new QVBoxLayout;
+    auto* image = new QLabel;
+    image->setPixmap(QPixmap::fromImage(picture));
+    cell->addWidget(image);
+    auto* caption = new QLabel(QString::fromStdString(t.caption));
+    QFont small = caption->font();
+    small.setPointSizeF(small.pointSizeF() * 0.85);
+    caption->setFont(small);
+    caption->setWordWrap(true);
+    caption->setMaximumWidth(std::max(t.image.width, 110));
+    cell->addWidget(caption);
+    cell->addStretch();
+    row->addLayout(cell);
+  }
+  row->addStretch();
+  column->addLayout(row);
+  return box;
+}
+
 }  // namespace
 
-void writeSpeedupChartImage(const SpeedupChart& chart, const std::string& pngPath) {
+void writeChartImage(const Chart& chart, const std::string& pngPath) {
   defaultHandler = qInstallMessageHandler(quietOffscreenNotes);
   struct Restore {
     ~Restore() { qInstallMessageHandler(defaultHandler); }
@@ -157,8 +223,22 @@ void writeSpeedupChartImage(const SpeedupChart& chart, const std::string& pngPat
   layout->addWidget(note);
   auto* row = new QHBoxLayout;
   for (const ChartPanel& panel : chart.panels) row->addWidget(drawPanel(panel));
-  layout->addLayout(row);
-  page.resize(1000 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), 640);
+  layout->addLayout(row, 1);
+  // Strips two to a row under the panels; each row adds its thumbnails, titles and captions.
+  auto* strips = new QGridLayout;
+  int height = 640;
+  for (size_t i = 0; i < chart.strips.size(); ++i) {
+    strips->addWidget(drawStrip(chart.strips[i]), static_cast<int>(i / 2), static_cast<int>(i % 2));
+    if (i % 2 == 0) {
+      int tallest = 0;
+      for (size_t j = i; j < std::min(i + 2, chart.strips.size()); ++j)
+        for (const Thumbnail& t : chart.strips[j].thumbnails)
+          tallest = std::max(tallest, t.image.height);
+      height += tallest + 110;
+    }
+  }
+  layout->addLayout(strips);
+  page.resize(1000 * static_cast<int>(std::max<size_t>(chart.panels.size(), 1)), height);
   page.show();
   QApplication::processEvents();
   const QPixmap image = page.grab();

@@ -1,0 +1,49 @@
+// What geometry costs in memory, so meshes can be refused before they are read or built. The
+// numbers are upper estimates of Prism's own structures on the rank that holds the most
+// (a slave: the broadcast bytes, the decoded description and the built Scene at once);
+// docs/reliability.md, "Limits", derives them and compares them with measured peaks.
+#pragma once
+
+#include <cstdint>
+
+#include "util/MemorySize.h"
+
+namespace prism {
+
+// Per triangle: indices in the wire bytes and the description (12 + 12), the Scene's Triangle
+// twice while it is reordered (44 + 44), its box, centre, BVH order and leaf reference
+// (24 + 12 + 4 + 4 + 4), up to two 32-byte BVH nodes (64) and its shading indices (12).
+inline constexpr uint64_t kBytesPerTriangle = 240;
+// Per vertex: position and normal in the wire bytes and the description (24 + 24), the
+// Scene's shading normal (12), rounded up.
+inline constexpr uint64_t kBytesPerVertex = 64;
+// A sphere, plane or cone with its box, reference and BVH share.
+inline constexpr uint64_t kBytesPerOtherPrimitive = 256;
+
+inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {
+  return saturatingAdd(saturatingMultiply(triangles, kBytesPerTriangle),
+                       saturatingMultiply(vertices, kBytesPerVertex));
+}
+
+// Reading an OBJ file on top of its text: tinyobjloader's arrays (12 bytes per position, normal
+// and face corner, 9 per face) and the MeshDesc made from them (12 per position and per vertex
+// normal, 12 per triangle).
+inline uint64_t objReadBytes(uint64_t textBytes, uint64_t positions, uint64_t normals,
+                             uint64_t corners, uint64_t faces, uint64_t triangles) {
+  uint64_t bytes = textBytes;
+  bytes = saturatingAdd(bytes, saturatingMultiply(positions, 12 + 12 + 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(normals, 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(corners, 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(faces, 9));
+  return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
+}
+
+// Reading a scene file of this size may take, besides the text itself: NFF builds at most one
+// triangle (3 positions, 3 normals, 3 indices: 84 bytes) per 6-byte vertex line, so 14 bytes
+// per byte (measured: a 10.7 MB file of 400 000 triangles peaked 93 MB above an empty scene,
+// parse and build together); yaml-cpp's node tree takes about 110 bytes per byte of dense YAML
+// (measured: 552 MB for a 5.0 MB file of 60 000 one-line triangles), so 128 is the bound.
+inline constexpr uint64_t kNffParseBytesPerFileByte = 1 + 14;
+inline constexpr uint64_t kYamlParseBytesPerFileByte = 1 + 128;
+
+}  // namespace prism
