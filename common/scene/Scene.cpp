@@ -144,6 +144,11 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
         break;  // planes are unbounded and never enter the BVH
     }
   }
+  // The gathered copies are done with: free them before the wide BVH and its packs are built,
+  // so the build's peak stays within scene/MeshBudget.h's estimate.
+  std::vector<Triangle>().swap(triangles);
+  std::vector<Aabb>().swap(bounds);
+  std::vector<uint32_t>().swap(refs);
 
   if (traversal_ != Traversal::BinaryScalar) wideBvh_.build(bvh_);
   if (packed) buildTrianglePacks();
