@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "accel/Simd.h"
 #include "master/Cli.h"
 #include "transport/MpiSession.h"
 #ifdef PRISM_HAVE_VIEWER
@@ -11,6 +12,12 @@
 #endif
 
 int main(int argc, char** argv) {
+  if (!prism::simd::cpuRunsThisBuild()) {
+    std::cerr << "prism: error: this build assumes " << prism::simd::compiledInstructionSet()
+              << " instructions, which this CPU lacks; rebuild without -DPRISM_ARCH or with a "
+                 "lower level (docs/performance.md)\n";
+    return 1;
+  }
   std::unique_ptr<prism::MpiSession> session;
   if (prism::launchedByMpiLauncher()) {
     try {

@@ -12,6 +12,7 @@ packages=(
   libopenmpi-dev openmpi-bin                      # distribution over MPI
   qtbase5-dev libqt5charts5-dev                   # the viewer (prism view)
   libgtest-dev                                    # tests
+  libembree-dev                                   # ray-throughput yardstick (benchmark only)
   clang-14 libclang-rt-14-dev                     # fuzzers: libFuzzer, sanitizers (test.sh)
 )
 

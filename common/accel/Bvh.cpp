@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <thread>
 
 namespace prism {
 namespace {
@@ -12,13 +13,19 @@ constexpr uint32_t kMaxLeafSize = 8;
 // SAH costs relative to one primitive test; a node visit costs about one box test.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
+// Subtrees below this size are not worth a thread.
+constexpr uint32_t kParallelMinPrimitives = 32768;
 
 struct Builder {
   const std::vector<Aabb>& bounds;
-  std::vector<Vec3> centers;
+  const std::vector<Vec3>& centers;
   std::vector<uint32_t>& order;
   std::vector<BvhNode>& nodes;
   BvhBuildStats& stats;
+  uint32_t block = 1;
+  int parallelLevels = 0;  // this many levels below the root build their right half on a thread
+
+  float blocks(uint32_t count) const { return static_cast<float>((count + block - 1) / block); }
 
   uint32_t build(uint32_t begin, uint32_t end, size_t depth) {
     const uint32_t nodeIndex = static_cast<uint32_t>(nodes.size());
@@ -40,11 +47,37 @@ struct Builder {
       makeLeaf(nodeIndex, begin, count);
       return nodeIndex;
     }
-    build(begin, middle, depth + 1);
-    const uint32_t second = build(middle, end, depth + 1);
+    uint32_t second;
+    if (static_cast<int>(depth) < parallelLevels && count >= kParallelMinPrimitives) {
+      second = buildHalvesInParallel(begin, middle, end, depth);
+    } else {
+      build(begin, middle, depth + 1);
+      second = build(middle, end, depth + 1);
+    }
     nodes[nodeIndex].offset = second;
     nodes[nodeIndex].splitAxis = static_cast<uint8_t>(axis);
     return nodeIndex;
+  }
+
+  // The right half is built into its own array on another thread (the halves partition
+  // disjoint ranges of order), then appended: the nodes come out exactly as a serial build
+  // lays them out, so the tree does not depend on the number of threads.
+  uint32_t buildHalvesInParallel(uint32_t begin, uint32_t middle, uint32_t end, size_t depth) {
+    std::vector<BvhNode> rightNodes;
+    rightNodes.reserve(2 * (end - middle));
+    BvhBuildStats rightStats;
+    Builder right{bounds, centers, order, rightNodes, rightStats, block, parallelLevels};
+    std::thread worker([&] { right.build(middle, end, depth + 1); });
+    build(begin, middle, depth + 1);
+    worker.join();
+    const uint32_t base = static_cast<uint32_t>(nodes.size());
+    for (BvhNode node : rightNodes) {
+      if (!node.isLeaf()) node.offset += base;
+      nodes.push_back(node);
+    }
+    stats.leafCount += rightStats.leafCount;
+    stats.maxDepth = std::max(stats.maxDepth, rightStats.maxDepth);
+    return base;
   }
 
   void makeLeaf(uint32_t nodeIndex, uint32_t begin, uint32_t count) {
@@ -57,7 +90,7 @@ struct Builder {
   void chooseSplit(uint32_t begin, uint32_t end, const Aabb& box, const Aabb& centerBox, int& axis,
                    uint32_t& middle) {
     const uint32_t count = end - begin;
-    const float leafCost = kIntersectionCost * static_cast<float>(count);
+    const float leafCost = kIntersectionCost * blocks(count);
     float bestCost = std::numeric_limits<float>::infinity();
     int bestAxis = -1;
     int bestBin = 0;
@@ -89,8 +122,8 @@ struct Builder {
         left.extend(binBoxes[b - 1]);
         leftCount += binCounts[b - 1];
         if (leftCount == 0 || rightCount[b] == 0) continue;
-        const float cost = left.surfaceArea() * static_cast<float>(leftCount) +
-                           rightArea[b] * static_cast<float>(rightCount[b]);
+        const float cost =
+            left.surfaceArea() * blocks(leftCount) + rightArea[b] * blocks(rightCount[b]);
         if (cost < bestCost) {
           bestCost = cost;
           bestAxis = a;
@@ -127,16 +160,22 @@ struct Builder {
 
 }  // namespace
 
-void Bvh::build(const std::vector<Aabb>& primitiveBounds) {
+void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   nodes_.clear();
   order_.resize(primitiveBounds.size());
   stats_ = {};
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
   if (!primitiveBounds.empty()) {
-    Builder builder{primitiveBounds, {}, order_, nodes_, stats_};
-    builder.centers.reserve(primitiveBounds.size());
-    for (const Aabb& b : primitiveBounds) builder.centers.push_back(b.center());
+    std::vector<Vec3> centers;
+    centers.reserve(primitiveBounds.size());
+    for (const Aabb& b : primitiveBounds) centers.push_back(b.center());
+    // One level of threads per doubling of the cores: two cores build two halves at once.
+    int levels = 0;
+    for (unsigned cores = std::max(1u, options.threads); cores > 1; cores /= 2) ++levels;
+    Builder builder{primitiveBounds, centers, order_,
+                    nodes_,          stats_,  std::max(1u, options.primitiveBlock),
+                    levels};
     nodes_.reserve(2 * primitiveBounds.size());
     builder.build(0, static_cast<uint32_t>(primitiveBounds.size()), 0);
     nodes_.shrink_to_fit();

@@ -3,9 +3,11 @@
 // Hierarchies", 2007). The BVH knows only boxes; the caller intersects primitives in leaves.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <vector>
 
 #include "math/Aabb.h"
@@ -24,6 +26,15 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+// How the SAH counts the cost of intersecting primitives. A leaf tested `primitiveBlock`
+// primitives at a time (SIMD packs) costs the number of blocks, not of primitives, so the
+// builder fills blocks instead of making leaves of one or two.
+struct BvhBuildOptions {
+  uint32_t primitiveBlock = 1;
+  // Threads the build may use; the tree is the same for any number.
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+};
+
 struct BvhBuildStats {
   double seconds = 0.0;
   size_t nodeCount = 0;
@@ -39,7 +50,7 @@ class Bvh {
   static constexpr int kMaxDepth = 64;
 
   // Builds over the given boxes; empty input gives an empty BVH that nothing hits.
-  void build(const std::vector<Aabb>& primitiveBounds);
+  void build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options = {});
 
   // Leaf entries refer to primitiveOrder()[i]: the caller reorders its primitives to match.
   const std::vector<uint32_t>& primitiveOrder() const { return order_; }

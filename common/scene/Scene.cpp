@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include "accel/WideBvhPacket.h"
+
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TrianglePlaneInside.h"
 #include "scene/PrimitiveRef.h"
@@ -39,14 +41,15 @@ uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
   return 0;
 }
 
-Scene::Scene(const SceneDescription& d)
+Scene::Scene(const SceneDescription& d, Traversal traversal)
     : settings_(d.render),
       caustics_(d.caustics),
       camera_(d.camera, d.render.width, d.render.height),
       background_(d.background),
       ambientLight_(d.ambientLight),
       materials_(d.materials),
-      lights_(d.lights) {
+      lights_(d.lights),
+      traversal_(traversal) {
   if (d.environment) environment_.emplace(*d.environment);
   if (materials_.empty()) materials_.emplace_back();  // primitives default to material 0
 
@@ -112,7 +115,12 @@ Scene::Scene(const SceneDescription& d)
   }
   for (const Aabb& b : bounds) bounds_.extend(b);
 
-  bvh_.build(bounds);
+  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs.
+  const bool packed =
+      traversal_ == Traversal::WideSimd && settings_.triangleTest == TriangleTest::MollerTrumbore;
+  BvhBuildOptions buildOptions;
+  buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
+  bvh_.build(bounds, buildOptions);
   leafRefs_.reserve(refs.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
     const uint32_t ref = refs[original];
@@ -136,12 +144,22 @@ Scene::Scene(const SceneDescription& d)
         break;  // planes are unbounded and never enter the BVH
     }
   }
+  // The gathered copies are done with: free them before the wide BVH and its packs are built,
+  // so the build's peak stays within scene/MeshBudget.h's estimate.
+  std::vector<Triangle>().swap(triangles);
+  std::vector<Aabb>().swap(bounds);
+  std::vector<uint32_t>().swap(refs);
+
+  if (traversal_ != Traversal::BinaryScalar) wideBvh_.build(bvh_);
+  if (packed) buildTrianglePacks();
 
   stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
   stats_.cones = cones_.size();
   stats_.triangles = triangles_.size();
   stats_.bvh = bvh_.stats();
+  stats_.wideBvh = wideBvh_.stats();
+  stats_.packBytes = packs_.size() * sizeof(LeafPack);
   stats_.geometryBytes = triangles_.size() * sizeof(Triangle) + spheres_.size() * sizeof(Sphere) +
                          cones_.size() * sizeof(Cone) + planes_.size() * sizeof(Plane) +
                          leafRefs_.size() * sizeof(uint32_t);
@@ -150,42 +168,116 @@ Scene::Scene(const SceneDescription& d)
   }
 }
 
-template <bool kAnyHit>
-bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
-  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
-  return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
-    bool found = false;
+void Scene::buildTrianglePacks() {
+  // Leaves are relabelled to (first pack, pack count); every leaf gets at least one pack, if
+  // only to carry its entries for the spheres and cones.
+  wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
+    const uint32_t firstPack = static_cast<uint32_t>(packs_.size());
+    packs_.emplace_back();
+    packs_.back().leafFirst = first;
+    packs_.back().leafCount = static_cast<uint16_t>(count);
+    int lane = 0;
     for (uint32_t i = first; i < first + count; ++i) {
       const uint32_t ref = leafRefs_[i];
-      const uint32_t index = PrimitiveRef::index(ref);
-      float t, u = 0.0f, v = 0.0f;
-      bool hitThis = false;
-      switch (PrimitiveRef::kind(ref)) {
-        case PrimitiveKind::Triangle: {
-          const Triangle& tri = triangles_[index];
-          hitThis = classicTriangleTest
-                        ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v)
-                        : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, leafTMax, t, u, v);
-          break;
-        }
-        case PrimitiveKind::Sphere:
-          hitThis = spheres_[index].intersect(ray, leafTMax, t);
-          break;
-        case PrimitiveKind::Cone:
-          hitThis = cones_[index].intersect(ray, leafTMax, t);
-          break;
-        case PrimitiveKind::Plane:
-          break;
+      if (PrimitiveRef::kind(ref) != PrimitiveKind::Triangle) {
+        packs_[firstPack].hasOtherKinds = true;
+        continue;
       }
-      if (hitThis) {
-        leafTMax = t;
-        hit = {t, ref, u, v};
+      if (lane == TrianglePack4::kWidth) {
+        packs_.emplace_back();
+        lane = 0;
+      }
+      const uint32_t index = PrimitiveRef::index(ref);
+      packs_.back().triangles.set(lane++, triangles_[index], index);
+    }
+    return std::pair<uint32_t, uint32_t>(firstPack,
+                                         static_cast<uint32_t>(packs_.size()) - firstPack);
+  });
+}
+
+template <bool kAnyHit>
+bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
+                          float& tMax, HitRecord& hit) const {
+  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
+  bool found = false;
+  for (uint32_t i = first; i < first + count; ++i) {
+    const uint32_t ref = leafRefs_[i];
+    const uint32_t index = PrimitiveRef::index(ref);
+    float t, u = 0.0f, v = 0.0f;
+    bool hitThis = false;
+    switch (PrimitiveRef::kind(ref)) {
+      case PrimitiveKind::Triangle: {
+        if (skipTriangles) break;
+        const Triangle& tri = triangles_[index];
+        hitThis = classicTriangleTest
+                      ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v)
+                      : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v);
+        break;
+      }
+      case PrimitiveKind::Sphere:
+        hitThis = spheres_[index].intersect(ray, tMax, t);
+        break;
+      case PrimitiveKind::Cone:
+        hitThis = cones_[index].intersect(ray, tMax, t);
+        break;
+      case PrimitiveKind::Plane:
+        break;
+    }
+    if (hitThis) {
+      tMax = t;
+      hit = {t, ref, u, v};
+      found = true;
+      if constexpr (kAnyHit) return true;
+    }
+  }
+  return found;
+}
+
+template <bool kAnyHit>
+bool Scene::intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
+                                HitRecord& hit) const {
+  bool found = false;
+  for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
+    const TrianglePack4& pack = packs_[p].triangles;
+    if constexpr (kAnyHit) {
+      simd::Float4 t, u, v;
+      if (intersectMollerTrumbore4(ray, pack, tMax, t, u, v) != 0) return true;
+    } else {
+      const PackHit best = closestInPack(ray, pack, tMax);
+      if (best.lane >= 0) {
+        tMax = best.t;
+        hit = {best.t, PrimitiveRef::make(PrimitiveKind::Triangle, pack.triangle[best.lane]),
+               best.u, best.v};
         found = true;
-        if constexpr (kAnyHit) return true;
       }
     }
-    return found;
+  }
+  const LeafPack& leaf = packs_[firstPack];
+  if (leaf.hasOtherKinds) {
+    found |= intersectLeaf<kAnyHit>(ray, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
+  }
+  return found;
+}
+
+template <bool kAnyHit>
+bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
+  if (traversal_ == Traversal::BinaryScalar) {
+    return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
+      return intersectLeaf<kAnyHit>(ray, first, count, false, leafTMax, hit);
+    });
+  }
+  if (packs_.empty()) {
+    return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
+      return intersectLeaf<kAnyHit>(ray, first, count, false, t, hit);
+    });
+  }
+  return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
+    return intersectLeafPacked<kAnyHit>(ray, first, count, t, hit);
   });
+}
+
+uint32_t Scene::meshFace(const HitRecord& hit) const {
+  return triangles_[PrimitiveRef::index(hit.primitive)].face;
 }
 
 bool Scene::intersect(const Ray& ray, HitRecord& hit) const {
@@ -210,6 +302,86 @@ bool Scene::occluded(const Ray& ray) const {
   }
   HitRecord ignored;
   return intersectBounded<true>(ray, tMax, ignored);
+}
+
+namespace {
+
+uint32_t liveRays(const Ray* rays, int count) {
+  uint32_t mask = 0;
+  for (int i = 0; i < count; ++i) mask |= (rays[i].tMax >= rays[i].tMin ? 1u : 0u) << i;
+  return mask;
+}
+
+}  // namespace
+
+void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
+  const uint32_t live = liveRays(rays, count);
+  for (int i = 0; i < count; ++i) found[i] = false;
+  if (packs_.empty()) {  // no packed wide walk: one ray at a time
+    for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
+    return;
+  }
+  const RayPacket8 packet(rays, live);
+  if (!packet.coherent) {
+    for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
+    return;
+  }
+  float tMax[RayPacket8::kSize];
+  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  const uint32_t hitMask = traversePacket<false>(
+      wideBvh_, packet, live, tMax,
+      [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
+        uint32_t hitRays = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int i = simd::firstLane(mask);
+          if (intersectLeafPacked<false>(rays[i], firstPack, packCount, rayTMax[i], hits[i])) {
+            hitRays |= 1u << i;
+          }
+        }
+        return hitRays;
+      });
+  for (int i = 0; i < count; ++i) {
+    if (!(live >> i & 1u)) continue;
+    found[i] = (hitMask >> i & 1u) != 0;
+    for (uint32_t p = 0; p < planes_.size(); ++p) {
+      float t;
+      if (planes_[p].intersect(rays[i], tMax[i], t)) {
+        tMax[i] = t;
+        hits[i] = {t, PrimitiveRef::make(PrimitiveKind::Plane, p), 0.0f, 0.0f};
+        found[i] = true;
+      }
+    }
+  }
+}
+
+void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
+  const uint32_t live = liveRays(rays, count);
+  for (int i = 0; i < count; ++i) blocked[i] = false;
+  if (packs_.empty() || !planes_.empty()) {  // planes first, as occluded() does: one at a time
+    for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
+    return;
+  }
+  const RayPacket8 packet(rays, live);
+  if (!packet.coherent) {
+    for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
+    return;
+  }
+  float tMax[RayPacket8::kSize];
+  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  HitRecord ignored;
+  const uint32_t hitMask = traversePacket<true>(
+      wideBvh_, packet, live, tMax,
+      [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
+        uint32_t hitRays = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int i = simd::firstLane(mask);
+          if (intersectLeafPacked<true>(rays[i], firstPack, packCount, rayTMax[i], ignored)) {
+            hitRays |= 1u << i;
+          }
+        }
+        return hitRays;
+      });
+  for (int i = 0; i < count; ++i) blocked[i] = (hitMask >> i & 1u) != 0;
 }
 
 SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {

@@ -7,11 +7,13 @@
 #include <vector>
 
 #include "accel/Bvh.h"
+#include "accel/WideBvh.h"
 #include "geometry/Cone.h"
 #include "geometry/HitRecord.h"
 #include "geometry/Plane.h"
 #include "geometry/Sphere.h"
 #include "geometry/Triangle.h"
+#include "geometry/TriangleMollerTrumbore4.h"
 #include "scene/Camera.h"
 #include "scene/CubeMap.h"
 #include "scene/SceneDescription.h"
@@ -27,9 +29,19 @@ struct CasterBounds {
   float offset = 0.0f;
 };
 
+// How rays walk the scene. Both find the same closest hits (tests/common/scene/Scene_test.cpp);
+// the binary walk is the reference the fast one is measured and tested against.
+enum class Traversal {
+  WideSimd,          // 8-wide BVH collapsed from the binary one, Möller–Trumbore on 4 triangles
+  WideScalarLeaves,  // the same wide BVH, triangles one at a time (measures what packs buy)
+  BinaryScalar       // the binary SAH BVH, one box and one primitive at a time
+};
+
 struct SceneBuildStats {
   size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
   BvhBuildStats bvh;
+  WideBvhStats wideBvh;      // empty under Traversal::BinaryScalar
+  size_t packBytes = 0;      // triangle packs of the wide walk
   size_t geometryBytes = 0;  // primitive arrays and mesh shading data, excluding the BVH
 };
 
@@ -39,12 +51,17 @@ uint8_t causticFlags(CausticRole role, const MaterialDesc& material);
 
 class Scene {
  public:
-  explicit Scene(const SceneDescription& description);
+  explicit Scene(const SceneDescription& description, Traversal traversal = Traversal::WideSimd);
 
   // Closest hit in (ray.tMin, ray.tMax); the ray direction must be unit length.
   bool intersect(const Ray& ray, HitRecord& hit) const;
   // Whether anything lies on the ray within (ray.tMin, ray.tMax): for shadow rays.
   bool occluded(const Ray& ray) const;
+  // Up to eight rays at once, for coherent rays (a pixel tile's primary rays or their shadow
+  // rays): the same answers as intersect() and occluded() ray by ray. A ray with tMax < tMin is
+  // skipped (found/blocked false).
+  void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
+  void occluded8(const Ray* rays, int count, bool* blocked) const;
   // Position, oriented normals and material of a hit found by intersect().
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
@@ -59,6 +76,9 @@ class Scene {
   const std::vector<PointLightDesc>& lights() const { return lights_; }
   const Color& ambientLight() const { return ambientLight_; }
   const SceneBuildStats& buildStats() const { return stats_; }
+  Traversal traversal() const { return traversal_; }
+  // The face index within its mesh of a triangle hit (for comparing hits with other tracers).
+  uint32_t meshFace(const HitRecord& hit) const;
   // Objects whose caustic role includes casting, and whose material can send photons on.
   const std::vector<CasterBounds>& causticCasters() const { return casters_; }
   // Bounds of every bounded primitive (planes excluded).
@@ -72,8 +92,24 @@ class Scene {
     uint8_t caustic;
   };
 
+  // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH
+  // points at the first. The leaf's primitive entries are kept for the other kinds it holds.
+  struct alignas(16) LeafPack {
+    TrianglePack4 triangles;
+    uint32_t leafFirst = 0;
+    uint16_t leafCount = 0;
+    bool hasOtherKinds = false;  // spheres or cones share the leaf
+  };
+
   template <bool kAnyHit>
   bool intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const;
+  template <bool kAnyHit>
+  bool intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
+                     float& tMax, HitRecord& hit) const;
+  template <bool kAnyHit>
+  bool intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
+                           HitRecord& hit) const;
+  void buildTrianglePacks();
 
   RenderSettings settings_;
   CausticSettings caustics_;
@@ -93,6 +129,9 @@ class Scene {
   Aabb bounds_;
   std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry
   Bvh bvh_;
+  Traversal traversal_;
+  WideBvh wideBvh_;
+  std::vector<LeafPack> packs_;
   SceneBuildStats stats_;
 };
 

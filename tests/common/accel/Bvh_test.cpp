@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "geometry/Sphere.h"
 #include "math/Random.h"
@@ -109,6 +110,25 @@ TEST(Bvh, EmptyBvhHitsNothing) {
   bvh.build({});
   float tMax = 1e30f;
   EXPECT_FALSE(bvh.traverse(Ray{}, tMax, false, [](uint32_t, uint32_t, float&) { return true; }));
+}
+
+TEST(Bvh, ParallelBuildGivesTheSerialTree) {
+  const auto spheres = randomSpheres(100000, 8);  // above the size that gets a thread
+  std::vector<Aabb> bounds;
+  for (const Sphere& s : spheres) bounds.push_back(s.bounds());
+  BvhBuildOptions serial, parallel;
+  serial.threads = 1;
+  parallel.threads = 4;
+  Bvh a, b;
+  a.build(bounds, serial);
+  b.build(bounds, parallel);
+  ASSERT_EQ(a.nodes().size(), b.nodes().size());
+  EXPECT_EQ(a.primitiveOrder(), b.primitiveOrder());
+  for (size_t i = 0; i < a.nodes().size(); ++i) {
+    ASSERT_EQ(std::memcmp(&a.nodes()[i], &b.nodes()[i], sizeof(BvhNode)), 0) << i;
+  }
+  EXPECT_EQ(a.stats().leafCount, b.stats().leafCount);
+  EXPECT_EQ(a.stats().maxDepth, b.stats().maxDepth);
 }
 
 }  // namespace

@@ -3,6 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+
+#include "../geometry/TestMeshes.h"
+#include "master/FrameRenderer.h"
+#include "math/Random.h"
+#include "parse/SceneLoader.h"
+#include "scene/PrimitiveRef.h"
 
 namespace prism {
 namespace {
@@ -232,6 +239,185 @@ TEST(SceneCaustics, SettingsArriveUnchanged) {
   EXPECT_EQ(scene.causticSettings().method, CausticMethod::PhotonMap);
   EXPECT_EQ(scene.causticSettings().photons, 1234u);
   EXPECT_FLOAT_EQ(scene.causticSettings().alpha, 0.5f);
+}
+
+// The wide SIMD walk against the binary scalar one it was collapsed from.
+
+// A subdivided sphere, a wavy grid and a loose soup of small triangles, plus spheres and a cone
+// sharing leaves with them: meshes with shared edges, thin slivers and mixed leaves.
+SceneDescription traversalScene(TriangleTest test) {
+  SceneDescription d;
+  d.render.triangleTest = test;
+  const test::TestMesh ball = test::icosphere(4, Vec3(0.3f, 0.1f, 0.2f), 1.2f);
+  MeshDesc sphereMesh;
+  sphereMesh.positions = ball.positions;
+  sphereMesh.indices = ball.indices;
+  d.meshes.push_back(sphereMesh);
+  MeshDesc grid;
+  const int n = 40;
+  for (int z = 0; z <= n; ++z) {
+    for (int x = 0; x <= n; ++x) {
+      const float fx = -3.0f + 6.0f * x / n, fz = -3.0f + 6.0f * z / n;
+      grid.positions.push_back({fx, -1.5f + 0.3f * std::sin(3 * fx) * std::cos(2 * fz), fz});
+    }
+  }
+  for (int z = 0; z < n; ++z) {
+    for (int x = 0; x < n; ++x) {
+      const uint32_t i = z * (n + 1) + x;
+      grid.indices.insert(grid.indices.end(), {i, i + 1, i + n + 1, i + 1, i + n + 2, i + n + 1});
+    }
+  }
+  d.meshes.push_back(grid);
+  Pcg32 rng(5, 5);
+  MeshDesc soup;
+  for (int t = 0; t < 300; ++t) {
+    const Vec3 c(rng.nextFloat() * 6 - 3, rng.nextFloat() * 4 - 1.5f, rng.nextFloat() * 6 - 3);
+    for (int k = 0; k < 3; ++k) {
+      soup.positions.push_back(c + 0.2f * Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()));
+      soup.indices.push_back(static_cast<uint32_t>(soup.positions.size() - 1));
+    }
+  }
+  d.meshes.push_back(soup);
+  for (int s = 0; s < 20; ++s) {
+    SphereDesc sphere;
+    sphere.center = {rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1, rng.nextFloat() * 6 - 3};
+    sphere.radius = 0.1f + 0.2f * rng.nextFloat();
+    d.spheres.push_back(sphere);
+  }
+  ConeDesc cone;
+  cone.base = {1.5f, -1.5f, 1.5f};
+  cone.apex = {1.5f, 0.5f, 1.5f};
+  cone.baseRadius = 0.3f;
+  cone.apexRadius = 0.1f;
+  d.cones.push_back(cone);
+  return d;
+}
+
+Ray randomRay(Pcg32& rng) {
+  const Vec3 origin(rng.nextFloat() * 10 - 5, rng.nextFloat() * 10 - 5, rng.nextFloat() * 10 - 5);
+  const Vec3 target(rng.nextFloat() * 4 - 2, rng.nextFloat() * 3 - 1.5f, rng.nextFloat() * 4 - 2);
+  Ray ray{origin, glm::normalize(target - origin)};
+  ray.tMax = (rng.nextUint() % 4 == 0) ? 5.0f : std::numeric_limits<float>::infinity();
+  return ray;
+}
+
+void expectSameHits(TriangleTest test) {
+  const SceneDescription d = traversalScene(test);
+  const Scene wide(d, Traversal::WideSimd), binary(d, Traversal::BinaryScalar);
+  ASSERT_EQ(wide.traversal(), Traversal::WideSimd);
+  ASSERT_GT(wide.buildStats().wideBvh.nodeCount, 0u);
+  Pcg32 rng(17, 1);
+  int hits = 0, occludedCount = 0, samePrimitive = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const Ray ray = randomRay(rng);
+    HitRecord a, b;
+    const bool hitA = wide.intersect(ray, a), hitB = binary.intersect(ray, b);
+    ASSERT_EQ(hitA, hitB) << i;
+    ASSERT_EQ(wide.occluded(ray), binary.occluded(ray)) << i;
+    occludedCount += wide.occluded(ray) ? 1 : 0;
+    if (!hitA) continue;
+    ++hits;
+    // Same distance bit for bit; the primitive may differ only on an exact tie in t.
+    ASSERT_EQ(std::memcmp(&a.t, &b.t, sizeof(float)), 0) << i;
+    // The two walks number primitives in their own BVH's order: compare what was hit.
+    const PrimitiveKind kind = PrimitiveRef::kind(a.primitive);
+    if (kind != PrimitiveRef::kind(b.primitive)) continue;
+    if (kind != PrimitiveKind::Triangle ||
+        (wide.meshFace(a) == binary.meshFace(b) && a.u == b.u && a.v == b.v)) {
+      ++samePrimitive;
+    }
+  }
+  EXPECT_GT(hits, 10000);
+  EXPECT_EQ(occludedCount, hits);
+  EXPECT_GE(samePrimitive, hits - 5);
+}
+
+TEST(SceneTraversal, WideWalkFindsTheBinaryWalksHitsWithMollerTrumbore) {
+  expectSameHits(TriangleTest::MollerTrumbore);
+}
+
+TEST(SceneTraversal, WideWalkFindsTheBinaryWalksHitsWithPlaneThenInside) {
+  expectSameHits(TriangleTest::PlaneThenInside);
+}
+
+TEST(SceneTraversal, EmptyAndOnePrimitiveScenes) {
+  const SceneDescription empty;
+  const Scene scene(empty);
+  HitRecord hit;
+  const Ray ray{Vec3(0, 0, 5), Vec3(0, 0, -1)};
+  EXPECT_FALSE(scene.intersect(ray, hit));
+  EXPECT_FALSE(scene.occluded(ray));
+  const Scene one(triangleScene(false));
+  ASSERT_TRUE(one.intersect({Vec3(0.2f, 0.2f, 5), Vec3(0, 0, -1)}, hit));
+  EXPECT_FLOAT_EQ(hit.t, 5.0f);
+  EXPECT_TRUE(one.occluded({Vec3(0.2f, 0.2f, 5), Vec3(0, 0, -1)}));
+  EXPECT_FALSE(one.occluded({Vec3(0.9f, 0.9f, 5), Vec3(0, 0, -1)}));
+}
+
+// Whole frames, shading, shadows, reflection, refraction and caustics included, come out bit
+// for bit the same from both walks.
+TEST(SceneTraversal, ImagesAreBitIdenticalToTheBinaryWalk) {
+  for (const char* path : {"/scenes/default.yaml", "/scenes/caustic-glass-knot.yaml",
+                           "/tests/data/nff/teapot-s3.nff", "/tests/data/nff/gears-s2.nff"}) {
+    SceneDescription d = loadScene(std::string(PRISM_SOURCE_DIR) + path);
+    d.render.width = 96;
+    d.render.height = 72;
+    d.render.samplesPerPixel = 1;
+    d.caustics.photons = std::min<uint64_t>(d.caustics.photons, 20000);
+    for (TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::PlaneThenInside}) {
+      d.render.triangleTest = test;
+      FrameOptions options;
+      options.threads = 1;
+      const FrameResult a = renderFrame(Scene(d, Traversal::WideSimd), options);
+      const FrameResult b = renderFrame(Scene(d, Traversal::BinaryScalar), options);
+      ASSERT_EQ(a.image.width, b.image.width);
+      int differing = 0;
+      for (int y = 0; y < a.image.height; ++y) {
+        for (int x = 0; x < a.image.width; ++x) {
+          differing += std::memcmp(&a.image.at(x, y), &b.image.at(x, y), sizeof(Color)) != 0;
+        }
+      }
+      EXPECT_EQ(differing, 0) << path;
+    }
+  }
+}
+
+// Packets of eight give each ray the answer it gets alone: coherent packets (a 4 × 2 pixel
+// block of a camera) and incoherent ones (random rays), some rays dead (tMax < tMin).
+TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
+  const SceneDescription d = traversalScene(TriangleTest::MollerTrumbore);
+  const Scene scene(d);
+  Pcg32 rng(23, 4);
+  int hits = 0;
+  for (int round = 0; round < 4000; ++round) {
+    Ray rays[8];
+    const int count = 1 + round % 8;
+    const Vec3 eye(rng.nextFloat() * 10 - 5, 4.0f, 6.0f);
+    for (int i = 0; i < count; ++i) {
+      if (round % 2 == 0) {
+        const Vec3 target(-1.0f + 0.02f * (i % 4), -0.5f + 0.02f * (i / 4), 0.1f * round / 4000);
+        rays[i] = {eye, glm::normalize(target - eye)};
+      } else {
+        rays[i] = randomRay(rng);
+      }
+      if (round % 7 == 0 && i == 2) rays[i].tMax = -1.0f;  // dead ray
+    }
+    HitRecord packetHits[8];
+    bool found[8], blocked[8];
+    scene.intersect8(rays, count, packetHits, found);
+    scene.occluded8(rays, count, blocked);
+    for (int i = 0; i < count; ++i) {
+      HitRecord single;
+      const bool live = rays[i].tMax >= rays[i].tMin;
+      const bool singleFound = live && scene.intersect(rays[i], single);
+      ASSERT_EQ(found[i], singleFound) << round << " ray " << i;
+      ASSERT_EQ(blocked[i], live && scene.occluded(rays[i])) << round << " ray " << i;
+      if (!singleFound) continue;
+      ++hits;
+      ASSERT_EQ(std::memcmp(&packetHits[i].t, &single.t, sizeof(float)), 0) << round;
+    }
+  }
+  EXPECT_GT(hits, 5000);
 }
 
 }  // namespace

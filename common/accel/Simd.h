@@ -1,0 +1,135 @@
+// The one place Prism's kernels meet SIMD. Lanes are GCC/Clang vector extensions, so the
+// compiler emits whatever the build targets allow: SSE2 on any x86-64 (an 8-wide vector is then
+// two 4-wide registers), AVX2 or AVX-512 when the build asks for them (-DPRISM_ARCH, see
+// docs/performance.md), NEON on ARM, or plain scalar code elsewhere. No instruction set is
+// required at run time beyond what the build was told to use.
+//
+// Minimum and maximum follow the x86 rule: when either operand is NaN the second one is
+// returned. Kernels pass the value that may be NaN first so a NaN never decides a test.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace prism::simd {
+
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+using Float8 = float __attribute__((vector_size(32)));
+using Int8 = int32_t __attribute__((vector_size(32)));
+
+template <class V>
+inline V load(const float* p) {
+  V v;
+  std::memcpy(&v, p, sizeof(V));
+  return v;
+}
+
+template <class V>
+inline V broadcast(float x) {
+  return V{} + x;
+}
+
+// Written with intrinsics where the vector width has them: GCC does not turn a vector `?:`
+// wider than the target's registers into paired min/max instructions but into one scalar
+// comparison per lane.
+inline Float4 minLanes(Float4 a, Float4 b) {
+#if defined(__SSE2__)
+  return reinterpret_cast<Float4>(
+      _mm_min_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+#else
+  return a < b ? a : b;
+#endif
+}
+
+inline Float4 maxLanes(Float4 a, Float4 b) {
+#if defined(__SSE2__)
+  return reinterpret_cast<Float4>(
+      _mm_max_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+#else
+  return a > b ? a : b;
+#endif
+}
+
+inline Float8 minLanes(Float8 a, Float8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<Float8>(
+      _mm256_min_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a < b ? a : b;  // targets without AVX (WideBvh.h uses 8 lanes only with AVX)
+#endif
+}
+
+inline Float8 maxLanes(Float8 a, Float8 b) {
+#if defined(__AVX__)
+  return reinterpret_cast<Float8>(
+      _mm256_max_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
+#else
+  return a > b ? a : b;
+#endif
+}
+
+// Bit i is set when lane i of the comparison result is true (all ones).
+inline uint32_t laneMask(Int4 m) {
+#if defined(__SSE2__)
+  return static_cast<uint32_t>(_mm_movemask_ps(reinterpret_cast<__m128>(m)));
+#else
+  uint32_t bits = 0;
+  for (int i = 0; i < 4; ++i) bits |= (m[i] != 0 ? 1u : 0u) << i;
+  return bits;
+#endif
+}
+
+inline uint32_t laneMask(Int8 m) {
+#if defined(__AVX__)
+  return static_cast<uint32_t>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
+#else
+  Int4 low, high;
+  std::memcpy(&low, &m, sizeof(Int4));
+  std::memcpy(&high, reinterpret_cast<const char*>(&m) + sizeof(Int4), sizeof(Int4));
+  return laneMask(low) | (laneMask(high) << 4);
+#endif
+}
+
+// Index of the lowest set bit; mask must not be zero.
+inline int firstLane(uint32_t mask) {
+  return __builtin_ctz(mask);
+}
+
+// The instruction sets this binary was compiled for, for reports and the start-up check.
+inline const char* compiledInstructionSet() {
+#if defined(__AVX512F__)
+  return "avx512";
+#elif defined(__AVX2__)
+  return "avx2";
+#elif defined(__AVX__)
+  return "avx";
+#elif defined(__SSE2__)
+  return "sse2";
+#else
+  return "scalar";
+#endif
+}
+
+// Whether this CPU has the instruction sets the build assumed (PRISM_ARCH): checked at start-up
+// so a binary built for AVX2 says so on an older machine instead of dying of SIGILL.
+inline bool cpuRunsThisBuild() {
+#if defined(__x86_64__) || defined(__i386__)
+#if defined(__AVX512F__)
+  if (!__builtin_cpu_supports("avx512f")) return false;
+#endif
+#if defined(__AVX2__)
+  if (!__builtin_cpu_supports("avx2")) return false;
+#endif
+#if defined(__AVX__)
+  if (!__builtin_cpu_supports("avx")) return false;
+#endif
+#endif
+  return true;
+}
+
+}  // namespace prism::simd

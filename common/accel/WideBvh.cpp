@@ -1,0 +1,106 @@
+#include "accel/WideBvh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace prism {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A child slot during the collapse: a binary node to be placed in a wide node.
+struct Slot {
+  uint32_t binaryNode;
+  float area;
+};
+
+}  // namespace
+
+uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float tMin, float tMax,
+                                 float entry[WideBvhNode::kWidth]) {
+  uint32_t mask = 0;
+  for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+    float enter = tMin, leave = tMax;
+    for (int a = 0; a < 3; ++a) {
+      const float inv = 1.0f / ray.direction[a];
+      const int nearSide = std::signbit(inv) ? 1 : 0;
+      const float tNear = (node.bounds[2 * a + nearSide][i] - ray.origin[a]) * inv;
+      const float tFar = (node.bounds[2 * a + 1 - nearSide][i] - ray.origin[a]) * inv;
+      enter = tNear > enter ? tNear : enter;
+      leave = tFar < leave ? tFar : leave;
+    }
+    entry[i] = enter;
+    if (enter <= leave) mask |= 1u << i;
+  }
+  return mask;
+}
+
+void WideBvh::build(const Bvh& binary) {
+  const auto start = std::chrono::steady_clock::now();
+  nodes_.clear();
+  stats_ = {};
+  const std::vector<BvhNode>& bin = binary.nodes();
+  if (!bin.empty()) {
+    nodes_.reserve(bin.size() / 4 + 1);
+    // Work list of (binary node, wide node index) pairs still to be filled.
+    std::vector<std::pair<uint32_t, uint32_t>> work{{0, 0}};
+    nodes_.emplace_back();
+    while (!work.empty()) {
+      const auto [binaryIndex, wideIndex] = work.back();
+      work.pop_back();
+      Slot slots[WideBvhNode::kWidth];
+      int used = 0;
+      if (bin[binaryIndex].isLeaf()) {
+        slots[used++] = {binaryIndex, 0.0f};  // the whole BVH is one leaf
+      } else {
+        const uint32_t first = binaryIndex + 1, second = bin[binaryIndex].offset;
+        slots[used++] = {first, bin[first].bounds.surfaceArea()};
+        slots[used++] = {second, bin[second].bounds.surfaceArea()};
+      }
+      // Open the largest interior slot until the node is full or only leaves remain.
+      while (used < WideBvhNode::kWidth) {
+        int largest = -1;
+        for (int i = 0; i < used; ++i) {
+          if (bin[slots[i].binaryNode].isLeaf()) continue;
+          if (largest < 0 || slots[i].area > slots[largest].area) largest = i;
+        }
+        if (largest < 0) break;
+        const uint32_t opened = slots[largest].binaryNode;
+        const uint32_t first = opened + 1, second = bin[opened].offset;
+        slots[largest] = {first, bin[first].bounds.surfaceArea()};
+        slots[used++] = {second, bin[second].bounds.surfaceArea()};
+      }
+      WideBvhNode filled;
+      for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+        filled.child[i] = 0;
+        filled.count[i] = 0;
+        for (int a = 0; a < 3; ++a) {
+          filled.bounds[2 * a][i] = kInf;
+          filled.bounds[2 * a + 1][i] = -kInf;
+        }
+      }
+      for (int i = 0; i < used; ++i) {
+        const BvhNode& b = bin[slots[i].binaryNode];
+        for (int a = 0; a < 3; ++a) {
+          filled.bounds[2 * a][i] = b.bounds.lower[a];
+          filled.bounds[2 * a + 1][i] = b.bounds.upper[a];
+        }
+        if (b.isLeaf()) {
+          filled.child[i] = b.offset;
+          filled.count[i] = static_cast<uint8_t>(b.count);
+        } else {
+          filled.child[i] = static_cast<uint32_t>(nodes_.size());
+          work.push_back({slots[i].binaryNode, filled.child[i]});
+          nodes_.emplace_back();
+        }
+      }
+      nodes_[wideIndex] = filled;
+    }
+  }
+  stats_.nodeCount = nodes_.size();
+  stats_.memoryBytes = nodes_.size() * sizeof(WideBvhNode);
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace prism

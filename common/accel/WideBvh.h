@@ -1,0 +1,184 @@
+// An 8-wide BVH collapsed from the binary SAH BVH (accel/Bvh.h): each node holds the boxes of up
+// to eight children in structure-of-arrays form, so one ray tests all eight with a few SIMD
+// instructions (accel/Simd.h). The collapse keeps the binary BVH's leaves and primitive order,
+// so the same leaf visitor serves both, and the closest hit is the same primitive test.
+//
+// Collapsing: starting from a binary node, the child with the largest surface area that is not a
+// leaf is replaced by its two children until eight slots are used (after Wald et al., "Getting
+// Rid of Packets", 2008, and Embree's BVH8 built the same way from a binary SAH build).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "accel/Bvh.h"
+#include "accel/Simd.h"
+
+namespace prism {
+
+struct alignas(64) WideBvhNode {
+  static constexpr int kWidth = 8;
+  // bounds[2 * axis] is the lower, bounds[2 * axis + 1] the upper plane of each child. Unused
+  // slots hold an inverted box (lower +inf, upper -inf) that no ray enters.
+  float bounds[6][kWidth];
+  uint32_t child[kWidth];  // interior child: node index; leaf child: first primitive entry
+  uint8_t count[kWidth];   // leaf child: primitive count (> 0); interior child or unused: 0
+};
+static_assert(sizeof(WideBvhNode) == 256);
+
+// What a ray needs for the slab test of every node: origin, reciprocal direction, and which
+// plane of each axis it meets first.
+struct WideRay {
+  float origin[3];
+  float invDir[3];
+  int nearSide[3];  // 0: lower plane first (direction >= +0), 1: upper plane first
+
+  explicit WideRay(const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = ray.origin[a];
+      invDir[a] = 1.0f / ray.direction[a];
+      nearSide[a] = std::signbit(invDir[a]) ? 1 : 0;  // -0 gives -inf: upper plane first
+    }
+  }
+};
+
+// The slab test on the lanes firstLane..firstLane+|V|-1 of a node, one vector at a time.
+template <class V>
+inline uint32_t slabTest(const WideBvhNode& node, int firstLane, const WideRay& ray, float tMin,
+                         float tMax, float* entry) {
+  V enter = simd::broadcast<V>(tMin);
+  V leave = simd::broadcast<V>(tMax);
+  for (int a = 0; a < 3; ++a) {
+    const V origin = simd::broadcast<V>(ray.origin[a]);
+    const V invDir = simd::broadcast<V>(ray.invDir[a]);
+    const V nearPlane = simd::load<V>(&node.bounds[2 * a + ray.nearSide[a]][firstLane]);
+    const V farPlane = simd::load<V>(&node.bounds[2 * a + 1 - ray.nearSide[a]][firstLane]);
+    // The slab distances go first: a NaN there leaves enter and leave as they were.
+    enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
+    leave = simd::minLanes((farPlane - origin) * invDir, leave);
+  }
+  std::memcpy(entry + firstLane, &enter, sizeof(V));
+  return simd::laneMask(enter <= leave) << firstLane;
+}
+
+// Entry distances of the children a ray enters within [tMin, tMax] (bit i of the result); the
+// other entries are unspecified. NaN (a ray in a slab's plane, parallel to it) counts as
+// entering, so the test never rejects a box the scalar test would accept.
+inline uint32_t intersectChildren(const WideBvhNode& node, const WideRay& ray, float tMin,
+                                  float tMax, float entry[WideBvhNode::kWidth]) {
+#if defined(__AVX__)
+  return slabTest<simd::Float8>(node, 0, ray, tMin, tMax, entry);
+#else
+  return slabTest<simd::Float4>(node, 0, ray, tMin, tMax, entry) |
+         slabTest<simd::Float4>(node, 4, ray, tMin, tMax, entry);
+#endif
+}
+
+// The same slab test one child at a time, for testing the SIMD path against.
+uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float tMin, float tMax,
+                                 float entry[WideBvhNode::kWidth]);
+
+struct WideBvhStats {
+  size_t nodeCount = 0;
+  size_t memoryBytes = 0;  // wide nodes only (the primitive order belongs to the binary BVH)
+  double seconds = 0.0;
+};
+
+class WideBvh {
+ public:
+  // Collapses the given binary BVH; an empty one gives an empty wide BVH that nothing hits.
+  void build(const Bvh& binary);
+
+  const std::vector<WideBvhNode>& nodes() const { return nodes_; }
+
+  // Lets the caller give leaves its own numbering: relabel(first, count) returns the (child,
+  // count) the leaf visitor will receive instead, count staying in 1..255. The scene points
+  // leaves straight at its triangle packs this way, saving a lookup per leaf.
+  template <class Relabel>
+  void relabelLeaves(Relabel&& relabel) {
+    for (WideBvhNode& node : nodes_) {
+      for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+        if (node.count[i] == 0) continue;
+        const auto [child, count] = relabel(node.child[i], node.count[i]);
+        node.child[i] = child;
+        node.count[i] = static_cast<uint8_t>(count);
+      }
+    }
+  }
+  const WideBvhStats& stats() const { return stats_; }
+
+  // Same contract as Bvh::traverse: leafVisitor(first, count, tMax) tests primitives
+  // first..first+count-1, shrinks tMax on a hit and returns true if it hit. Closest-hit walks
+  // visit children nearest first; any-hit walks skip the sort and stop at the first hit.
+  template <bool kAnyHit, class LeafVisitor>
+  bool traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) const;
+
+ private:
+  std::vector<WideBvhNode> nodes_;
+  WideBvhStats stats_;
+};
+
+template <bool kAnyHit, class LeafVisitor>
+bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) const {
+  if (nodes_.empty()) return false;
+  const WideRay wide(ray);
+  struct Pending {
+    uint32_t child;
+    uint32_t count;  // 0: interior node
+    float entry;
+  };
+  // Each level of the walk leaves at most seven entries behind; the depth is at most the binary
+  // BVH's, which is at most 2 * kMaxDepth (see Bvh::traverse).
+  Pending stack[WideBvhNode::kWidth * 2 * Bvh::kMaxDepth];
+  int stackSize = 0;
+  Pending current{0, 0, ray.tMin};
+  bool hitAnything = false;
+  for (;;) {
+    if (current.count > 0) {
+      if (leafVisitor(current.child, current.count, tMax)) {
+        hitAnything = true;
+        if constexpr (kAnyHit) return true;
+      }
+    } else {
+      const WideBvhNode& node = nodes_[current.child];
+      float entry[WideBvhNode::kWidth];
+      uint32_t mask = intersectChildren(node, wide, ray.tMin, tMax, entry);
+      if (mask != 0) {
+        int i = simd::firstLane(mask);
+        mask &= mask - 1;
+        if (mask == 0) {  // one child entered, the common case deep in the tree: no stack
+          current = {node.child[i], node.count[i], entry[i]};
+          continue;
+        }
+        const int base = stackSize;
+        stack[stackSize++] = {node.child[i], node.count[i], entry[i]};
+        while (mask != 0) {
+          i = simd::firstLane(mask);
+          mask &= mask - 1;
+          const Pending incoming{node.child[i], node.count[i], entry[i]};
+          if constexpr (kAnyHit) {
+            stack[stackSize++] = incoming;  // any hit will do: no order needed
+          } else {
+            // Insertion sort, descending by entry distance, so the nearest is popped first.
+            int at = stackSize++;
+            while (at > base && stack[at - 1].entry < incoming.entry) {
+              stack[at] = stack[at - 1];
+              --at;
+            }
+            stack[at] = incoming;
+          }
+        }
+      }
+    }
+    // Pop the next pending child that still starts before the closest hit.
+    do {
+      if (stackSize == 0) return hitAnything;
+      current = stack[--stackSize];
+    } while (current.entry > tMax);
+  }
+}
+
+}  // namespace prism

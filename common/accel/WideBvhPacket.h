@@ -1,0 +1,200 @@
+// Packet traversal of the wide BVH for coherent rays (a pixel tile's primary rays, their shadow
+// rays): the packet walks the tree as one ray, testing each node's eight child boxes with one
+// SIMD slab test in interval arithmetic over the packet's origins and reciprocal directions
+// (after Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray Packets",
+// 2006). The test is conservative: a box any ray of the packet enters passes, so every ray
+// still meets every leaf it would meet alone, and the caller's leaf visitor tests the rays one
+// by one. Packets whose directions differ in sign on some axis take the single-ray walk.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "accel/WideBvh.h"
+
+namespace prism {
+
+struct RayPacket8 {
+  static constexpr int kSize = 8;
+  // Largest difference of unit-direction components within a coherent packet: a 4 × 2 pixel
+  // block of a camera differs by about 0.01, shadow rays towards one light by little more.
+  static constexpr float kMaxDirectionSpread = 0.1f;
+  // Per axis, the bounds of the packet's origins and reciprocal directions.
+  float originLow[3], originHigh[3], invLow[3], invHigh[3];
+  int nearSide[3];  // as in WideRay: 1 when every direction is negative on that axis
+  bool coherent;    // every axis has one direction sign and finite reciprocals
+  float tMin;       // the smallest tMin of the rays
+  // Each ray's own origin, reciprocal direction and tMin, for the per-ray test of leaf boxes.
+  float rayOrigin[3][kSize], rayInvDir[3][kSize], rayTMin[kSize];
+
+  RayPacket8(const Ray* rays, uint32_t live) {
+    coherent = live != 0;
+    tMin = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < kSize; ++i) {
+      const Ray& r = rays[(live >> i & 1u) ? i : simd::firstLane(live | 1u)];
+      for (int a = 0; a < 3; ++a) {
+        rayOrigin[a][i] = r.origin[a];
+        rayInvDir[a][i] = 1.0f / r.direction[a];
+      }
+      rayTMin[i] = r.tMin;
+    }
+    for (int a = 0; a < 3; ++a) {
+      originLow[a] = invLow[a] = std::numeric_limits<float>::infinity();
+      originHigh[a] = invHigh[a] = -std::numeric_limits<float>::infinity();
+      int negative = 0, count = 0;
+      for (uint32_t m = live; m != 0; m &= m - 1) {
+        const Ray& r = rays[simd::firstLane(m)];
+        const float inv = 1.0f / r.direction[a];
+        originLow[a] = std::min(originLow[a], r.origin[a]);
+        originHigh[a] = std::max(originHigh[a], r.origin[a]);
+        invLow[a] = std::min(invLow[a], inv);
+        invHigh[a] = std::max(invHigh[a], inv);
+        negative += std::signbit(inv) ? 1 : 0;
+        ++count;
+        if (!std::isfinite(inv)) coherent = false;
+        if (a == 0) tMin = std::min(tMin, r.tMin);
+      }
+      if (negative != 0 && negative != count) coherent = false;
+      // Spread-out directions make the interval test pass nearly everywhere: such packets
+      // would walk most of the tree, so they take the single-ray walk instead.
+      float low = std::numeric_limits<float>::infinity(), high = -low;
+      for (uint32_t m = live; m != 0; m &= m - 1) {
+        low = std::min(low, rays[simd::firstLane(m)].direction[a]);
+        high = std::max(high, rays[simd::firstLane(m)].direction[a]);
+      }
+      if (high - low > kMaxDirectionSpread) coherent = false;
+      nearSide[a] = negative != 0 ? 1 : 0;
+    }
+  }
+};
+
+// Children (bit i) that some ray of the packet may enter within [packet.tMin, tMax], with a
+// lower bound of the entry distance. For an axis, the distance to a plane is (plane - o) * inv
+// with o and inv in intervals; its bounds are the extreme products of the interval ends, and
+// float rounding is monotone, so each ray's own slab distances lie within them.
+inline uint32_t packetEntersChildren(const WideBvhNode& node, const RayPacket8& packet, float tMax,
+                                     float entry[WideBvhNode::kWidth]) {
+  using simd::Float4;
+  uint32_t mask = 0;
+  for (int half = 0; half < 2; ++half) {
+    const int at = 4 * half;
+    Float4 enter = simd::broadcast<Float4>(packet.tMin);
+    Float4 leave = simd::broadcast<Float4>(tMax);
+    for (int a = 0; a < 3; ++a) {
+      const Float4 nearPlane = simd::load<Float4>(&node.bounds[2 * a + packet.nearSide[a]][at]);
+      const Float4 farPlane = simd::load<Float4>(&node.bounds[2 * a + 1 - packet.nearSide[a]][at]);
+      const Float4 invLow = simd::broadcast<Float4>(packet.invLow[a]);
+      const Float4 invHigh = simd::broadcast<Float4>(packet.invHigh[a]);
+      // Near plane: the smallest product; far plane: the largest.
+      const Float4 nearA = nearPlane - simd::broadcast<Float4>(packet.originHigh[a]);
+      const Float4 nearB = nearPlane - simd::broadcast<Float4>(packet.originLow[a]);
+      const Float4 tNear = simd::minLanes(simd::minLanes(nearA * invLow, nearA * invHigh),
+                                          simd::minLanes(nearB * invLow, nearB * invHigh));
+      const Float4 farA = farPlane - simd::broadcast<Float4>(packet.originHigh[a]);
+      const Float4 farB = farPlane - simd::broadcast<Float4>(packet.originLow[a]);
+      const Float4 tFar = simd::maxLanes(simd::maxLanes(farA * invLow, farA * invHigh),
+                                         simd::maxLanes(farB * invLow, farB * invHigh));
+      enter = simd::maxLanes(tNear, enter);
+      leave = simd::minLanes(tFar, leave);
+    }
+    std::memcpy(entry + at, &enter, sizeof(Float4));
+    mask |= simd::laneMask(enter <= leave) << at;
+  }
+  return mask;
+}
+
+// The rays (bit i) that enter child `slot` of the node within their own [tMin, tMax]: the
+// single-ray slab test, eight rays at a time. Run on leaves only, so that a leaf is tested
+// against just the rays that reach it.
+inline uint32_t raysEnteringChild(const WideBvhNode& node, int slot, const RayPacket8& packet,
+                                  const float tMax[RayPacket8::kSize]) {
+  using simd::Float4;
+  uint32_t mask = 0;
+  for (int half = 0; half < 2; ++half) {
+    const int at = 4 * half;
+    Float4 enter = simd::load<Float4>(&packet.rayTMin[at]);
+    Float4 leave = simd::load<Float4>(&tMax[at]);
+    for (int a = 0; a < 3; ++a) {
+      const Float4 origin = simd::load<Float4>(&packet.rayOrigin[a][at]);
+      const Float4 invDir = simd::load<Float4>(&packet.rayInvDir[a][at]);
+      const Float4 nearPlane =
+          simd::broadcast<Float4>(node.bounds[2 * a + packet.nearSide[a]][slot]);
+      const Float4 farPlane =
+          simd::broadcast<Float4>(node.bounds[2 * a + 1 - packet.nearSide[a]][slot]);
+      enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
+      leave = simd::minLanes((farPlane - origin) * invDir, leave);
+    }
+    mask |= simd::laneMask(enter <= leave) << at;
+  }
+  return mask;
+}
+
+// Walks the tree with the rays in `live` (the packet must be coherent). leafVisitor(first,
+// count, rays, tMax) tests the leaf against the rays in the mask `rays`, shrinks their tMax on
+// hits and returns the mask of rays it hit. Returns the rays that hit anything; any-hit walks
+// stop testing a ray at its first hit.
+template <bool kAnyHit, class LeafVisitor>
+uint32_t traversePacket(const WideBvh& bvh, const RayPacket8& packet, uint32_t live,
+                        float tMax[RayPacket8::kSize], LeafVisitor&& leafVisitor) {
+  const std::vector<WideBvhNode>& nodes = bvh.nodes();
+  if (nodes.empty() || live == 0) return 0;
+  struct Pending {
+    uint32_t child;
+    uint32_t count;  // 0: interior node
+    float entry;
+    uint32_t rays;  // leaf: the rays that enter its box
+  };
+  // The largest tMax of the rays still looking: nodes beyond it are skipped.
+  auto farthest = [&](uint32_t rays) {
+    float t = -std::numeric_limits<float>::infinity();
+    for (; rays != 0; rays &= rays - 1) t = std::max(t, tMax[simd::firstLane(rays)]);
+    return t;
+  };
+  Pending stack[WideBvhNode::kWidth * 2 * Bvh::kMaxDepth];
+  int stackSize = 0;
+  Pending current{0, 0, packet.tMin, 0};
+  uint32_t hitRays = 0;
+  uint32_t looking = live;
+  float reach = farthest(looking);
+  for (;;) {
+    if (current.count > 0) {
+      const uint32_t rays = current.rays & looking;
+      const uint32_t hits = rays ? leafVisitor(current.child, current.count, rays, tMax) : 0u;
+      hitRays |= hits;
+      if (kAnyHit) {
+        looking &= ~hits;
+        if (looking == 0) return hitRays;
+      }
+      if (hits != 0) reach = farthest(looking);
+    } else {
+      const WideBvhNode& node = nodes[current.child];
+      float entry[WideBvhNode::kWidth];
+      uint32_t mask = packetEntersChildren(node, packet, reach, entry);
+      const int base = stackSize;
+      for (; mask != 0; mask &= mask - 1) {
+        const int i = simd::firstLane(mask);
+        uint32_t rays = 0;
+        if (node.count[i] > 0) {
+          rays = raysEnteringChild(node, i, packet, tMax) & looking;
+          if (rays == 0) continue;
+        }
+        const Pending incoming{node.child[i], node.count[i], entry[i], rays};
+        int at = stackSize++;
+        while (!kAnyHit && at > base && stack[at - 1].entry < incoming.entry) {
+          stack[at] = stack[at - 1];
+          --at;
+        }
+        stack[at] = incoming;
+      }
+    }
+    do {
+      if (stackSize == 0) return hitRays;
+      current = stack[--stackSize];
+    } while (current.entry > reach);
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,604 @@
+// Rays per CPU-second: Prism's traversal against Intel Embree 3 on the same triangles and the
+// same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
+//
+//   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
+//                                    [mesh.obj ...]
+//
+// Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
+// coherent primary rays from a camera (1024 × 768, in 4 × 4 pixel tiles), incoherent rays
+// (diffuse bounces from the primary hits, shuffled), and shadow rays from the primary hits
+// towards a light. Prism runs its renderer's own Scene::intersect / Scene::occluded in each
+// traversal mode (--no-variants leaves out the intermediate ones), and Scene::intersect8 /
+// occluded8 on packets of eight consecutive rays; Embree runs single rays
+// (rtcIntersect1/rtcOccluded1) and 16-ray packets (rtcIntersect16/rtcOccluded16, which its AVX-512
+// path prefers here). Times are CPU seconds of the tracing threads (CLOCK_THREAD_CPUTIME_ID), and
+// every number is the median of
+// --runs rounds in which all contenders run one after another, in a rotating order.
+#include <embree3/rtcore.h>
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "accel/Simd.h"
+#include "math/Random.h"
+#include "parse/ObjLoader.h"
+#include "scene/Scene.h"
+
+namespace prism {
+namespace {
+
+double threadCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double wallSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// ---- meshes ---------------------------------------------------------------------------------
+
+MeshDesc subdividedSphere(int levels) {
+  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<Vec3> v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  for (Vec3& p : v) p = glm::normalize(p);
+  std::vector<uint32_t> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                             4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                             6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back(glm::normalize(v[a] + v[b]));
+      return mid[key] = static_cast<uint32_t>(v.size() - 1);
+    };
+    std::vector<uint32_t> next;
+    for (size_t i = 0; i < f.size(); i += 3) {
+      const uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+    }
+    f.swap(next);
+  }
+  MeshDesc mesh;
+  mesh.source = "sphere-l" + std::to_string(levels);
+  mesh.positions = std::move(v);
+  mesh.indices = std::move(f);
+  return mesh;
+}
+
+// A height field of n × n quads, displaced by a few octaves of waves.
+MeshDesc displacedGrid(int n) {
+  MeshDesc mesh;
+  mesh.source = "grid-" + std::to_string(n);
+  for (int z = 0; z <= n; ++z) {
+    for (int x = 0; x <= n; ++x) {
+      const float u = 2.0f * x / n - 1.0f, w = 2.0f * z / n - 1.0f;
+      float h = 0.0f, amplitude = 0.15f, frequency = 3.0f;
+      for (int octave = 0; octave < 5; ++octave) {
+        h += amplitude * std::sin(frequency * u + octave) * std::cos(frequency * 1.3f * w);
+        amplitude *= 0.5f;
+        frequency *= 2.1f;
+      }
+      mesh.positions.push_back({u, h, w});
+    }
+  }
+  for (int z = 0; z < n; ++z) {
+    for (int x = 0; x < n; ++x) {
+      const uint32_t i = z * (n + 1) + x;
+      mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + n + 1, i + 1, i + n + 2, i + n + 1});
+    }
+  }
+  return mesh;
+}
+
+// ---- rays -----------------------------------------------------------------------------------
+
+struct RaySet {
+  std::string kind;  // primary, incoherent, shadow
+  std::vector<Ray> rays;
+  int tileWidth = 0;  // primary/shadow: rays are ordered in 4×4 pixel tiles for packets
+};
+
+Aabb meshBounds(const MeshDesc& mesh) {
+  Aabb b;
+  for (const Vec3& p : mesh.positions) b.extend(p);
+  return b;
+}
+
+// A camera looking at the mesh from the front and above, rays in 4×4 pixel tiles.
+std::vector<Ray> primaryRays(const Aabb& bounds, int width, int height) {
+  const Vec3 center = bounds.center();
+  const float radius = 0.5f * glm::length(bounds.extent());
+  const Vec3 eye = center + radius * Vec3(0.6f, 1.1f, 2.2f);
+  const Vec3 forward = glm::normalize(center - eye);
+  const Vec3 right = glm::normalize(glm::cross(forward, Vec3(0, 1, 0)));
+  const Vec3 up = glm::cross(right, forward);
+  const float halfHeight = std::tan(0.5f * 40.0f * 3.14159265f / 180.0f);
+  const float halfWidth = halfHeight * width / height;
+  std::vector<Ray> rays;
+  for (int ty = 0; ty < height; ty += 4) {
+    for (int tx = 0; tx < width; tx += 4) {
+      for (int y = ty; y < ty + 4; ++y) {
+        for (int x = tx; x < tx + 4; ++x) {
+          const float sx = (2.0f * (x + 0.5f) / width - 1.0f) * halfWidth;
+          const float sy = (1.0f - 2.0f * (y + 0.5f) / height) * halfHeight;
+          rays.push_back({eye, glm::normalize(forward + sx * right + sy * up)});
+        }
+      }
+    }
+  }
+  return rays;
+}
+
+// Diffuse bounces: from each primary hit, a direction uniform over the hemisphere around the
+// surface normal, the rays shuffled so that neighbours share nothing. A primary miss gives a
+// ray with an empty interval, which every tracer skips.
+std::vector<Ray> incoherentRays(const Scene& scene, const std::vector<Ray>& primary,
+                                uint64_t seed) {
+  Pcg32 rng(seed, 2);
+  std::vector<Ray> rays;
+  for (const Ray& p : primary) {
+    HitRecord hit;
+    Ray r{p.origin, p.direction, 0.0f, -1.0f};
+    if (scene.intersect(p, hit)) {
+      const SurfaceHit s = scene.surface(p, hit);
+      const float z = 2.0f * rng.nextFloat() - 1.0f, phi = 6.2831853f * rng.nextFloat();
+      const float radius = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      Vec3 d(radius * std::cos(phi), radius * std::sin(phi), z);
+      if (glm::dot(d, s.geometricNormal) < 0.0f) d = -d;
+      r = {offsetRayOrigin(s.position, s.geometricNormal, d), d};
+    }
+    rays.push_back(r);
+  }
+  for (size_t i = rays.size(); i > 1; --i) std::swap(rays[i - 1], rays[rng.nextUint() % i]);
+  return rays;
+}
+
+// From each primary hit towards a light above and to the side; a primary miss gives a ray
+// with an empty interval, which both tracers skip (it keeps the packets' tiles intact).
+std::vector<Ray> shadowRays(const Scene& scene, const std::vector<Ray>& primary,
+                            const Aabb& bounds) {
+  const float radius = 0.5f * glm::length(bounds.extent());
+  const Vec3 light = bounds.center() + radius * Vec3(-1.5f, 2.5f, 1.0f);
+  std::vector<Ray> rays;
+  for (const Ray& p : primary) {
+    HitRecord hit;
+    Ray r{p.origin, p.direction, 0.0f, -1.0f};  // empty: tMax < tMin
+    if (scene.intersect(p, hit)) {
+      const SurfaceHit s = scene.surface(p, hit);
+      const Vec3 toLight = light - s.position;
+      const float distance = glm::length(toLight);
+      r.direction = toLight / distance;
+      r.origin = offsetRayOrigin(s.position, s.geometricNormal, r.direction);
+      r.tMax = distance;
+    }
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+// ---- Embree ---------------------------------------------------------------------------------
+
+std::atomic<ssize_t> embreeBytes{0};
+
+bool countEmbreeMemory(void*, ssize_t bytes, bool) {
+  embreeBytes += bytes;
+  return true;
+}
+
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  double buildSeconds = 0.0;
+  size_t bytes = 0;
+
+  explicit EmbreeScene(const MeshDesc& mesh) {
+    device = rtcNewDevice(nullptr);  // builds on every core, as Prism's does
+    rtcSetDeviceMemoryMonitorFunction(device, countEmbreeMemory, nullptr);
+    const ssize_t before = embreeBytes;
+    scene = rtcNewScene(device);
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      std::memcpy(vertices + 3 * i, &mesh.positions[i], 3 * sizeof(float));
+    }
+    auto* indices = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(uint32_t), mesh.triangleCount()));
+    std::memcpy(indices, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+    const double start = wallSeconds();
+    rtcCommitScene(scene);
+    buildSeconds = wallSeconds() - start;
+    bytes = static_cast<size_t>(embreeBytes - before);
+  }
+  ~EmbreeScene() {
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+  }
+};
+
+RTCRayHit toEmbree(const Ray& r) {
+  RTCRayHit rh{};
+  rh.ray.org_x = r.origin.x;
+  rh.ray.org_y = r.origin.y;
+  rh.ray.org_z = r.origin.z;
+  rh.ray.dir_x = r.direction.x;
+  rh.ray.dir_y = r.direction.y;
+  rh.ray.dir_z = r.direction.z;
+  rh.ray.tnear = r.tMin;
+  rh.ray.tfar = r.tMax;
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+template <class Packet>
+void fillPacket(Packet& p, int valid[16], const Ray* rays, int count) {
+  for (int i = 0; i < 16; ++i) {
+    const bool live = i < count && rays[i].tMax >= rays[i].tMin;
+    valid[i] = live ? -1 : 0;
+    const Ray& r = rays[std::min(i, count - 1)];
+    auto& ray = [&]() -> RTCRay16& {
+      if constexpr (std::is_same_v<Packet, RTCRayHit16>) {
+        return p.ray;
+      } else {
+        return p;
+      }
+    }();
+    ray.org_x[i] = r.origin.x;
+    ray.org_y[i] = r.origin.y;
+    ray.org_z[i] = r.origin.z;
+    ray.dir_x[i] = r.direction.x;
+    ray.dir_y[i] = r.direction.y;
+    ray.dir_z[i] = r.direction.z;
+    ray.tnear[i] = r.tMin;
+    ray.tfar[i] = r.tMax;
+    ray.mask[i] = ~0u;
+    ray.time[i] = 0.0f;
+    ray.flags[i] = 0;
+    if constexpr (std::is_same_v<Packet, RTCRayHit16>) p.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+// ---- the contest ----------------------------------------------------------------------------
+
+// Traces rays[begin, end) and returns how many hit, so no tracer's work can be optimised away.
+using Tracer = std::function<size_t(const std::vector<Ray>&, size_t, size_t)>;
+
+struct Contender {
+  std::string name;
+  Tracer trace;
+  std::vector<double> mraysPerCpuSecond;  // one per round
+  std::vector<double> mraysPerWallSecond;
+};
+
+// Runs one contender over the ray set on `threads` threads; returns (CPU-seconds, wall seconds).
+std::pair<double, double> runOnce(const Tracer& trace, const std::vector<Ray>& rays, int threads,
+                                  size_t& hits) {
+  std::vector<double> cpu(threads, 0.0);
+  std::vector<size_t> hitCounts(threads, 0);
+  const double wallStart = wallSeconds();
+  // Threads take 4096-ray chunks in turn, so both see coherent runs.
+  std::atomic<size_t> next{0};
+  const size_t chunk = 4096;
+  auto work = [&](int t) {
+    const double start = threadCpuSeconds();
+    for (;;) {
+      const size_t begin = next.fetch_add(chunk);
+      if (begin >= rays.size()) break;
+      hitCounts[t] += trace(rays, begin, std::min(rays.size(), begin + chunk));
+    }
+    cpu[t] = threadCpuSeconds() - start;
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& th : pool) th.join();
+  const double wall = wallSeconds() - wallStart;
+  hits = 0;
+  double cpuTotal = 0.0;
+  for (int t = 0; t < threads; ++t) {
+    hits += hitCounts[t];
+    cpuTotal += cpu[t];
+  }
+  return {cpuTotal, wall};
+}
+
+struct Options {
+  int runs = 7;
+  bool quick = false;
+  std::vector<int> threads = {1, 2};
+  std::vector<std::string> objs;
+  bool withVariants = true;  // also time the intermediate Prism traversals
+};
+
+struct Agreement {
+  size_t rays = 0, hitMismatch = 0, primitiveMismatch = 0, primitiveTies = 0;
+  double maxRelativeTError = 0.0;
+};
+
+// Prism's wide walk against Embree's single rays, ray by ray.
+Agreement compareHits(const Scene& scene, RTCScene embree, const RaySet& set) {
+  Agreement a;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (const Ray& r : set.rays) {
+    if (r.tMax < r.tMin) continue;
+    ++a.rays;
+    if (set.kind == "shadow") {
+      RTCRayHit rh = toEmbree(r);
+      rtcOccluded1(embree, &context, &rh.ray);
+      const bool embreeBlocked = rh.ray.tfar < 0.0f;
+      if (embreeBlocked != scene.occluded(r)) ++a.hitMismatch;
+      continue;
+    }
+    HitRecord hit;
+    const bool prismHit = scene.intersect(r, hit);
+    RTCRayHit rh = toEmbree(r);
+    rtcIntersect1(embree, &context, &rh);
+    const bool embreeHit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (prismHit != embreeHit) {
+      ++a.hitMismatch;
+      continue;
+    }
+    if (!prismHit) continue;
+    const double rel = std::abs(hit.t - rh.ray.tfar) / std::max(1e-6f, rh.ray.tfar);
+    a.maxRelativeTError = std::max(a.maxRelativeTError, rel);
+    if (scene.meshFace(hit) != rh.hit.primID) {
+      ++a.primitiveMismatch;
+      if (rel < 1e-5) ++a.primitiveTies;  // the same point: a shared edge or vertex
+    }
+  }
+  return a;
+}
+
+void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
+  SceneDescription d;
+  d.meshes.push_back(mesh);
+  std::printf("\n## %s: %zu triangles\n\n", mesh.source.c_str(), mesh.triangleCount());
+
+  const double start = wallSeconds();
+  const Scene prism(d, Traversal::WideSimd);
+  const double prismBuild = wallSeconds() - start;
+  const Scene prismLeaves(d, Traversal::WideScalarLeaves);
+  const Scene prismBinary(d, Traversal::BinaryScalar);
+  const EmbreeScene embree(mesh);
+  const SceneBuildStats& st = prism.buildStats();
+  std::printf(
+      "build (wall s, all cores): Prism scene %.3f (binary SAH %.3f, collapse %.3f), "
+      "Embree %.3f\n",
+      prismBuild, st.bvh.seconds, st.wideBvh.seconds, embree.buildSeconds);
+  std::printf(
+      "memory (MiB): Prism %.1f (binary nodes+order %.1f, wide nodes %.1f, packs %.1f, "
+      "triangles %.1f), Embree %.1f\n",
+      (st.bvh.memoryBytes + st.wideBvh.memoryBytes + st.packBytes + st.geometryBytes) / 1048576.0,
+      st.bvh.memoryBytes / 1048576.0, st.wideBvh.memoryBytes / 1048576.0, st.packBytes / 1048576.0,
+      st.geometryBytes / 1048576.0, embree.bytes / 1048576.0);
+
+  const Aabb bounds = meshBounds(mesh);
+  const int width = options.quick ? 256 : 1024, height = options.quick ? 192 : 768;
+  std::vector<RaySet> sets;
+  sets.push_back({"primary", primaryRays(bounds, width, height), width});
+  sets.push_back({"incoherent", incoherentRays(prism, sets[0].rays, 9), 0});
+  sets.push_back({"shadow", shadowRays(prism, sets[0].rays, bounds), width});
+
+  for (const RaySet& set : sets) {
+    const Agreement a = compareHits(prism, embree.scene, set);
+    std::printf(
+        "agreement %-10s: %zu rays, hit/miss differs %zu (%.4f%%), other triangle %zu "
+        "(%zu of them at the same t), max relative t difference %.2g\n",
+        set.kind.c_str(), a.rays, a.hitMismatch, 100.0 * a.hitMismatch / a.rays,
+        a.primitiveMismatch, a.primitiveTies, a.maxRelativeTError);
+  }
+
+  for (const RaySet& set : sets) {
+    const bool shadow = set.kind == "shadow";
+    std::vector<Contender> contenders;
+    auto prismTracer = [shadow](const Scene& scene) -> Tracer {
+      return [&scene, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
+        size_t hits = 0;
+        HitRecord hit;
+        for (size_t i = b; i < e; ++i) {
+          if (rays[i].tMax < rays[i].tMin) continue;
+          hits += shadow ? scene.occluded(rays[i]) : scene.intersect(rays[i], hit);
+        }
+        return hits;
+      };
+    };
+    contenders.push_back({"Prism wide+SIMD", prismTracer(prism), {}, {}});
+    // Eight consecutive rays at a time: half a 4 × 4 pixel tile for primary and shadow rays.
+    contenders.push_back({"Prism packet8",
+                          [&prism, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
+                            size_t hits = 0;
+                            HitRecord hit[8];
+                            bool found[8];
+                            for (size_t i = b; i < e; i += 8) {
+                              const int n = static_cast<int>(std::min<size_t>(8, e - i));
+                              if (shadow) {
+                                prism.occluded8(&rays[i], n, found);
+                              } else {
+                                prism.intersect8(&rays[i], n, hit, found);
+                              }
+                              for (int k = 0; k < n; ++k) hits += found[k];
+                            }
+                            return hits;
+                          },
+                          {},
+                          {}});
+    if (options.withVariants) {
+      contenders.push_back({"Prism wide, scalar tri", prismTracer(prismLeaves), {}, {}});
+      contenders.push_back({"Prism binary (main)", prismTracer(prismBinary), {}, {}});
+      if (shadow) {
+        // Shadows answered by a closest-hit search: what the any-hit walk buys.
+        contenders.push_back({"Prism wide, closest-hit",
+                              [&](const std::vector<Ray>& rays, size_t b, size_t e) {
+                                size_t hits = 0;
+                                HitRecord hit;
+                                for (size_t i = b; i < e; ++i) {
+                                  if (rays[i].tMax < rays[i].tMin) continue;
+                                  hits += prism.intersect(rays[i], hit);
+                                }
+                                return hits;
+                              },
+                              {},
+                              {}});
+      }
+    }
+    RTCScene es = embree.scene;
+    contenders.push_back({"Embree single",
+                          [es, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
+                            RTCIntersectContext context;
+                            rtcInitIntersectContext(&context);
+                            size_t hits = 0;
+                            for (size_t i = b; i < e; ++i) {
+                              if (rays[i].tMax < rays[i].tMin) continue;
+                              RTCRayHit rh = toEmbree(rays[i]);
+                              if (shadow) {
+                                rtcOccluded1(es, &context, &rh.ray);
+                                hits += rh.ray.tfar < 0.0f;
+                              } else {
+                                rtcIntersect1(es, &context, &rh);
+                                hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                              }
+                            }
+                            return hits;
+                          },
+                          {},
+                          {}});
+    contenders.push_back({"Embree packet16",
+                          [es, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
+                            RTCIntersectContext context;
+                            rtcInitIntersectContext(&context);
+                            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+                            size_t hits = 0;
+                            alignas(64) int valid[16];
+                            for (size_t i = b; i < e; i += 16) {
+                              const int n = static_cast<int>(std::min<size_t>(16, e - i));
+                              if (shadow) {
+                                alignas(64) RTCRay16 packet;
+                                fillPacket(packet, valid, &rays[i], n);
+                                rtcOccluded16(valid, es, &context, &packet);
+                                for (int k = 0; k < n; ++k) hits += valid[k] && packet.tfar[k] < 0;
+                              } else {
+                                alignas(64) RTCRayHit16 packet;
+                                fillPacket(packet, valid, &rays[i], n);
+                                rtcIntersect16(valid, es, &context, &packet);
+                                for (int k = 0; k < n; ++k) {
+                                  hits +=
+                                      valid[k] && packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+                                }
+                              }
+                            }
+                            return hits;
+                          },
+                          {},
+                          {}});
+
+    size_t liveRays = 0;
+    for (const Ray& r : set.rays) liveRays += r.tMax >= r.tMin;
+    for (int threads : options.threads) {
+      for (Contender& c : contenders) {
+        c.mraysPerCpuSecond.clear();
+        c.mraysPerWallSecond.clear();
+      }
+      std::vector<size_t> firstHits(contenders.size(), 0);
+      for (int round = 0; round < options.runs; ++round) {
+        for (size_t k = 0; k < contenders.size(); ++k) {
+          Contender& c = contenders[(k + round) % contenders.size()];
+          size_t hits = 0;
+          const auto [cpu, wall] = runOnce(c.trace, set.rays, threads, hits);
+          c.mraysPerCpuSecond.push_back(liveRays / cpu / 1e6);
+          c.mraysPerWallSecond.push_back(liveRays / wall / 1e6);
+          firstHits[(k + round) % contenders.size()] = hits;
+        }
+      }
+      const double embreeSingle = median(contenders[contenders.size() - 2].mraysPerCpuSecond);
+      const double embreePacket = median(contenders.back().mraysPerCpuSecond);
+      std::printf(
+          "\n| %s, %d thread%s | Mrays per CPU-s per core (median, min..max) | wall "
+          "Mrays/s | vs Embree single | vs Embree packet16 | hits |\n|---|---|---:|---:|"
+          "---:|---:|\n",
+          set.kind.c_str(), threads, threads > 1 ? "s" : "");
+      for (size_t k = 0; k < contenders.size(); ++k) {
+        const Contender& c = contenders[k];
+        const double m = median(c.mraysPerCpuSecond);
+        std::printf("| %s | %.2f (%.2f..%.2f) | %.2f | %.2f | %.2f | %zu |\n", c.name.c_str(), m,
+                    *std::min_element(c.mraysPerCpuSecond.begin(), c.mraysPerCpuSecond.end()),
+                    *std::max_element(c.mraysPerCpuSecond.begin(), c.mraysPerCpuSecond.end()),
+                    median(c.mraysPerWallSecond), m / embreeSingle, m / embreePacket, firstHits[k]);
+      }
+      std::fflush(stdout);
+    }
+  }
+}
+
+int run(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--runs" && i + 1 < argc) {
+      options.runs = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--quick") {
+      options.quick = true;
+    } else if (arg == "--no-variants") {
+      options.withVariants = false;
+    } else if (arg == "--threads" && i + 1 < argc) {
+      options.threads.clear();
+      std::string list = argv[++i];
+      for (size_t at = 0; at <= list.size();) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        options.threads.push_back(std::max(1, std::atoi(list.substr(at, comma - at).c_str())));
+        at = comma + 1;
+      }
+    } else if (arg == "--help" || arg == "-h") {
+      std::printf("usage: %s [--runs N] [--quick] [--no-variants] [--threads 1,2] [mesh.obj ...]\n",
+                  argv[0]);
+      return 0;
+    } else {
+      options.objs.push_back(arg);
+    }
+  }
+  std::printf("# Prism (%s kernels) against Embree %d.%d.%d; %d rounds, medians\n",
+              simd::compiledInstructionSet(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR,
+              RTC_VERSION_PATCH, options.runs);
+  std::vector<MeshDesc> meshes;
+  meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
+  meshes.push_back(displacedGrid(options.quick ? 100 : 708));
+  for (const std::string& path : options.objs) meshes.push_back(loadObjMesh(path, FileLoc{}));
+  for (const MeshDesc& mesh : meshes) benchmarkMesh(mesh, options);
+  return 0;
+}
+
+}  // namespace
+}  // namespace prism
+
+int main(int argc, char** argv) {
+  return prism::run(argc, argv);
+}

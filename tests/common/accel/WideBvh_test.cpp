@@ -1,0 +1,139 @@
+#include "accel/WideBvh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "math/Random.h"
+
+namespace prism {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+Vec3 randomVec(Pcg32& rng, float lo, float hi) {
+  return {lo + (hi - lo) * rng.nextFloat(), lo + (hi - lo) * rng.nextFloat(),
+          lo + (hi - lo) * rng.nextFloat()};
+}
+
+std::vector<Aabb> randomBoxes(int count, uint64_t seed) {
+  Pcg32 rng(seed, 7);
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < count; ++i) {
+    Aabb b;
+    const Vec3 c = randomVec(rng, -10, 10);
+    b.extend(c - randomVec(rng, 0, 1));
+    b.extend(c + randomVec(rng, 0, 1));
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
+// Leaves reached from the wide root, as (first entry, count) pairs.
+void collectLeaves(const WideBvh& wide, uint32_t node, std::vector<std::pair<uint32_t, int>>& out) {
+  const WideBvhNode& n = wide.nodes()[node];
+  for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+    if (n.bounds[0][i] > n.bounds[1][i]) continue;  // unused slot
+    if (n.count[i] > 0) {
+      out.push_back({n.child[i], n.count[i]});
+    } else {
+      collectLeaves(wide, n.child[i], out);
+    }
+  }
+}
+
+TEST(WideBvh, KeepsEveryLeafOfTheBinaryBvh) {
+  Bvh binary;
+  binary.build(randomBoxes(3000, 1));
+  WideBvh wide;
+  wide.build(binary);
+  std::vector<std::pair<uint32_t, int>> wideLeaves, binaryLeaves;
+  collectLeaves(wide, 0, wideLeaves);
+  for (const BvhNode& n : binary.nodes()) {
+    if (n.isLeaf()) binaryLeaves.push_back({n.offset, n.count});
+  }
+  std::sort(wideLeaves.begin(), wideLeaves.end());
+  std::sort(binaryLeaves.begin(), binaryLeaves.end());
+  EXPECT_EQ(wideLeaves, binaryLeaves);
+  EXPECT_LT(wide.nodes().size(), binary.nodes().size() / 4);
+  EXPECT_EQ(wide.stats().memoryBytes, wide.nodes().size() * sizeof(WideBvhNode));
+}
+
+TEST(WideBvh, EmptyBvhIsNeverHit) {
+  Bvh binary;
+  binary.build({});
+  WideBvh wide;
+  wide.build(binary);
+  EXPECT_TRUE(wide.nodes().empty());
+  float tMax = kInf;
+  const Ray ray{Vec3(0), Vec3(0, 0, 1)};
+  EXPECT_FALSE(wide.traverse<false>(ray, tMax, [](uint32_t, uint32_t, float&) { return true; }));
+}
+
+TEST(WideBvh, SinglePrimitiveIsOneLeafUnderTheRoot) {
+  Aabb box;
+  box.extend(Vec3(-1));
+  box.extend(Vec3(1));
+  Bvh binary;
+  binary.build({box});
+  WideBvh wide;
+  wide.build(binary);
+  ASSERT_EQ(wide.nodes().size(), 1u);
+  int visits = 0;
+  const auto visitor = [&](uint32_t first, uint32_t count, float&) {
+    EXPECT_EQ(first, 0u);
+    EXPECT_EQ(count, 1u);
+    ++visits;
+    return true;
+  };
+  float tMax = kInf;
+  EXPECT_TRUE(wide.traverse<false>({Vec3(0, 0, -5), Vec3(0, 0, 1)}, tMax, visitor));
+  EXPECT_FALSE(wide.traverse<true>({Vec3(3, 0, -5), Vec3(0, 0, 1)}, tMax, visitor));
+  EXPECT_EQ(visits, 1);
+}
+
+// The SIMD slab test and its scalar twin agree lane by lane, axis-parallel rays (infinite
+// reciprocals, NaN where a ray lies in a slab plane) included.
+TEST(WideBvh, SimdSlabTestMatchesTheScalarOne) {
+  Pcg32 rng(11, 3);
+  const std::vector<Aabb> boxes = randomBoxes(8, 5);
+  Bvh binary;
+  binary.build(boxes);
+  WideBvh wide;
+  wide.build(binary);
+  WideBvhNode node = wide.nodes()[0];
+  node.bounds[0][7] = kInf;  // an unused slot
+  node.bounds[1][7] = -kInf;
+  int entered = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // Aimed near one of the boxes, so that a good share of the tests enter.
+    const Aabb& target = boxes[i % boxes.size()];
+    const Vec3 origin = randomVec(rng, -12, 12);
+    Ray ray{origin, glm::normalize(target.center() + randomVec(rng, -1, 1) - origin)};
+    if (i % 4 == 0) {
+      ray.direction[i / 4 % 3] = (i % 8 == 0) ? 0.0f : -0.0f;
+    }
+    if (i % 16 == 0) ray.origin.x = node.bounds[0][i % 7];  // in a slab plane
+    const float tMax = (i % 3 == 0) ? 5.0f : kInf;
+    float entryLanes[WideBvhNode::kWidth];
+    const uint32_t mask = intersectChildren(node, WideRay(ray), 0.0f, tMax, entryLanes);
+    float entry[WideBvhNode::kWidth];
+    const uint32_t scalarMask = intersectChildrenScalar(node, ray, 0.0f, tMax, entry);
+    ASSERT_EQ(mask, scalarMask) << i;
+    for (int lane = 0; lane < WideBvhNode::kWidth; ++lane) {
+      if (mask & (1u << lane)) {
+        ASSERT_EQ(entryLanes[lane], entry[lane]) << i;
+      }
+    }
+    EXPECT_EQ(mask & 0x80u, 0u);
+    entered += __builtin_popcount(mask);
+  }
+  EXPECT_GT(entered, 1000);
+}
+
+TEST(WideBvh, ReportsTheInstructionSetItWasBuiltFor) {
+  EXPECT_NE(std::string(simd::compiledInstructionSet()), "");
+}
+
+}  // namespace
+}  // namespace prism
