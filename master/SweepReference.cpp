@@ -120,9 +120,11 @@ void renderProgressive(const SceneDescription& d, const ReferenceRequest& r,
     ref.convergence.push_back(c);
   }
   char text[200];
-  std::snprintf(text, sizeof text, "progressive photon map, %d passes x %llu photons (%.0f s)",
+  std::snprintf(text, sizeof text,
+                "progressive photon map, %d passes x %llu photons, first radius from k = %d "
+                "(%.0f s)",
                 frame.caustics.passes,
-                static_cast<unsigned long long>(frame.caustics.photonsPerPass),
+                static_cast<unsigned long long>(frame.caustics.photonsPerPass), r.k,
                 secondsSince(start));
   ref.description = text;
 }
