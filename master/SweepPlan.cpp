@@ -1,5 +1,6 @@
 #include "master/SweepPlan.h"
 
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -19,63 +20,32 @@ void requireRange(SweepFamily family, uint64_t value, uint64_t low, uint64_t hig
   }
 }
 
+struct FamilyText {
+  const char* name;    // command line and CSV
+  const char* method;  // the method its renders use
+};
+
+// Indexed by SweepFamily.
+constexpr FamilyText kFamilyText[] = {
+    {"photons", "photon map"},     {"k", "photon map"},      {"passes", "progressive photon map"},
+    {"resolution", "caustic map"}, {"steps", "caustic map"}, {"blur", "caustic map"},
+    {"spp", "scene's method"},
+};
+
+static_assert(std::size(kFamilyText) == static_cast<size_t>(SweepFamily::Samples) + 1);
+
+const FamilyText& textOf(SweepFamily f) {
+  return kFamilyText[static_cast<size_t>(f)];
+}
+
 }  // namespace
 
 const char* familyName(SweepFamily f) {
-  switch (f) {
-    case SweepFamily::Photons:
-      return "photons";
-    case SweepFamily::Gather:
-      return "k";
-    case SweepFamily::Passes:
-      return "passes";
-    case SweepFamily::Resolution:
-      return "resolution";
-    case SweepFamily::Steps:
-      return "steps";
-    case SweepFamily::Blur:
-      return "blur";
-    case SweepFamily::Samples:
-      return "spp";
-  }
-  return "?";
+  return textOf(f).name;
 }
 
 const char* familyMethod(SweepFamily f) {
-  switch (f) {
-    case SweepFamily::Photons:
-    case SweepFamily::Gather:
-      return "photon map";
-    case SweepFamily::Passes:
-      return "progressive photon map";
-    case SweepFamily::Resolution:
-    case SweepFamily::Steps:
-    case SweepFamily::Blur:
-      return "caustic map";
-    case SweepFamily::Samples:
-      return "scene's method";
-  }
-  return "?";
-}
-
-const char* familyUnit(SweepFamily f) {
-  switch (f) {
-    case SweepFamily::Photons:
-      return "photons";
-    case SweepFamily::Gather:
-      return "k";
-    case SweepFamily::Passes:
-      return "passes";
-    case SweepFamily::Resolution:
-      return "texels";
-    case SweepFamily::Steps:
-      return "steps";
-    case SweepFamily::Blur:
-      return "texel blur";
-    case SweepFamily::Samples:
-      return "spp";
-  }
-  return "?";
+  return textOf(f).method;
 }
 
 std::vector<SweepFamily> defaultSweepFamilies() {

@@ -22,8 +22,6 @@ enum class SweepFamily { Photons, Gather, Passes, Resolution, Steps, Blur, Sampl
 const char* familyName(SweepFamily family);
 // The method a family's renders use, for the CSV and the chart ("photon map", ...).
 const char* familyMethod(SweepFamily family);
-// What the family's value counts ("photons", "k", "passes", ...), for captions.
-const char* familyUnit(SweepFamily family);
 
 // The values each family sweeps; empty: the family's defaults.
 struct SweepValues {
