@@ -23,7 +23,6 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
-#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -32,6 +31,7 @@
 #include "math/Random.h"
 #include "parse/ObjLoader.h"
 #include "scene/Scene.h"
+#include "tests/common/geometry/TestMeshes.h"
 
 namespace prism {
 namespace {
@@ -57,34 +57,11 @@ double median(std::vector<double> v) {
 // ---- meshes ---------------------------------------------------------------------------------
 
 MeshDesc subdividedSphere(int levels) {
-  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<Vec3> v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
-                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
-  for (Vec3& p : v) p = glm::normalize(p);
-  std::vector<uint32_t> f = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-                             4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
-                             6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
-    auto midpoint = [&](uint32_t a, uint32_t b) {
-      const auto key = std::minmax(a, b);
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back(glm::normalize(v[a] + v[b]));
-      return mid[key] = static_cast<uint32_t>(v.size() - 1);
-    };
-    std::vector<uint32_t> next;
-    for (size_t i = 0; i < f.size(); i += 3) {
-      const uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
-      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-      next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
-    }
-    f.swap(next);
-  }
+  test::TestMesh sphere = test::icosphere(levels, Vec3(0.0f), 1.0f);
   MeshDesc mesh;
   mesh.source = "sphere-l" + std::to_string(levels);
-  mesh.positions = std::move(v);
-  mesh.indices = std::move(f);
+  mesh.positions = std::move(sphere.positions);
+  mesh.indices = std::move(sphere.indices);
   return mesh;
 }
 
