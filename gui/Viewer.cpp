@@ -128,7 +128,7 @@ void printSummary(const LiveStats& s, std::ostream& out) {
 }  // namespace
 
 int runViewer(const Scene& scene, const SceneDescription& description, const ViewOptions& options,
-              MpiSession* session, std::ostream& out, std::ostream& err) {
+              Transport* session, std::ostream& out, std::ostream& err) {
   if (!haveDisplay()) {
     err << "prism: error: no display: set DISPLAY (or run under xvfb-run), or set "
            "QT_QPA_PLATFORM=offscreen to render without a window\n";
@@ -140,11 +140,7 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   QApplication app(argc, argv);
 
   LiveOptions live;
-  live.threads = options.render.threads;
-  live.tileSize = options.render.tileSize;
-  live.schedule = options.render.schedule;
-  live.leaseSeconds = options.render.leaseSeconds;
-  live.prefetch = options.render.prefetch;
+  live.distribution = options.render.distribution;
   live.previewScale = options.previewScale;
   live.maxPasses = options.maxPasses;
   LiveRenderer renderer(scene, live, session);

@@ -9,6 +9,6 @@
 namespace prism {
 
 int runViewer(const Scene& scene, const SceneDescription& description, const ViewOptions& options,
-              MpiSession* session, std::ostream& out, std::ostream& err);
+              Transport* session, std::ostream& out, std::ostream& err);
 
 }  // namespace prism

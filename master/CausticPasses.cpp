@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "caustics/PhotonGather.h"
+#include "cluster/TileWorkerPool.h"
 #include "master/PhotonPass.h"
 #include "math/Random.h"
-#include "slave/TileWorkerPool.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -24,12 +24,12 @@ void addFrame(FrameResult& total, const FrameResult& f, bool first) {
   total.busyThreadSeconds += f.busyThreadSeconds;
   total.reissuedTiles += f.reissuedTiles;
   for (size_t r = 0; r < total.workers.size() && r < f.workers.size(); ++r) {
-    WorkerStats& w = total.workers[r];
-    const WorkerStats& o = f.workers[r];
+    RankStats& w = total.workers[r];
+    const RankStats& o = f.workers[r];
     w.tiles += o.tiles;
     w.rays += o.rays;
     w.busySeconds += o.busySeconds;
-    w.duplicates += o.duplicates;
+    w.staleTiles += o.staleTiles;
     w.lostTiles += o.lostTiles;
     w.retired = w.retired || o.retired;
     if (o.threads > 0) w.threads = o.threads;
@@ -100,9 +100,8 @@ float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
   return static_cast<float>(sum / static_cast<double>(probes));
 }
 
-CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress,
-                                const ProgressiveSnapshot& snapshot) {
+CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveLink& link,
+                                const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
   const CausticSettings& settings = scene.causticSettings();
   CausticFrame out;
   CausticRunStats& stats = out.caustics;
@@ -110,7 +109,6 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   stats.progressive = settings.progressive;
   stats.k = settings.gather;
   stats.settings = settings;
-  options.roster = &roster;
   uint32_t frameId = options.frameId;
 
   const auto frame = [&](std::shared_ptr<const RenderPass> pass, const std::string& label) {
@@ -119,7 +117,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     options.progress = [&](size_t done, size_t total) {
       if (progress) progress(label, done, total);
     };
-    return renderFrame(scene, options, cluster);
+    return renderFrame(scene, options, link);
   };
 
   if (settings.method == CausticMethod::CausticMap) {
@@ -127,7 +125,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     // on the scene alone, so every rank's copy is bit-identical and nothing is sent.
     if (progress) progress("caustic map", 0, 1);
     const auto start = SteadyClock::now();
-    auto maps = std::make_shared<const CausticMapEstimator>(scene, options.threads);
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, options.distribution.threads);
     stats.mapBuildSeconds = secondsSince(start);
     stats.map = maps->stats();
     stats.noCasters = maps->empty();
@@ -154,13 +152,14 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   }
 
   // Resolved here: the photon shares are sized by thread counts.
-  const int threads = options.threads > 0 ? options.threads : availableCores();
+  const int threads =
+      options.distribution.threads > 0 ? options.distribution.threads : availableCores();
   const float maxRadius =
       settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
   const auto photonPass = [&](uint32_t pass, const std::string& label) {
     if (progress) progress(label + " photons", 0, 1);
     PhotonPassStats p;
-    auto map = tracePhotonPass(*tracer, pass, threads, cluster, roster, options.leaseSeconds, p);
+    auto map = tracePhotonPass(*tracer, pass, threads, link, p);
     addPhotonStats(stats, p);
     ++stats.passes;
     return map;
@@ -170,7 +169,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     const auto map = photonPass(0, "trace");
     const PhotonGatherSettings gather{false, settings.gather, maxRadius, settings.filter};
     PhotonPassStats sent;
-    sendPhotonMap(*map, 0, gather, cluster, roster, sent);
+    sendPhotonMap(*map, 0, gather, link, sent);
     addPhotonStats(stats, sent);
     stats.firstRadius = stats.lastRadius = maxRadius;
     auto pass = std::make_shared<const RenderPass>(
@@ -216,7 +215,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
     stats.lastRadius = radius;
     const PhotonGatherSettings gather{true, settings.gather, radius, settings.filter};
     PhotonPassStats sent;
-    sendPhotonMap(*map, static_cast<uint32_t>(i), gather, cluster, roster, sent);
+    sendPhotonMap(*map, static_cast<uint32_t>(i), gather, link, sent);
     addPhotonStats(stats, sent);
     auto pass = std::make_shared<const RenderPass>(RenderPass{
         static_cast<uint32_t>(i), false, std::make_shared<const PhotonGather>(map, gather)});
@@ -235,6 +234,12 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSes
   }
   out.image = progressiveImage(direct.image, causticSum, done);
   return out;
+}
+
+CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
+                                const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
+  SlaveLink alone(nullptr, options.distribution);
+  return renderWithCaustics(scene, options, alone, progress, snapshot);
 }
 
 }  // namespace prism

@@ -63,8 +63,13 @@ using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 // progressive estimate pass by pass with it.
 using ProgressiveSnapshot = std::function<void(int passes, const ImageRgb& image)>;
 
-CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, MpiSession* cluster,
-                                ClusterRoster& roster, const PassProgress& progress = {},
+// The link carries what is known of the slaves through the run's photon passes and frames.
+CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveLink& link,
+                                const PassProgress& progress = {},
+                                const ProgressiveSnapshot& snapshot = {});
+// On this process alone.
+CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
+                                const PassProgress& progress = {},
                                 const ProgressiveSnapshot& snapshot = {});
 
 // A pass of direct light and the caustics of `maps` (direct light alone when they are empty),

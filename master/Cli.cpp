@@ -4,11 +4,11 @@
 #include <cctype>
 #include <iostream>
 #include <map>
+#include <memory>
 
 #include "master/RenderCommand.h"
 #include "master/SpeedupCommand.h"
 #include "master/SweepCommand.h"
-#include "transport/MpiSession.h"
 #include "util/MemorySize.h"
 
 namespace prism {
@@ -46,7 +46,9 @@ void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
   render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
-  render->add_option("-t,--threads", o.threads, "Worker threads (default 0: all available cores)")
+  render
+      ->add_option("-t,--threads", o.distribution.threads,
+                   "Worker threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
   render->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
       ->check(CLI::Range(1, 1 << 20));
@@ -67,10 +69,12 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
                                               {"plane-inside", TriangleTest::PlaneThenInside}},
           CLI::ignore_case))
       ->option_text("moller-trumbore|plane-inside");
-  render->add_option("--tile-size", o.tileSize, "Tile edge in pixels (default 0: automatic)")
+  render
+      ->add_option("--tile-size", o.distribution.tileSize,
+                   "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
   render
-      ->add_option("--schedule", o.schedule,
+      ->add_option("--schedule", o.distribution.schedule,
                    "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)")
       ->transform(
           CLI::CheckedTransformer(std::map<std::string, Schedule>{{"dynamic", Schedule::Dynamic},
@@ -78,11 +82,16 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
                                   CLI::ignore_case))
       ->option_text("dynamic|static");
   render
-      ->add_option(
-          "--lease-timeout", o.leaseSeconds,
-          "Seconds a slave may hold tiles without answering before they are re-issued (default 30)")
+      ->add_option("--lease-timeout", o.distribution.leaseSeconds,
+                   "Seconds a slave may hold tiles without delivering one before they are "
+                   "re-issued and it is retired (default 30)")
       ->check(CLI::Range(0.1, 86400.0));
-  render->add_option("--prefetch", o.prefetch, "Tiles in flight per slave (default 2)")
+  render
+      ->add_option("--heartbeat-timeout", o.distribution.heartbeatTimeoutSeconds,
+                   "Seconds of silence after which a slave is taken for dead and its tiles "
+                   "re-issued; slaves heartbeat twice a second (default 2)")
+      ->check(CLI::Range(0.6, 86400.0));
+  render->add_option("--prefetch", o.distribution.prefetch, "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
   addMemoryLimitOption(render, o);
   render->add_flag(
@@ -91,8 +100,8 @@ void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v
   // Testing only, so not in --help: makes one slave misbehave.
   render
       ->add_option_function<std::string>(
-          "--inject-fault", [&o](const std::string& text) { o.fault = parseFaultInjection(text); },
-          "")
+          "--inject-fault",
+          [&o](const std::string& text) { o.distribution.fault = parseFaultInjection(text); }, "")
       ->group("");
 }
 
@@ -253,8 +262,9 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
 void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v) {
   CLI::App* speedup = app.add_subcommand(
       "speedup",
-      "Measure strong scaling inside one MPI job: the same frame rendered by 1..N-1 slaves\n"
-      "(rank 0 coordinates, the other slaves idle) and by 1 process on 1 thread (T1, no MPI).\n"
+      "Measure strong scaling inside one MPI job (table, CSVs, charts).\n"
+      "The same frame is rendered by 1..N-1 slaves (rank 0 coordinates, the other slaves idle)\n"
+      "and by 1 process on 1 thread (T1, no MPI).\n"
       "Every point is repeated; set-up (parse, broadcast, scene build, photon pass) is timed\n"
       "apart. Prints speedup, efficiency, Karp-Flatt serial fraction, per-slave busy time and an\n"
       "Amdahl fit; writes PREFIX.csv, PREFIX-projection.csv, PREFIX-speedup.png and\n"
@@ -289,7 +299,9 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
                    "Runs of every point; medians are reported "
                    "with min and max (default 5)")
       ->check(CLI::Range(1, 1000));
-  speedup->add_option("--prefetch", o.render.prefetch, "Tiles in flight per slave (default 2)")
+  speedup
+      ->add_option("--prefetch", o.render.distribution.prefetch,
+                   "Tiles in flight per slave (default 2)")
       ->check(CLI::Range(1, 64));
   speedup
       ->add_option("--project-workers", o.projectWorkers,
@@ -309,8 +321,9 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
 void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
   CLI::App* sweep = app.add_subcommand(
       "sweep",
-      "Chart speed against accuracy: render the scene with each caustic method over a range of\n"
-      "budgets, time every point (median of --repeats runs, taken in rounds) and score it\n"
+      "Chart speed against accuracy of the caustic methods (CSV, chart).\n"
+      "Renders the scene with each caustic method over a range of budgets, times every point\n"
+      "(median of --repeats runs, taken in rounds) and scores it\n"
       "against a reference: RMSE, relative RMSE, MRSE, max error and caustic flux ratio, over\n"
       "the whole frame and the caustic region. Families (--families):\n"
       "  photons     photon map: photons per pass     k           photon map: photons gathered\n"
@@ -387,7 +400,7 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
                    "Height of the chart's thumbnails in pixels (default 96)")
       ->check(CLI::Range(16, 1024));
   sweep
-      ->add_option("-t,--threads", o.render.threads,
+      ->add_option("-t,--threads", o.render.distribution.threads,
                    "Render threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
   sweep->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
@@ -426,60 +439,88 @@ void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& override
   if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
 }
 
+// `prism` alone: the commands, one line each (the first line of each one's help), and where
+// to read more.
+void printCommandList(const CLI::App& app, std::ostream& out) {
+  out << app.get_description() << "\n\nUsage: prism <command> [options]\n\nCommands:\n";
+  for (const CLI::App* command : app.get_subcommands({})) {
+    const std::string& help = command->get_description();
+    out << "  " << command->get_name() << std::string(10 - command->get_name().size(), ' ')
+        << help.substr(0, help.find('\n')) << "\n";
+  }
+  out << "\nRun 'prism <command> --help' for a command's options, 'prism --version' for the "
+         "version.\nDocumentation: README.md and docs/ (scene format: docs/scene-format.md).\n";
+}
+
 }  // namespace
 
-int runCli(int argc, char** argv, MpiSession* session, const ViewerRunner& viewer,
-           const ChartWriter& chartWriter) {
-  const bool quietRank = session && session->rank() != 0;
+ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRunner& viewer,
+                               const ChartWriter& chartWriter) {
   CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
   app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
   app.require_subcommand(1);
   app.footer("Run 'prism <command> --help' for a command's options.");
 
-  RenderOptions renderOptions;
-  RenderOverrideValues overrides;
-  addRenderCommand(app, renderOptions, overrides);
-  ViewOptions viewOptions;
-  RenderOverrideValues viewOverrides;
-  addViewCommand(app, viewOptions, viewOverrides);
-  SpeedupOptions speedupOptions;
-  RenderOverrideValues speedupOverrides;
-  addSpeedupCommand(app, speedupOptions, speedupOverrides);
-  SweepOptions sweepOptions;
-  RenderOverrideValues sweepOverrides;
-  addSweepCommand(app, sweepOptions, sweepOverrides);
+  // Kept alive by the command's closure: CLI11 writes into them while parsing.
+  auto renderOptions = std::make_shared<RenderOptions>();
+  auto viewOptions = std::make_shared<ViewOptions>();
+  auto speedupOptions = std::make_shared<SpeedupOptions>();
+  auto sweepOptions = std::make_shared<SweepOptions>();
+  RenderOverrideValues overrides, viewOverrides, speedupOverrides, sweepOverrides;
+  addRenderCommand(app, *renderOptions, overrides);
+  addViewCommand(app, *viewOptions, viewOverrides);
+  addSpeedupCommand(app, *speedupOptions, speedupOverrides);
+  addSweepCommand(app, *sweepOptions, sweepOverrides);
 
+  ParsedCommand parsed;
+  if (argc <= 1) {
+    if (!quiet) printCommandList(app, std::cout);
+    parsed.exitNow = true;
+    return parsed;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (quietRank) return e.get_exit_code();
-    return app.exit(e);
+    parsed.exitNow = true;
+    parsed.exitCode = quiet ? e.get_exit_code() : app.exit(e);
+    return parsed;
   } catch (const std::invalid_argument& e) {
-    if (!quietRank) std::cerr << "prism: error: " << e.what() << "\n";
-    return 1;
+    if (!quiet) std::cerr << "prism: error: " << e.what() << "\n";
+    parsed.exitNow = true;
+    parsed.exitCode = 1;
+    return parsed;
   }
 
-  CLI::App* render = app.get_subcommand("render");
-  if (render->parsed()) {
-    applyGivenOverrides(render, overrides, renderOptions);
-    return runRender(renderOptions, std::cout, std::cerr, session);
+  if (CLI::App* render = app.get_subcommand("render"); render->parsed()) {
+    applyGivenOverrides(render, overrides, *renderOptions);
+    parsed.distribution = renderOptions->distribution;
+    parsed.runMaster = [renderOptions](Transport* session) {
+      return runRender(*renderOptions, std::cout, std::cerr, session);
+    };
+  } else if (CLI::App* view = app.get_subcommand("view"); view->parsed()) {
+    applyGivenOverrides(view, viewOverrides, viewOptions->render);
+    parsed.distribution = viewOptions->render.distribution;
+    parsed.runMaster = [viewOptions, viewer](Transport* session) {
+      return runView(*viewOptions, std::cout, std::cerr, session, viewer);
+    };
+  } else if (CLI::App* speedup = app.get_subcommand("speedup"); speedup->parsed()) {
+    applyGivenOverrides(speedup, speedupOverrides, speedupOptions->render);
+    parsed.distribution = speedupOptions->render.distribution;
+    parsed.distribution.threads = speedupOptions->threadsPerRank;  // what p counts
+    parsed.runMaster = [speedupOptions, chartWriter](Transport* session) {
+      return runSpeedup(*speedupOptions, std::cout, std::cerr, session, chartWriter);
+    };
+  } else if (CLI::App* sweep = app.get_subcommand("sweep"); sweep->parsed()) {
+    applyGivenOverrides(sweep, sweepOverrides, sweepOptions->render);
+    parsed.distribution = sweepOptions->render.distribution;
+    parsed.runMaster = [sweepOptions, chartWriter](Transport* session) {
+      return runSweep(*sweepOptions, std::cout, std::cerr, session, chartWriter);
+    };
+  } else {
+    parsed.exitNow = true;
+    parsed.exitCode = 1;
   }
-  CLI::App* view = app.get_subcommand("view");
-  if (view->parsed()) {
-    applyGivenOverrides(view, viewOverrides, viewOptions.render);
-    return runView(viewOptions, std::cout, std::cerr, session, viewer);
-  }
-  CLI::App* speedup = app.get_subcommand("speedup");
-  if (speedup->parsed()) {
-    applyGivenOverrides(speedup, speedupOverrides, speedupOptions.render);
-    return runSpeedup(speedupOptions, std::cout, std::cerr, session, chartWriter);
-  }
-  CLI::App* sweep = app.get_subcommand("sweep");
-  if (sweep->parsed()) {
-    applyGivenOverrides(sweep, sweepOverrides, sweepOptions.render);
-    return runSweep(sweepOptions, std::cout, std::cerr, session, chartWriter);
-  }
-  return 1;
+  return parsed;
 }
 
 }  // namespace prism

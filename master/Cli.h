@@ -1,21 +1,30 @@
-// The `prism` command line: subcommands, their options and their help.
+// The `prism` command line: subcommands, their options and their help. Every rank of an MPI run
+// parses the same arguments; main (the composition root) then decides the rank's role.
 #pragma once
 
-#include <string>
-#include <vector>
+#include <functional>
 
+#include "cluster/DistributionOptions.h"
 #include "master/SpeedupChart.h"
 #include "master/ViewCommand.h"
 
 namespace prism {
 
-class MpiSession;
+class Transport;
 
-// Parses argv and runs the chosen subcommand; returns the process exit code. In an MPI run
-// every rank parses the same arguments; only rank 0 prints help and usage errors. viewer runs
-// `prism view` on rank 0 and chartWriter draws the charts of `prism speedup` and `sweep`; both are
+struct ParsedCommand {
+  bool exitNow = false;  // help, version, the command list or a usage error: nothing to run
+  int exitCode = 0;
+  // What a slave needs of the command line: its threads and, in tests, its fault.
+  DistributionOptions distribution;
+  // Runs the command on rank 0 or the only process (session null); returns the exit code.
+  std::function<int(Transport* session)> runMaster;
+};
+
+// Parses argv. quiet: print nothing (a slave rank; rank 0 prints help and usage errors). viewer
+// runs `prism view` and chartWriter draws the charts of `prism speedup` and `sweep`; both are
 // empty in a build without Qt.
-int runCli(int argc, char** argv, MpiSession* session = nullptr, const ViewerRunner& viewer = {},
-           const ChartWriter& chartWriter = {});
+ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRunner& viewer = {},
+                               const ChartWriter& chartWriter = {});
 
 }  // namespace prism

@@ -6,13 +6,11 @@
 
 #include <cstddef>
 
-#include "master/FrameRenderer.h"
 #include "master/ScalingMetrics.h"
+#include "master/SlaveLink.h"
 #include "master/TileScheduleSimulator.h"
 
 namespace prism {
-
-class MpiSession;
 
 struct LinkMeasurement {
   LinkModel model;        // latency one way, bandwidth
@@ -27,7 +25,6 @@ struct LinkMeasurement {
 // small round trip. Bandwidth: the extra bytes of the large message over half the extra median
 // round trip (infinite when the difference drowns in noise). Ready messages that arrive
 // meanwhile go into the roster; a slave's Error is thrown as std::runtime_error.
-LinkMeasurement measureLink(MpiSession& session, ClusterRoster& roster, size_t largePayloadBytes,
-                            int roundTrips);
+LinkMeasurement measureLink(SlaveLink& link, size_t largePayloadBytes, int roundTrips);
 
 }  // namespace prism

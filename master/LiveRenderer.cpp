@@ -6,22 +6,10 @@
 #include "caustics/PhotonGather.h"
 #include "master/CausticPasses.h"
 #include "master/PhotonPass.h"
-#include "master/TileJobWire.h"
 #include "master/TilePlan.h"
 #include "math/Random.h"
-#include "transport/MpiSession.h"
-#include "wire/Messages.h"
 
 namespace prism {
-namespace {
-
-constexpr int kLocalWorker = 0;  // rank 0's own render threads
-
-bool sameRect(const TileRect& a, const TileRect& b) {
-  return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
-}
-
-}  // namespace
 
 struct LiveRenderer::Event {
   enum class Kind { Assigned, Finished, PassFinished } kind;
@@ -42,20 +30,12 @@ struct LiveRenderer::PassPlan {
 
 struct LiveRenderer::Pass {
   PassInfo info;
-  TileScheduler scheduler;
   size_t done = 0;
   bool finished = false;
   double started = 0.0;
   double busySeconds = 0.0;
-  std::vector<bool> viewSent;  // per rank: the View message went out
 
-  Pass(PassInfo i, int ranks, const LiveOptions& o, double now)
-      : info(std::move(i)),
-        scheduler(info.tiles.size(), ranks, o.schedule, o.leaseSeconds),
-        started(now),
-        viewSent(static_cast<size_t>(ranks), false) {
-    scheduler.exemptFromLeases(kLocalWorker);
-  }
+  Pass(PassInfo i, double now) : info(std::move(i)), started(now) {}
 };
 
 uint64_t LiveRenderer::passSeed(uint64_t sceneSeed, int pass) {
@@ -63,24 +43,22 @@ uint64_t LiveRenderer::passSeed(uint64_t sceneSeed, int pass) {
   return mix64(sceneSeed ^ mix64(static_cast<uint64_t>(pass) * 0x9e3779b97f4a7c15ULL));
 }
 
-LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, MpiSession* cluster)
+LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster)
     : scene_(scene),
       options_(options),
-      cluster_(cluster),
-      ranks_(cluster ? cluster->size() : 1),
-      pool_(scene, options.threads),
+      link_(cluster, options.distribution),
+      dispatcher_(scene, link_, options.distribution),
       start_(SteadyClock::now()),
       lastStats_(start_),
-      roster_(ranks_),
       maxRadius_(scene.causticSettings().maxRadius > 0.0f ? scene.causticSettings().maxRadius
-                                                          : automaticMaxRadius(scene)) {
-  stats_.resize(static_cast<size_t>(ranks_));
-  for (int r = 0; r < ranks_; ++r) stats_[r].rank = r;
-  stats_[kLocalWorker].threads = pool_.threadCount();
-}
+                                                          : automaticMaxRadius(scene)) {}
 
 LiveRenderer::~LiveRenderer() {
   stop();
+  try {
+    dispatcher_.join();  // before the members its threads report to are gone
+  } catch (...) {        // run() has rethrown a render thread's failure already
+  }
 }
 
 void LiveRenderer::setView(const ViewSettings& view) {
@@ -89,6 +67,7 @@ void LiveRenderer::setView(const ViewSettings& view) {
     pendingView_ = view;
     pendingSince_ = SteadyClock::now();
   }
+  dispatcher_.endFrame();  // the old view's tiles are stale from now on
   changed_.notify_all();
 }
 
@@ -97,11 +76,12 @@ void LiveRenderer::stop() {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopped_ = true;
   }
+  dispatcher_.stop();
   changed_.notify_all();
 }
 
-void LiveRenderer::beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
-                                   std::vector<PassInfo>& started) {
+PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
+                                       std::shared_ptr<const RenderPass> light, int liveThreads) {
   const RenderSettings& settings = scene_.settings();
   const int index = plan.index;
   PassInfo info;
@@ -119,20 +99,12 @@ void LiveRenderer::beginPassLocked(const PassPlan& plan, std::shared_ptr<const R
   view->causticMapBlur = plan.view.causticMapBlur;
   info.view = view;
   info.light = std::move(light);
-  int threads = 0;
-  for (const RankStats& r : stats_) {
-    if (!r.retired) threads += r.threads > 0 ? r.threads : pool_.threadCount();
-  }
-  const int tileSize = options_.tileSize > 0
-                           ? std::max(8, options_.tileSize / info.scale)
-                           : automaticTileSize(view->width, view->height, threads);
+  const int tileSize = options_.distribution.tileSize > 0
+                           ? std::max(8, options_.distribution.tileSize / info.scale)
+                           : automaticTileSize(view->width, view->height, liveThreads);
   info.tiles = planTiles(view->width, view->height, tileSize);
-  pass_ = std::make_unique<Pass>(info, ranks_, options_, now());
-  for (int r = 0; r < ranks_; ++r) {
-    if (stats_[r].retired) pass_->scheduler.retire(r);
-  }
-  pass_->viewSent[kLocalWorker] = true;
-  started.push_back(std::move(info));
+  pass_ = std::make_unique<Pass>(info, now());
+  return info;
 }
 
 std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
@@ -163,7 +135,7 @@ std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) 
   if (!maps) {
     const auto start = SteadyClock::now();
     maps = std::make_shared<const CausticMapEstimator>(
-        scene_, causticMapSettings(scene_.causticSettings(), blur), pool_.threadCount());
+        scene_, causticMapSettings(scene_.causticSettings(), blur), dispatcher_.localThreads());
     mapBuildSeconds_[blur] = secondsSince(start);
   }
   return maps;
@@ -209,29 +181,17 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     live_.photons.noCasters = true;
     return nullptr;  // like `prism render`: nothing to trace, a plain pass
   }
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    for (int r = 1; r < ranks_; ++r) {
-      roster_.retired[r] = roster_.retired[r] || stats_[r].retired;
-      if (stats_[r].threads > 0) roster_.threads[r] = stats_[r].threads;
-    }
-  }
   PhotonPassStats p;
-  auto map = tracePhotonPass(*tracer_, plan.frame, pool_.threadCount(), cluster_, roster_,
-                             options_.leaseSeconds, p);
+  auto map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p);
   const float radius =
       plan.index == 1
           ? (c.radius > 0.0f ? c.radius : automaticProgressiveRadius(*map, c.gather, maxRadius_))
           : nextProgressiveRadius(radius_, plan.index, c.alpha);
   radius_ = radius;
   const PhotonGatherSettings gather{true, c.gather, radius, c.filter};
-  sendPhotonMap(*map, plan.frame, gather, cluster_, roster_, p);
+  sendPhotonMap(*map, plan.frame, gather, link_, p);
 
   const std::lock_guard<std::mutex> lock(mutex_);
-  for (int r = 1; r < ranks_; ++r) {
-    stats_[r].retired = stats_[r].retired || roster_.retired[r];
-    if (roster_.threads[r] > 0) stats_[r].threads = roster_.threads[r];
-  }
   if (plan.viewId == viewId_) {
     PhotonLiveStats& s = live_.photons;
     s.photonsPerPass = tracer_->photonsPerPass();
@@ -248,40 +208,20 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
       RenderPass{plan.frame, true, std::make_shared<const PhotonGather>(std::move(map), gather)});
 }
 
-std::optional<TileJob> LiveRenderer::nextLocalJob() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    if (stopped_) return std::nullopt;
-    if (pass_ && !pass_->finished && !pendingView_) {
-      if (const auto tile = pass_->scheduler.next(kLocalWorker, now())) {
-        events_.push_back(
-            {Event::Kind::Assigned, pass_->info.frame, *tile, kLocalWorker, nullptr, 0.0});
-        changed_.notify_all();
-        return TileJob{*tile, pass_->info.tiles[*tile], pass_->info.frame, pass_->info.view,
-                       pass_->info.light};
-      }
-    }
-    changed_.wait_for(lock, std::chrono::milliseconds(20));
+void LiveRenderer::tileAssigned(uint32_t frame, uint32_t tile, int rank) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    events_.push_back({Event::Kind::Assigned, frame, tile, rank, nullptr, 0.0});
   }
+  changed_.notify_all();
 }
 
-void LiveRenderer::accept(uint32_t frame, TileResult&& tile, int rank) {
+void LiveRenderer::tileFinished(uint32_t frame, TileResult&& tile, int rank) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  RankStats& s = stats_[rank];
-  if (!pass_ || frame != pass_->info.frame) {
-    ++s.staleTiles;  // a frame the viewer has moved on from
-    return;
-  }
+  // The dispatcher accepts only tiles of its current frame, which is this pass's: a view
+  // change ends the frame before the pass is dropped.
+  if (!pass_ || frame != pass_->info.frame) return;
   Pass& p = *pass_;
-  const bool planned =
-      tile.tileIndex < p.info.tiles.size() && sameRect(tile.rect, p.info.tiles[tile.tileIndex]);
-  if (!planned || !p.scheduler.complete(tile.tileIndex, rank, now())) {
-    ++s.staleTiles;
-    return;
-  }
-  ++s.tiles;
-  s.busySeconds += tile.seconds;
-  s.rays += tile.rays;
   p.busySeconds += tile.seconds;
   const uint32_t index = tile.tileIndex;
   events_.push_back({Event::Kind::Finished, frame, index, rank,
@@ -303,74 +243,9 @@ void LiveRenderer::accept(uint32_t frame, TileResult&& tile, int rank) {
   changed_.notify_all();
 }
 
-void LiveRenderer::serviceSlaves() {
-  MpiSession& cluster = *cluster_;
-  for (int rank = 1; rank < ranks_; ++rank) {
-    std::vector<std::vector<uint8_t>> outgoing;
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (!pass_ || pass_->finished || pass_->scheduler.retired(rank) || pendingView_) continue;
-      if (!pass_->viewSent[rank]) {
-        outgoing.push_back(wire::encodeView({pass_->info.frame, *pass_->info.view}));
-        pass_->viewSent[rank] = true;
-      }
-      while (pass_->scheduler.outstanding(rank) < static_cast<size_t>(options_.prefetch)) {
-        const auto tile = pass_->scheduler.next(rank, now());
-        if (!tile) break;
-        outgoing.push_back(wire::encodeTileJob(tileJobMessage(TileJob{
-            *tile, pass_->info.tiles[*tile], pass_->info.frame, nullptr, pass_->info.light})));
-        events_.push_back({Event::Kind::Assigned, pass_->info.frame, *tile, rank, nullptr, 0.0});
-      }
-    }
-    for (std::vector<uint8_t>& bytes : outgoing) {
-      if (!cluster.send(rank, std::move(bytes))) {
-        const std::lock_guard<std::mutex> lock(mutex_);
-        stats_[rank].retired = true;  // MPI knows it is gone: its tiles go back at once
-        if (pass_) pass_->scheduler.retire(rank);
-        break;
-      }
-    }
-  }
-  const std::optional<IncomingMessage> incoming = cluster.waitForMessage(0.001);
-  if (incoming) {
-    const wire::Message message =
-        wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
-    const int rank = incoming->source;
-    switch (message.type) {
-      case wire::MessageType::TileResult: {
-        wire::TileResultMessage result = wire::decodeTileResult(message);
-        accept(result.frame, std::move(result.result), rank);
-        break;
-      }
-      case wire::MessageType::Progress: {
-        // Only a heartbeat here: its job count spans frames, so it cannot name lost tiles.
-        const std::lock_guard<std::mutex> lock(mutex_);
-        if (pass_) pass_->scheduler.heardFrom(rank, now());
-        break;
-      }
-      case wire::MessageType::Ready: {
-        const wire::ReadyMessage ready = wire::decodeReady(message);
-        const std::lock_guard<std::mutex> lock(mutex_);
-        stats_[rank].threads = ready.threads;
-        break;
-      }
-      case wire::MessageType::Error:
-        throw std::runtime_error("rank " + std::to_string(rank) + ": " +
-                                 wire::decodeError(message).text);
-      default:
-        throw std::runtime_error("rank " + std::to_string(rank) + " sent an unexpected " +
-                                 wire::messageTypeName(message.type) + " message");
-    }
-  }
-  const std::lock_guard<std::mutex> lock(mutex_);
-  if (pass_) {
-    for (int rank : pass_->scheduler.reclaimExpired(now())) stats_[rank].retired = true;
-  }
-}
-
-LiveStats LiveRenderer::statsLocked(double elapsedSeconds) {
+LiveStats LiveRenderer::statsLocked(double elapsedSeconds, std::vector<RankStats> ranks) {
   LiveStats s = live_;
-  s.ranks = stats_;
+  s.ranks = std::move(ranks);
   if (pass_) {
     s.frame = pass_->info.frame;
     s.viewId = pass_->info.viewId;
@@ -378,7 +253,7 @@ LiveStats LiveRenderer::statsLocked(double elapsedSeconds) {
   }
   RayCounters total;
   s.totalThreads = 0;
-  for (const RankStats& r : stats_) {
+  for (const RankStats& r : s.ranks) {
     total += r.rays;
     if (!r.retired) s.totalThreads += r.threads;
   }
@@ -389,37 +264,43 @@ LiveStats LiveRenderer::statsLocked(double elapsedSeconds) {
 }
 
 LiveStats LiveRenderer::stats() {
+  std::vector<RankStats> ranks = dispatcher_.stats();  // before our lock: the lock order
   const std::lock_guard<std::mutex> lock(mutex_);
   const double elapsed = secondsSince(lastStats_);
   lastStats_ = SteadyClock::now();
-  return statsLocked(elapsed);
+  return statsLocked(elapsed, std::move(ranks));
 }
 
 void LiveRenderer::run(LiveListener& listener) {
-  pool_.start([this] { return nextLocalJob(); },
-              [this](const TileJob& job, TileResult&& tile) {
-                accept(job.frame, std::move(tile), kLocalWorker);
-              });
+  dispatcher_.startLocalWorkers();
   lastStats_ = SteadyClock::now();
   try {
     for (;;) {
-      std::vector<PassInfo> started;
+      std::optional<PassInfo> started;
       std::deque<Event> events;
       std::optional<PassPlan> plan;
       {
         const std::lock_guard<std::mutex> lock(mutex_);
-        if (stopped_ || pool_.failed()) break;
+        if (stopped_ || dispatcher_.localFailed()) break;
         plan = nextPassLocked();
         events.swap(events_);
       }
       if (plan) {
         // Photons are traced here, without the lock: the GUI thread can still ask for views.
         std::shared_ptr<const RenderPass> light = passLight(*plan);
-        const std::lock_guard<std::mutex> lock(mutex_);
-        // A view asked for meanwhile wins; this pass is dropped before it starts.
-        if (!pendingView_ && plan->viewId == viewId_) beginPassLocked(*plan, light, started);
+        const int liveThreads = dispatcher_.liveThreads();
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          // A view asked for meanwhile wins; this pass is dropped before it starts.
+          if (!pendingView_ && plan->viewId == viewId_) {
+            started = beginPassLocked(*plan, light, liveThreads);
+          }
+        }
+        if (started) {
+          dispatcher_.beginFrame(
+              {started->frame, started->tiles, started->view, started->light, true, -1}, this);
+        }
       }
-      if (!started.empty()) changed_.notify_all();  // wakes render threads waiting for work
       // Events first: they belong to the pass before the one just started.
       for (Event& e : events) {
         switch (e.kind) {
@@ -434,9 +315,9 @@ void LiveRenderer::run(LiveListener& listener) {
             break;
         }
       }
-      for (const PassInfo& info : started) listener.passStarted(info);
-      if (cluster_ && ranks_ > 1) {
-        serviceSlaves();
+      if (started) listener.passStarted(*started);
+      if (link_.hasSlaves()) {
+        dispatcher_.service(0.001);
       } else {
         std::unique_lock<std::mutex> lock(mutex_);
         changed_.wait_for(lock, std::chrono::milliseconds(2), [this] {
@@ -453,11 +334,11 @@ void LiveRenderer::run(LiveListener& listener) {
     }
   } catch (...) {
     stop();
-    pool_.join();
+    dispatcher_.join();
     throw;
   }
   stop();
-  pool_.join();  // rethrows a render thread's failure
+  dispatcher_.join();  // rethrows a render thread's failure
 }
 
 }  // namespace prism

@@ -23,10 +23,15 @@
 // photon pass number (which keys the photon streams and names the map on the wire) is the
 // pass's frame id, so it is unique per pass. The preview pass renders no photon caustics.
 //
-// run() is the coordinator: the only thread that calls MPI, the only thread that calls the
-// listener, and the one that traces photons (a new view asked for meanwhile waits for that
-// photon pass to finish; its map is then dropped). setView() and stop() may be called from any
-// thread and never wait for photons.
+// Every pass is a frame of the one tile dispatcher (master/TileDispatcher.h), which hands its
+// tiles to rank 0's threads and the slaves exactly as for `prism render`: the same leases,
+// heartbeats (a slave's lost tiles are re-issued at once, a silent slave retired in seconds),
+// and late or duplicate results dropped.
+//
+// run() is the coordinator: the only thread that talks to the slaves, the only thread that
+// calls the listener, and the one that traces photons (a new view asked for meanwhile waits for
+// that photon pass to finish; its map is then dropped). setView() and stop() may be called from
+// any thread and never wait for photons.
 #pragma once
 
 #include <atomic>
@@ -41,28 +46,23 @@
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonTracer.h"
-#include "master/FrameRenderer.h"
-#include "master/TileScheduler.h"
+#include "cluster/DistributionOptions.h"
+#include "master/SlaveLink.h"
+#include "master/TileDispatcher.h"
 #include "render/RayCounters.h"
 #include "render/RenderPass.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
-#include "slave/TileWorkerPool.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
 
-class MpiSession;
-
 struct LiveOptions {
-  int threads = 0;       // render threads on rank 0; 0: every available core
+  // Threads, tile size (0: automatic for each pass's resolution), schedule, leases.
+  DistributionOptions distribution;
   int previewScale = 4;  // pass 0 renders 1/previewScale of each side at 1 spp; 1: no preview
   int maxPasses = 64;    // full-resolution passes per view; then the renderer idles
-  int tileSize = 0;      // 0: automatic for each pass's resolution
-  Schedule schedule = Schedule::Dynamic;
-  double leaseSeconds = 30.0;
-  int prefetch = 2;
   double statsInterval = 0.25;  // seconds between LiveListener::statsUpdated calls
 };
 
@@ -108,22 +108,12 @@ struct PhotonLiveStats {
   double mapBuildSeconds = 0.0;  // rank 0's build of the maps in use
 };
 
-struct RankStats {
-  int rank = 0;
-  int threads = 0;
-  size_t tiles = 0;          // since the viewer started
-  double busySeconds = 0.0;  // thread-seconds spent rendering them
-  RayCounters rays;
-  size_t staleTiles = 0;  // results for frames already ended, dropped
-  bool retired = false;
-};
-
 struct LiveStats {
   uint32_t frame = 0;
   uint64_t viewId = 0;
   int pass = 0;
   int passesDone = 0;                  // full-resolution passes finished for the current view
-  std::vector<RankStats> ranks;        // index = rank
+  std::vector<RankStats> ranks;        // index = rank; counts since the viewer started
   double raysPerSecond = 0.0;          // over the last statsInterval
   double lastPassSeconds = 0.0;        // wall time of the last finished full-resolution pass
   double lastPassBusySeconds = 0.0;    // thread-seconds all ranks spent on it
@@ -144,10 +134,10 @@ class LiveListener {
   virtual void statsUpdated(const LiveStats& stats) = 0;
 };
 
-class LiveRenderer {
+class LiveRenderer final : private FrameListener {
  public:
-  LiveRenderer(const Scene& scene, const LiveOptions& options, MpiSession* cluster = nullptr);
-  ~LiveRenderer();
+  LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster = nullptr);
+  ~LiveRenderer() override;
 
   // Ends the current frame and starts rendering this view from pass 0.
   void setView(const ViewSettings& view);
@@ -172,24 +162,25 @@ class LiveRenderer {
   struct Pass;
   struct PassPlan;
 
-  std::optional<TileJob> nextLocalJob();
-  void accept(uint32_t frame, TileResult&& tile, int rank);
+  // FrameListener: the dispatcher's calls, with its lock held (so never call it from these).
+  void tileAssigned(uint32_t frame, uint32_t tile, int rank) override;
+  void tileFinished(uint32_t frame, TileResult&& tile, int rank) override;
+
   std::optional<PassPlan> nextPassLocked();
   std::shared_ptr<const RenderPass> passLight(const PassPlan& plan);
   std::shared_ptr<const RenderPass> causticMapLight(const PassPlan& plan);
-  void beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
-                       std::vector<PassInfo>& started);
-  void serviceSlaves();
-  LiveStats statsLocked(double elapsedSeconds);
+  PassInfo beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
+                           int liveThreads);
+  LiveStats statsLocked(double elapsedSeconds, std::vector<RankStats> ranks);
   double now() const { return secondsSince(start_); }
 
   const Scene& scene_;
   LiveOptions options_;
-  MpiSession* cluster_;
-  int ranks_;
-  TileWorkerPool pool_;
+  SlaveLink link_;  // the coordinator's: the dispatcher and the photon passes share it
+  TileDispatcher dispatcher_;
   SteadyClock::time_point start_;
 
+  // Guards what follows. Order: the dispatcher's lock, then this one; never the other way.
   std::mutex mutex_;
   std::condition_variable changed_;
   bool stopped_ = false;
@@ -201,13 +192,11 @@ class LiveRenderer {
   uint32_t nextFrame_ = 1;  // 0 is `prism render`'s frame
   std::unique_ptr<Pass> pass_;
   std::deque<Event> events_;
-  std::vector<RankStats> stats_;
   LiveStats live_;
   RayCounters raysAtLastStats_;
   SteadyClock::time_point lastStats_;
 
   // Coordinator thread only: the photon side.
-  ClusterRoster roster_;
   std::unique_ptr<PhotonTracer> tracer_;  // planned for tracerBudget_ photons per pass
   uint64_t tracerBudget_ = 0;
   float maxRadius_;

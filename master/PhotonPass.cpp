@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "transport/MpiSession.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -20,14 +19,14 @@ struct Share {
 
 // Contiguous index ranges in rank order, sized by each live rank's threads (rank 0's own count
 // stands in for slaves whose Ready has not arrived yet).
-std::vector<Share> planShares(uint64_t total, int localThreads, int ranks,
-                              const ClusterRoster& roster) {
+std::vector<Share> planShares(uint64_t total, int localThreads, const SlaveLink& link) {
   std::vector<int> weights;
   std::vector<int> members;
-  for (int r = 0; r < ranks; ++r) {
-    if (r > 0 && roster.retired[r]) continue;
+  for (int r = 0; r < link.ranks(); ++r) {
+    if (r > 0 && link.retired(r)) continue;
     members.push_back(r);
-    weights.push_back(r == 0 || roster.threads[r] <= 0 ? localThreads : roster.threads[r]);
+    const int threads = link.rank(r).threads;
+    weights.push_back(r == 0 || threads <= 0 ? localThreads : threads);
   }
   uint64_t weightSum = 0;
   for (int w : weights) weightSum += static_cast<uint64_t>(w);
@@ -46,20 +45,19 @@ std::vector<Share> planShares(uint64_t total, int localThreads, int ranks,
 }  // namespace
 
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
-                                                 int threads, MpiSession* cluster,
-                                                 ClusterRoster& roster, double leaseSeconds,
+                                                 int threads, SlaveLink& link,
                                                  PhotonPassStats& stats) {
   const auto start = SteadyClock::now();
-  const int ranks = cluster ? cluster->size() : 1;
-  std::vector<Share> shares = planShares(tracer.photonsPerPass(), threads, ranks, roster);
+  const int ranks = link.ranks();
+  const double leaseSeconds = link.options().leaseSeconds;
+  std::vector<Share> shares = planShares(tracer.photonsPerPass(), threads, link);
   stats.photonsByRank.assign(static_cast<size_t>(ranks), 0);
 
   for (Share& share : shares) {
     if (share.rank == 0 || share.count == 0) continue;
-    if (!cluster->send(share.rank, wire::encodePhotonJob({pass, share.first, share.count,
-                                                          tracer.photonsPerPass()}))) {
-      roster.retired[share.rank] = true;  // gone: its share is traced here below
-    }
+    // A refused send retires the rank: its share is traced here below.
+    link.send(share.rank,
+              wire::encodePhotonJob({pass, share.first, share.count, tracer.photonsPerPass()}));
   }
   // Rank 0 traces its share on worker threads; this thread keeps talking to the slaves.
   Share& local = shares.front();
@@ -68,7 +66,6 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
     return tracePhotons(tracer, pass, local.first, local.count, threads, &localStats);
   });
 
-  std::vector<SteadyClock::time_point> lastHeard(static_cast<size_t>(ranks), SteadyClock::now());
   const auto shareOf = [&](int rank) -> Share* {
     for (Share& s : shares) {
       if (s.rank == rank && !s.done) return &s;
@@ -86,14 +83,15 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
     bool waiting = false;
     for (Share& s : shares) {
       if (s.done) continue;
+      // Silent after its Ready: SlaveLink::retireSilent below; still building: the lease.
       if (s.rank != 0 &&
-          (roster.retired[s.rank] || secondsSince(lastHeard[s.rank]) > leaseSeconds)) {
+          (link.retired(s.rank) || (!link.ready(s.rank) && secondsSince(start) > leaseSeconds))) {
         // A silent or lost slave: trace its share here, once rank 0's own is finished.
         if (!localDone) {
           waiting = true;
           continue;
         }
-        roster.retired[s.rank] = true;
+        link.retire(s.rank);
         PhotonTraceStats recovered;
         s.photons = tracePhotons(tracer, pass, s.first, s.count, threads, &recovered);
         stats.trace += recovered;
@@ -104,19 +102,16 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
       waiting = true;
     }
     if (!waiting) break;
-    if (!cluster || ranks == 1) {
+    if (!link.hasSlaves()) {
       localWork.wait();
       continue;
     }
-    const std::optional<IncomingMessage> incoming = cluster->waitForMessage(0.002);
+    const std::optional<SlaveMessage> incoming = link.receive(0.002);
+    link.retireSilent();
     if (!incoming) continue;
-    lastHeard[incoming->source] = SteadyClock::now();
-    const wire::Message message =
-        wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size());
-    if (handleSlaveStatus(message, incoming->source, roster)) continue;
-    switch (message.type) {
+    switch (incoming->message.type) {
       case wire::MessageType::PhotonShare: {
-        wire::PhotonShareMessage share = wire::decodePhotonShare(message);
+        wire::PhotonShareMessage share = wire::decodePhotonShare(incoming->message);
         Share* s = shareOf(incoming->source);
         if (share.pass != pass || !s || share.first != s->first || share.count != s->count) {
           break;  // late, from a pass or share already done without it
@@ -146,17 +141,12 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
 }
 
 void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettings& gather,
-                   MpiSession* cluster, ClusterRoster& roster, PhotonPassStats& stats) {
-  if (!cluster || cluster->size() == 1) return;
+                   SlaveLink& link, PhotonPassStats& stats) {
+  if (!link.hasSlaves()) return;
   const auto start = SteadyClock::now();
   const std::vector<uint8_t> bytes = wire::encodePhotonMap(pass, gather, map.photons());
-  for (int r = 1; r < cluster->size(); ++r) {
-    if (roster.retired[r]) continue;
-    if (cluster->send(r, bytes)) {
-      stats.sentBytes += bytes.size();
-    } else {
-      roster.retired[r] = true;
-    }
+  for (int r = 1; r < link.ranks(); ++r) {
+    if (link.send(r, bytes)) stats.sentBytes += bytes.size();  // a refusal retires the rank
   }
   stats.distributeSeconds = secondsSince(start);
 }

@@ -1,8 +1,9 @@
 // The photon half of a caustic pass in a run: rank 0 splits the pass's photon indices between
 // itself and the live slaves (in proportion to their threads), traces its share while it
 // collects theirs, and assembles every photon in index order, so the map is the same whatever
-// the number of ranks. A slave that stays silent for the lease time is retired and rank 0
-// traces its share itself. The map then goes to every live slave with its gather settings.
+// the number of ranks. A slave that goes silent (master/SlaveLink.h), or one still building its
+// scene that stays silent for the lease time, is retired and rank 0 traces its share itself. The
+// map then goes to every live slave with its gather settings.
 #pragma once
 
 #include <memory>
@@ -11,11 +12,9 @@
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonMap.h"
 #include "caustics/PhotonTracer.h"
-#include "master/FrameRenderer.h"
+#include "master/SlaveLink.h"
 
 namespace prism {
-
-class MpiSession;
 
 struct PhotonPassStats {
   PhotonTraceStats trace;
@@ -29,12 +28,11 @@ struct PhotonPassStats {
 
 // Traces pass `pass` and builds rank 0's photon map. threads: rank 0's tracing threads.
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
-                                                 int threads, MpiSession* cluster,
-                                                 ClusterRoster& roster, double leaseSeconds,
+                                                 int threads, SlaveLink& link,
                                                  PhotonPassStats& stats);
 
 // Sends the map of pass `pass` with its gather settings to every live slave.
 void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettings& gather,
-                   MpiSession* cluster, ClusterRoster& roster, PhotonPassStats& stats);
+                   SlaveLink& link, PhotonPassStats& stats);
 
 }  // namespace prism

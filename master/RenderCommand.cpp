@@ -18,8 +18,7 @@
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
-#include "slave/SlaveLoop.h"
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
@@ -67,13 +66,13 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
   applyOverrides(options, description.caustics);
   checkSettingsSane(description.render);
   checkRenderFits(description.render, limit);
-  checkTilesFit(description.render, options.tileSize, limit);
+  checkTilesFit(description.render, options.distribution.tileSize, limit);
   checkCausticsFit(description.caustics, limit);
-  checkSceneFits(description, options.tileSize, limit);
+  checkSceneFits(description, options.distribution.tileSize, limit);
   return description;
 }
 
-int failBeforeScene(MpiSession* session, const std::string& what, std::ostream& err) {
+int failBeforeScene(Transport* session, const std::string& what, std::ostream& err) {
   if (session) {
     std::vector<uint8_t> bytes = wire::encodeError({what});
     session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
@@ -116,13 +115,7 @@ std::string defaultOutputPath(const std::string& scenePath) {
 }
 
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,
-              MpiSession* session) {
-  if (session && session->rank() != 0) {
-    SlaveOptions slave;
-    slave.threads = options.threads;
-    slave.fault = options.fault;
-    return runSlave(*session, slave);
-  }
+              Transport* session) {
   // From here on Ctrl-C stops the run (at the first tile boundary) instead of the process.
   installInterruptHandlers();
   const auto start = std::chrono::steady_clock::now();
@@ -159,11 +152,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     summary.buildSeconds = secondsSince(buildStart);
 
     FrameOptions frameOptions;
-    frameOptions.threads = options.threads;
-    frameOptions.tileSize = options.tileSize;
-    frameOptions.schedule = options.schedule;
-    frameOptions.leaseSeconds = options.leaseSeconds;
-    frameOptions.prefetch = options.prefetch;
+    frameOptions.distribution = options.distribution;
     frameOptions.stopRequested = interruptRequested;
     std::unique_ptr<ProgressBar> progress;
     std::string stage;
@@ -180,12 +169,11 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       progress->setTotal(total);
       progress->update(done);
     };
-    ClusterRoster roster(session ? session->size() : 1);
-    const CausticFrame result =
-        renderWithCaustics(scene, frameOptions, session, roster, onProgress);
+    SlaveLink link(session, options.distribution);
+    const CausticFrame result = renderWithCaustics(scene, frameOptions, link, onProgress);
     if (progress) progress->finish();
     const FrameResult& frame = result.frames;
-    for (const WorkerStats& w : frame.workers) silentRanks.push_back(w.retired);
+    silentRanks = link.retiredRanks();
     if (frame.interrupted) {
       exitCode = finishInterruptedRender(result, options, output, description.render.exposure, err);
       out.flush();
@@ -236,7 +224,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       summary.settings = description.render;
       summary.sceneStats = scene.buildStats();
       summary.lightCount = description.lights.size();
-      summary.schedule = options.schedule;
+      summary.schedule = options.distribution.schedule;
       summary.frame = &frame;
       summary.caustics = &result.caustics;
       summary.totalSeconds = secondsSince(start);

@@ -7,17 +7,14 @@
 #include <optional>
 #include <string>
 
-#include "master/TileScheduler.h"
+#include "cluster/DistributionOptions.h"
 #include "scene/SceneDescription.h"
-#include "slave/FaultInjection.h"
 
 namespace prism {
 
 struct RenderOptions {
   std::string scenePath;
   std::string outputPath;  // empty: <scene name>.png in the current folder
-  int threads = 0;         // 0: every available core
-  int tileSize = 0;        // 0: automatic
   std::optional<int> width, height, samples, maxDepth;
   std::optional<uint64_t> seed;
   std::optional<float> exposure;
@@ -38,11 +35,8 @@ struct RenderOptions {
   bool overwrite = false;               // replace a finished frame at the output path
   bool savePartial = false;             // interrupted: write the finished tiles (PartialFrame.h)
   std::optional<uint64_t> memoryLimit;  // bytes a run may plan to use; default: physical memory
-  // Distribution (MPI runs): how tiles are handed out and when a silent slave is given up on.
-  Schedule schedule = Schedule::Dynamic;
-  double leaseSeconds = 30.0;
-  int prefetch = 2;
-  FaultInjection fault;    // testing only
+  // Threads, tiles, and (MPI runs) how tiles are handed out and when a slave is given up on.
+  DistributionOptions distribution;
   std::string statusFile;  // testing only: "stage done total", rewritten as tiles finish
 };
 
@@ -53,7 +47,7 @@ void applyOverrides(const RenderOptions& options, CausticSettings& caustics);
 // The output path used when none is given: the scene's file name with a .png extension.
 std::string defaultOutputPath(const std::string& scenePath);
 
-class MpiSession;
+class Transport;
 
 // How long rank 0's scene broadcast may wait for the slaves (they may still be starting).
 inline constexpr double kSceneBroadcastTimeoutSeconds = 600.0;
@@ -66,11 +60,11 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options);
 
 // Rank 0 could not produce a scene: the slaves, waiting for one, get the error instead and stop
 // at once; the error is printed. Returns the exit code, 1.
-int failBeforeScene(MpiSession* session, const std::string& what, std::ostream& err);
+int failBeforeScene(Transport* session, const std::string& what, std::ostream& err);
 
-// Runs the command; returns the process exit code. Errors go to err as "prism: error: ...".
-// In an MPI run (session given) rank 0 is the master and every other rank a slave.
+// Runs the command on rank 0 (or the only process); returns the process exit code. Errors go
+// to err as "prism: error: ...". In an MPI run the session's other ranks are slaves.
 int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err,
-              MpiSession* session = nullptr);
+              Transport* session = nullptr);
 
 }  // namespace prism

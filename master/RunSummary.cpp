@@ -32,7 +32,7 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
       << milliseconds(s.broadcastSeconds);
   if (f.reissuedTiles > 0) out << "; " << f.reissuedTiles << " tiles re-issued";
   out << "\n";
-  for (const WorkerStats& w : f.workers) {
+  for (const RankStats& w : f.workers) {
     if (w.rank > 0 && w.threads == 0 && w.tiles == 0 && !w.retired) {
       out << "  rank " << w.rank << ": still building its scene when the frame was done\n";
       continue;
@@ -41,7 +41,7 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
         << formatCount(static_cast<double>(w.rays.total())) << " rays, busy "
         << fixed(w.busySeconds, 2) << " thread-s";
     if (w.rank > 0) out << ", scene built in " << milliseconds(w.buildSeconds);
-    if (w.duplicates > 0) out << ", " << w.duplicates << " late duplicates dropped";
+    if (w.staleTiles > 0) out << ", " << w.staleTiles << " late or duplicate tiles dropped";
     if (w.lostTiles > 0) out << ", lost " << w.lostTiles << " tiles (re-issued)";
     if (w.retired) out << "; STOPPED ANSWERING, its tiles were re-issued";
     out << "\n";

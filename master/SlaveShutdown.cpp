@@ -6,12 +6,12 @@
 #include <ostream>
 #include <thread>
 
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
 namespace prism {
-int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
+int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& silent,
                    std::ostream& err) {
   if (!session || session->size() <= 1) return exitCode;
   constexpr double kAcknowledgeSeconds = 10.0;
@@ -54,7 +54,7 @@ int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& s
   session->abortJob(exitCode);
 }
 
-void leaveEndingJob(MpiSession& session, int exitCode) {
+void leaveEndingJob(Transport& session, int exitCode) {
   for (int rank = 1; rank < session.size(); ++rank) session.send(rank, wire::encodeShutdown());
   const auto start = std::chrono::steady_clock::now();
   while (session.progressSends() > 0 && secondsSince(start) < 0.1) {

@@ -9,16 +9,16 @@
 
 namespace prism {
 
-class MpiSession;
+class Transport;
 
 // Returns exitCode when every slave acknowledged (or session is null or has no slaves); does
 // not return otherwise. Slaves marked silent (retired during the frame) get a shorter wait.
-int shutDownSlaves(MpiSession* session, int exitCode, const std::vector<bool>& silent,
+int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& silent,
                    std::ostream& err);
 
 // The end of a job mpiexec is already tearing down (rank 0 got SIGTERM, and SIGKILL follows in
 // a second): tells the slaves to stop, gives the messages a moment to leave, and exits with
 // exitCode without MPI_Finalize, which would wait for a job that is going away.
-[[noreturn]] void leaveEndingJob(MpiSession& session, int exitCode);
+[[noreturn]] void leaveEndingJob(Transport& session, int exitCode);
 
 }  // namespace prism

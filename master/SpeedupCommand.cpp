@@ -11,6 +11,7 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
+#include "cluster/TileWorkerPool.h"
 #include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
@@ -22,9 +23,7 @@
 #include "master/TileCostMap.h"
 #include "master/TilePlan.h"
 #include "scene/Scene.h"
-#include "slave/SlaveLoop.h"
-#include "slave/TileWorkerPool.h"
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -44,8 +43,7 @@ struct PreparedPass {
 // Caustics as `prism render` would do them for one frame: one photon pass traced by every
 // rank and sent to every slave, or rank 0's caustic maps (each slave builds its own during
 // the warm-up frame). A progressive scene is measured as one k-NN photon-map frame.
-PreparedPass prepareCaustics(const Scene& scene, MpiSession& session, ClusterRoster& roster,
-                             double leaseSeconds) {
+PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
   const CausticSettings& settings = scene.causticSettings();
   PreparedPass prepared;
   const auto start = SteadyClock::now();
@@ -57,11 +55,11 @@ PreparedPass prepareCaustics(const Scene& scene, MpiSession& session, ClusterRos
     const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
     if (tracer.hasWork()) {
       PhotonPassStats stats;
-      const auto map = tracePhotonPass(tracer, 0, 1, &session, roster, leaseSeconds, stats);
+      const auto map = tracePhotonPass(tracer, 0, 1, link, stats);
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather{false, settings.gather, radius, settings.filter};
-      sendPhotonMap(*map, 0, gather, &session, roster, stats);
+      sendPhotonMap(*map, 0, gather, link, stats);
       prepared.stage = "photon pass (" + std::to_string(map->size()) + " photons)";
       prepared.pass = std::make_shared<const RenderPass>(
           RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
@@ -73,52 +71,51 @@ PreparedPass prepareCaustics(const Scene& scene, MpiSession& session, ClusterRos
 }
 
 // Waits for every slave's Ready (its scene is built); returns the slowest build time.
-double waitForSlaves(MpiSession& session, ClusterRoster& roster) {
+double waitForSlaves(SlaveLink& link) {
   const auto start = SteadyClock::now();
   auto missing = [&] {
-    return std::count_if(roster.threads.begin() + 1, roster.threads.end(),
-                         [](int t) { return t <= 0; });
+    int count = 0;
+    for (int r = 1; r < link.ranks(); ++r) count += link.ready(r) ? 0 : 1;
+    return count;
   };
   while (missing() > 0) {
     if (secondsSince(start) > kReadyTimeoutSeconds) {
       throw std::runtime_error("slaves did not report ready within " +
                                std::to_string(static_cast<int>(kReadyTimeoutSeconds)) + " s");
     }
-    const auto incoming = session.waitForMessage(0.1);
-    if (!incoming) continue;
-    handleSlaveStatus(wire::decodeMessage(incoming->bytes), incoming->source, roster);
+    link.receive(0.1);  // a Ready goes into the roster; nothing else is expected yet
   }
-  return *std::max_element(roster.buildSeconds.begin() + 1, roster.buildSeconds.end());
+  double slowest = 0.0;
+  for (int r = 1; r < link.ranks(); ++r) slowest = std::max(slowest, link.rank(r).buildSeconds);
+  return slowest;
 }
 
 class Measurement {
  public:
-  Measurement(const Scene& scene, const SpeedupOptions& options, MpiSession& session,
-              ClusterRoster& roster, std::shared_ptr<const RenderPass> pass)
-      : scene_(scene), options_(options), session_(session), roster_(roster), pass_(pass) {}
+  Measurement(const Scene& scene, const SpeedupOptions& options, SlaveLink& link,
+              std::shared_ptr<const RenderPass> pass)
+      : scene_(scene), options_(options), link_(link), pass_(pass) {}
 
   // The serial baseline: this process, one thread, no slaves.
   FrameResult serial(int tileSize) {
     FrameOptions frame;
-    frame.threads = 1;
-    frame.tileSize = tileSize;
+    frame.distribution.threads = 1;
+    frame.distribution.tileSize = tileSize;
     frame.pass = pass_;
     frame.frameId = nextFrame_++;
-    return renderFrame(scene_, frame, nullptr);
+    return renderFrame(scene_, frame);
   }
 
   FrameResult parallel(Schedule schedule, int tileSize, int slaves) {
     FrameOptions frame;
-    frame.tileSize = tileSize;
-    frame.schedule = schedule;
-    frame.leaseSeconds = options_.render.leaseSeconds;
-    frame.prefetch = options_.render.prefetch;
+    frame.distribution = options_.render.distribution;
+    frame.distribution.tileSize = tileSize;
+    frame.distribution.schedule = schedule;
     frame.pass = pass_;
-    frame.roster = &roster_;
     frame.masterRenders = false;
     frame.activeSlaves = slaves;
     frame.frameId = nextFrame_++;
-    FrameResult result = renderFrame(scene_, frame, &session_);
+    FrameResult result = renderFrame(scene_, frame, link_);
     for (int r = 1; r <= slaves; ++r) {
       if (result.workers[r].retired) {
         throw std::runtime_error("rank " + std::to_string(r) +
@@ -132,8 +129,7 @@ class Measurement {
  private:
   const Scene& scene_;
   const SpeedupOptions& options_;
-  MpiSession& session_;
-  ClusterRoster& roster_;
+  SlaveLink& link_;
   std::shared_ptr<const RenderPass> pass_;
   uint32_t nextFrame_ = 1;
 };
@@ -172,7 +168,7 @@ SpeedupOutputs speedupOutputs(const std::string& prefix) {
 }
 
 int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
-               MpiSession* session, const ChartWriter& chartWriter) {
+               Transport* session, const ChartWriter& chartWriter) {
   if (!session || session->size() < 2) {
     err << "prism: error: prism speedup measures inside one MPI job and needs at least 2 ranks: "
            "rank 0 coordinates and ranks 1..N-1 render, so the job measures 1..N-1 slaves.\n"
@@ -181,19 +177,13 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
         << "\n  (add --oversubscribe when N exceeds the cores; see docs/scaling.md)\n";
     return 1;
   }
-  if (session->rank() != 0) {
-    SlaveOptions slave;
-    slave.threads = options.threadsPerRank;
-    return runSlave(*session, slave);
-  }
-
   SpeedupReport report;
   report.scenePath = options.render.scenePath;
   report.ranks = session->size();
-  report.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  report.cores = availableCores();
   report.threadsPerRank = options.threadsPerRank;
   report.repeats = options.repeats;
-  report.prefetch = options.render.prefetch;
+  report.prefetch = options.render.distribution.prefetch;
   const SpeedupOutputs files = speedupOutputs(
       options.outputPrefix.empty()
           ? "speedup-" + std::filesystem::path(options.render.scenePath).stem().string()
@@ -227,10 +217,9 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     report.height = settings.height;
     report.samplesPerPixel = settings.samplesPerPixel;
 
-    ClusterRoster roster(session->size());
-    report.setup.slaveBuildSeconds = waitForSlaves(*session, roster);
-    const PreparedPass prepared =
-        prepareCaustics(scene, *session, roster, options.render.leaseSeconds);
+    SlaveLink link(session, options.render.distribution);
+    report.setup.slaveBuildSeconds = waitForSlaves(link);
+    const PreparedPass prepared = prepareCaustics(scene, link);
     report.setup.causticStage = prepared.stage;
     report.setup.causticSeconds = prepared.seconds;
     if (prepared.progressiveAsOneFrame) {
@@ -248,7 +237,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     const int largestTile = *std::max_element(tileSizes.begin(), tileSizes.end());
     const size_t probeBytes = std::max<size_t>(
         size_t{256} << 10, static_cast<size_t>(tileResultBytes(largestTile * largestTile)));
-    report.link = measureLink(*session, roster, probeBytes, options.linkRoundTrips);
+    report.link = measureLink(link, probeBytes, options.linkRoundTrips);
 
     for (int tileSize : tileSizes) report.serial.push_back({tileSize, {}, {}});
     for (Schedule schedule : options.schedules) {
@@ -267,7 +256,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
       }
     }
 
-    Measurement measure(scene, options, *session, roster, prepared.pass);
+    Measurement measure(scene, options, link, prepared.pass);
     const size_t frames =
         1 + static_cast<size_t>(options.repeats) * (report.serial.size() + report.points.size());
     ProgressBar progress("measuring", frames, "frames", !options.quiet && stderrIsTerminal());
@@ -290,7 +279,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
         const FrameResult f = measure.parallel(p.schedule, p.tileSize, p.slaves);
         p.samples.push_back(f.seconds);
         for (int r = 1; r <= p.slaves; ++r) {
-          const WorkerStats& w = f.workers[r];
+          const RankStats& w = f.workers[r];
           p.busyFractions[r - 1].push_back(w.busySeconds / (std::max(w.threads, 1) * f.seconds));
         }
         progress.update(++done);
@@ -315,7 +304,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
 
     printSpeedupTable(report, out);
     writeOutputs(report, files, chartWriter, out, err);
-    for (int r = 0; r < session->size(); ++r) silent.push_back(roster.retired[r]);
+    silent = link.retiredRanks();
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";
     exitCode = 1;

@@ -38,6 +38,6 @@ SpeedupOutputs speedupOutputs(const std::string& prefix);
 // explains how to start it and fails. chartWriter is empty without Qt: the charts are skipped
 // with a note.
 int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
-               MpiSession* session, const ChartWriter& chartWriter);
+               Transport* session, const ChartWriter& chartWriter);
 
 }  // namespace prism

@@ -6,14 +6,13 @@
 #include <memory>
 #include <ostream>
 
+#include "cluster/TileWorkerPool.h"
 #include "image/Thumbnail.h"
 #include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/ProgressBar.h"
 #include "master/SweepReport.h"
-#include "slave/SlaveLoop.h"
-#include "slave/TileWorkerPool.h"
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -54,8 +53,7 @@ class Sweep {
     d.render.samplesPerPixel = last.point.samplesPerPixel;
     const Scene scene(d);  // not timed: parsing and the BVH are the same for every method
     FrameOptions frame;
-    frame.threads = options_.render.threads;
-    ClusterRoster roster;
+    frame.distribution.threads = options_.render.distribution.threads;
     const double cpuStart = processCpuSeconds();
     const auto start = SteadyClock::now();
     ProgressiveSnapshot snapshot;
@@ -76,7 +74,7 @@ class Sweep {
         }
       };
     }
-    const CausticFrame result = renderWithCaustics(scene, frame, nullptr, roster, {}, snapshot);
+    const CausticFrame result = renderWithCaustics(scene, frame, {}, snapshot);
     if (run.progressive) return;
     last.seconds.push_back(secondsSince(start));
     last.cpuSeconds.push_back(processCpuSeconds() - cpuStart);
@@ -98,7 +96,10 @@ class Sweep {
     if (it == bases_.end()) {
       SceneDescription d = scene_;
       d.render.samplesPerPixel = samplesPerPixel;
-      it = bases_.emplace(samplesPerPixel, renderWithoutCaustics(d, options_.render.threads)).first;
+      it = bases_
+               .emplace(samplesPerPixel,
+                        renderWithoutCaustics(d, options_.render.distribution.threads))
+               .first;
     }
     return it->second;
   }
@@ -121,13 +122,8 @@ SweepOutputs sweepOutputs(const std::string& prefix) {
   return {prefix + ".csv", prefix + ".png", prefix + "-reference"};
 }
 
-int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, MpiSession* session,
+int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, Transport* session,
              const ChartWriter& chartWriter) {
-  if (session && session->rank() != 0) {
-    SlaveOptions slave;
-    slave.threads = options.render.threads;
-    return runSlave(*session, slave);
-  }
   if (session && session->size() > 1) {
     return failBeforeScene(session,
                            "prism sweep runs in one process on this machine's cores; start it "
@@ -162,7 +158,7 @@ int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, 
     };
     ReferenceRequest request = options.reference;
     if (request.cacheStem.empty()) request.cacheStem = files.referenceStem;
-    request.threads = options.render.threads;
+    request.threads = options.render.distribution.threads;
     const SweepReference ref = makeSweepReference(scene, request, onProgress);
     if (bar) bar->finish();
     bar.reset();
@@ -173,7 +169,8 @@ int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, 
     report.height = scene.render.height;
     report.samplesPerPixel = scene.render.samplesPerPixel;
     report.cores = availableCores();
-    report.threads = options.render.threads > 0 ? options.render.threads : report.cores;
+    report.threads = options.render.distribution.threads > 0 ? options.render.distribution.threads
+                                                             : report.cores;
     report.repeats = options.repeats;
     report.cpuAxis = options.cpuAxis;
     report.metric = options.metric;

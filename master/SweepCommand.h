@@ -40,7 +40,7 @@ SweepOutputs sweepOutputs(const std::string& prefix);
 
 // Runs the command; returns the exit code. chartWriter is empty without Qt: then only the CSV
 // is written, with a note. In an MPI job of more than one rank it refuses (the slaves stop).
-int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, MpiSession* session,
+int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, Transport* session,
              const ChartWriter& chartWriter);
 
 }  // namespace prism

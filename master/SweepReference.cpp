@@ -22,7 +22,7 @@ using Progress = std::function<void(const std::string&, size_t, size_t)>;
 
 FrameOptions frameOptions(int threads, const Progress& progress, const std::string& label) {
   FrameOptions o;
-  o.threads = threads;
+  o.distribution.threads = threads;
   if (progress) o.progress = [&progress, label](size_t d, size_t t) { progress(label, d, t); };
   return o;
 }
@@ -106,12 +106,11 @@ void renderProgressive(const SceneDescription& d, const ReferenceRequest& r,
       }
     }
   };
-  ClusterRoster roster;
   const PassProgress passProgress = [&](const std::string& label, size_t done, size_t total) {
     if (progress) progress("reference " + label, done, total);
   };
-  const CausticFrame frame = renderWithCaustics(scene, frameOptions(r.threads, {}, ""), nullptr,
-                                                roster, passProgress, keep);
+  const CausticFrame frame =
+      renderWithCaustics(scene, frameOptions(r.threads, {}, ""), passProgress, keep);
   ref.image = frame.image;
   ref.region = causticMask(ref.image, ref.base);
   for (auto& [c, image] : snapshots) {

@@ -41,7 +41,7 @@ std::optional<uint32_t> TileScheduler::next(int worker, double now) {
       const uint32_t tile = queue->front();
       queue->pop_front();
       if (done_[tile]) continue;
-      if (w.leased.empty()) w.lastHeard = now;  // the silence clock starts with the first lease
+      if (w.leased.empty()) w.lastProgress = now;  // the lease clock starts with the first lease
       w.leased.push_back(tile);
       w.leasedSeq.push_back(w.sent++);
       issued_[tile] = true;
@@ -56,7 +56,7 @@ bool TileScheduler::complete(uint32_t tile, int worker, double now) {
     return false;
   }
   Worker& w = workers_[worker];
-  w.lastHeard = now;
+  w.lastProgress = now;
   for (size_t i = 0; i < w.leased.size(); ++i) {
     if (w.leased[i] == tile) {
       w.leased.erase(w.leased.begin() + static_cast<std::ptrdiff_t>(i));
@@ -112,7 +112,7 @@ std::vector<int> TileScheduler::reclaimExpired(double now) {
   for (size_t i = 0; i < workers_.size(); ++i) {
     Worker& w = workers_[i];
     if (w.exempt || w.retired || w.leased.empty()) continue;
-    if (now - w.lastHeard > leaseSeconds_) {
+    if (now - w.lastProgress > leaseSeconds_) {
       retire(w);
       expired.push_back(static_cast<int>(i));
     }

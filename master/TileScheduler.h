@@ -6,12 +6,15 @@
 // comparison with the dynamic one.
 // Idle workers (`prism speedup` measures with some ranks left out) take part in neither
 // schedule: they are never given a tile, and W counts only the active ones.
-// Leases: a tile handed out is leased to its worker. When a worker has been silent (no result,
-// no heartbeat) for leaseSeconds while holding leases, it is retired: its tiles go back to the
-// front of the queue for anyone to take, and it gets no more work. A late result from it is
-// still accepted if the tile is not done yet; a second copy of a tile is reported as a
-// duplicate. A live worker's heartbeat lists the tiles it holds; a tile it was sent, has
-// received and neither holds nor delivered was lost, and goes back to the queue at once.
+// Leases: a tile handed out is leased to its worker. A worker that holds leases and has
+// delivered no tile for leaseSeconds (counted from its last delivered tile, or from its first
+// lease after holding none) is retired: its tiles go back to the front of the queue for anyone
+// to take, and it gets no more work. Heartbeats do not extend a lease: they prove a slave is
+// alive (master/SlaveLink.h retires a silent one within seconds), while the lease bounds a
+// slave that answers but makes no progress. A late result from a retired worker is still
+// accepted if the tile is not done yet; a second copy of a tile is reported as a duplicate.
+// A live worker's heartbeat lists the tiles it holds; a tile it was sent, has received and
+// neither holds nor delivered was lost, and goes back to the queue at once.
 #pragma once
 
 #include <cstdint>
@@ -19,9 +22,9 @@
 #include <optional>
 #include <vector>
 
-namespace prism {
+#include "cluster/DistributionOptions.h"
 
-enum class Schedule { Dynamic, Static };
+namespace prism {
 
 class TileScheduler {
  public:
@@ -39,14 +42,11 @@ class TileScheduler {
   // tile index out of range or a tile never handed out.
   bool complete(uint32_t tile, int worker, double now);
 
-  // A heartbeat: the worker is alive.
-  void heardFrom(int worker, double now) { workers_[worker].lastHeard = now; }
-
   // Re-queues the tiles among the first jobsReceived sent to this worker that it no longer
   // holds and has not delivered; returns how many.
   size_t reconcile(int worker, uint64_t jobsReceived, const std::vector<uint32_t>& heldTiles);
 
-  // Retires workers silent past their lease and re-queues their tiles; returns them.
+  // Retires workers past their lease and re-queues their tiles; returns them.
   std::vector<int> reclaimExpired(double now);
   // Retires a worker known to be gone (a send to it failed) and re-queues its tiles.
   void retire(int worker) {
@@ -66,7 +66,7 @@ class TileScheduler {
     std::vector<uint32_t> leased;     // handed out, not finished
     std::vector<uint64_t> leasedSeq;  // the order in which each leased tile was sent
     uint64_t sent = 0;
-    double lastHeard = 0.0;
+    double lastProgress = 0.0;  // last tile delivered, or first lease after holding none
     bool exempt = false;
     bool retired = false;
     bool idle = false;  // not taking part in this frame

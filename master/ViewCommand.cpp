@@ -7,20 +7,13 @@
 #include "master/ResourceCheck.h"
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
-#include "slave/SlaveLoop.h"
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "wire/Messages.h"
 
 namespace prism {
 
-int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, MpiSession* session,
+int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Transport* session,
             const ViewerRunner& viewer) {
-  if (session && session->rank() != 0) {
-    SlaveOptions slave;
-    slave.threads = options.render.threads;
-    slave.fault = options.render.fault;
-    return runSlave(*session, slave);
-  }
   SceneDescription description;
   try {
     if (!viewer) {

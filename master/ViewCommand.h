@@ -26,16 +26,16 @@ struct ViewOptions {
   std::string keys;                // typed into the window at start, in order (letters, + - =)
 };
 
-class MpiSession;
+class Transport;
 
 // Runs the viewer on rank 0; returns the process exit code.
 using ViewerRunner = std::function<int(const Scene& scene, const SceneDescription& description,
-                                       const ViewOptions& options, MpiSession* session,
+                                       const ViewOptions& options, Transport* session,
                                        std::ostream& out, std::ostream& err)>;
 
 // Rank 0 loads and broadcasts the scene and runs `viewer`; other ranks are slaves exactly as
 // in `render`. Without a viewer (Qt was not found at build time) it fails with a clear error.
-int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, MpiSession* session,
+int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Transport* session,
             const ViewerRunner& viewer);
 
 }  // namespace prism

@@ -1,10 +1,13 @@
-// prism: the one executable. Subcommands are described by `prism --help`. Started by an MPI
-// launcher, every rank runs this: rank 0 becomes the master, the others slaves.
+// prism: the one executable, and the composition root: the only place that decides a process's
+// role. Subcommands are described by `prism` alone and `prism --help`. Started by an MPI
+// launcher, every rank runs this: rank 0 becomes the master and runs the command, the others
+// slaves, whatever the command.
 #include <iostream>
 #include <memory>
 
 #include "accel/Simd.h"
 #include "master/Cli.h"
+#include "slave/SlaveLoop.h"
 #include "transport/MpiSession.h"
 #ifdef PRISM_HAVE_VIEWER
 #include "gui/ChartImage.h"
@@ -27,9 +30,14 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  const bool slave = session && session->rank() != 0;
 #ifdef PRISM_HAVE_VIEWER
-  return prism::runCli(argc, argv, session.get(), prism::runViewer, prism::writeChartImage);
+  const prism::ParsedCommand command =
+      prism::parseCommandLine(argc, argv, slave, prism::runViewer, prism::writeChartImage);
 #else
-  return prism::runCli(argc, argv, session.get());
+  const prism::ParsedCommand command = prism::parseCommandLine(argc, argv, slave);
 #endif
+  if (command.exitNow) return command.exitCode;
+  if (slave) return prism::runSlave(*session, command.distribution);
+  return command.runMaster(session.get());
 }

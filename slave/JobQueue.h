@@ -6,7 +6,7 @@
 #include <mutex>
 #include <optional>
 
-#include "slave/TileWorkerPool.h"
+#include "cluster/TileWorkerPool.h"
 
 namespace prism {
 

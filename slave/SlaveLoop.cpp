@@ -14,13 +14,14 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
+#include "cluster/TileWorkerPool.h"
 #include "scene/Scene.h"
 #include "slave/JobQueue.h"
-#include "slave/TileWorkerPool.h"
-#include "transport/MpiSession.h"
+#include "transport/Transport.h"
 #include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
+#include "wire/TileJobWire.h"
 
 namespace prism {
 namespace {
@@ -154,7 +155,7 @@ class PhotonWork {
 
 // After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
 // through rank 0's clear message rather than this rank vanishing.
-void awaitShutdown(MpiSession& session, double timeoutSeconds) {
+void awaitShutdown(Transport& session, double timeoutSeconds) {
   const auto start = Clock::now();
   while (secondsSince(start) < timeoutSeconds) {
     const auto incoming = session.waitForMessage(0.1);
@@ -172,7 +173,7 @@ void awaitShutdown(MpiSession& session, double timeoutSeconds) {
 
 }  // namespace
 
-int runSlave(MpiSession& session, const SlaveOptions& options) {
+int runSlave(Transport& session, const DistributionOptions& options) {
   installInterruptHandlers();
   std::vector<uint8_t> bytes;
   try {
@@ -209,7 +210,6 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
   const bool drop = options.fault.appliesTo(session.rank()) &&
                     options.fault.kind == FaultInjection::Kind::DropTiles;
-  constexpr double kHeartbeatSeconds = 0.5;
   // The current frame. Frame ids only grow: a View (the viewer) or a job of a later frame (the
   // passes of `prism render`) starts a new one, and work of earlier frames is stale.
   uint32_t frame = 0;
@@ -311,8 +311,8 @@ int runSlave(MpiSession& session, const SlaveOptions& options) {
       }
       if (hang || (drop && received % 2 == 0)) continue;
       held.insert(job.tileIndex);
-      jobs.push(TileJob(job.tileIndex, job.rect, job.frame, view,
-                        photons.pass(job.pass, job.terms, !view || view->causticMapBlur)));
+      jobs.push(tileJobFromMessage(
+          job, view, photons.pass(job.pass, job.terms, !view || view->causticMapBlur)));
     }
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({e.what()}));

@@ -1,15 +1,11 @@
-// The only code in Prism that talks to MPI: process start and end, the scene broadcast, and
-// point-to-point messages as opaque byte strings (their format is common/wire). master/ and
-// slave/ use it; the renderer core never does. Every wait here is bounded.
+// The transport over MPI, and the only code in Prism that talks to MPI (common/transport/
+// Transport.h says what a transport does).
 #pragma once
 
-#include <cstdint>
 #include <list>
 #include <memory>
-#include <optional>
-#include <stdexcept>
-#include <string>
-#include <vector>
+
+#include "transport/Transport.h"
 
 namespace prism {
 
@@ -17,17 +13,7 @@ namespace prism {
 // Prism runs as a single process and never initialises MPI.
 bool launchedByMpiLauncher();
 
-class TransportError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct IncomingMessage {
-  int source = 0;
-  std::vector<uint8_t> bytes;
-};
-
-class MpiSession {
+class MpiSession final : public Transport {
  public:
   // Initialises MPI (threads allowed; MPI called from one thread at a time: the main thread,
   // or in `prism view` the master's coordinator thread).
@@ -36,26 +22,26 @@ class MpiSession {
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
 
-  int rank() const { return rank_; }
-  int size() const { return size_; }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
-  void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds);
+  void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) override;
 
   // Queues bytes for rank dest without blocking; the buffer lives until the send completes.
   // Returns false when MPI refuses at once (the destination is known to be gone, e.g. under
   // `mpirun --enable-recovery`); the caller decides what that rank's loss means.
-  bool send(int dest, std::vector<uint8_t> bytes);
+  bool send(int dest, std::vector<uint8_t> bytes) override;
   // Completes finished sends; returns how many are still outstanding.
-  size_t progressSends();
+  size_t progressSends() override;
 
   // A message from any rank, if one has arrived.
-  std::optional<IncomingMessage> poll();
+  std::optional<IncomingMessage> poll() override;
   // Waits up to timeoutSeconds for a message from any rank.
-  std::optional<IncomingMessage> waitForMessage(double timeoutSeconds);
+  std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) override;
 
   // Ends every process of the job (MPI_Abort) after the caller has printed why.
-  [[noreturn]] void abortJob(int exitCode);
+  [[noreturn]] void abortJob(int exitCode) override;
 
  private:
   struct PendingSend;

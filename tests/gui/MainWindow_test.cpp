@@ -84,7 +84,7 @@ class LiveWindow {
   }
   static LiveOptions options(int maxPasses) {
     LiveOptions o;
-    o.threads = 2;
+    o.distribution.threads = 2;
     o.previewScale = 4;
     o.maxPasses = maxPasses;
     o.statsInterval = 0.05;

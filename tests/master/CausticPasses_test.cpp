@@ -67,10 +67,9 @@ ImageError relativeError(const ImageRgb& image, const Camera& camera) {
 CausticFrame render(const SceneDescription& d, int threads = 2, int tileSize = 0) {
   const Scene scene(d);
   FrameOptions options;
-  options.threads = threads;
-  options.tileSize = tileSize;
-  ClusterRoster roster(1);
-  return renderWithCaustics(scene, options, nullptr, roster);
+  options.distribution.threads = threads;
+  options.distribution.tileSize = tileSize;
+  return renderWithCaustics(scene, options);
 }
 
 TEST(CausticPasses, ClassicIndexOneSphereRendersLikeTheDirectLight) {

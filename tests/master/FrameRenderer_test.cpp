@@ -61,14 +61,14 @@ bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
 TEST(FrameRenderer, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
   const Scene scene(mixedScene());
   FrameOptions reference;
-  reference.threads = 1;
-  reference.tileSize = 8;
+  reference.distribution.threads = 1;
+  reference.distribution.tileSize = 8;
   const FrameResult base = renderFrame(scene, reference);
   for (int threads : {1, 2, 3}) {
     for (int tile : {8, 13, 64}) {
       FrameOptions options;
-      options.threads = threads;
-      options.tileSize = tile;
+      options.distribution.threads = threads;
+      options.distribution.tileSize = tile;
       const FrameResult other = renderFrame(scene, options);
       EXPECT_TRUE(bitIdentical(base.image, other.image)) << threads << " threads, tile " << tile;
       EXPECT_EQ(other.rays.total(), base.rays.total());

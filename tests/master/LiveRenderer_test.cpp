@@ -105,7 +105,7 @@ TEST(LiveRenderer, PreviewThenFullPassesEachAFrameAndPassOneIsTheRenderedImage) 
   const SceneDescription d = smallDefaultScene();
   const Scene scene(d);
   LiveOptions options;
-  options.threads = 2;
+  options.distribution.threads = 2;
   options.previewScale = 4;
   options.maxPasses = 2;
   LiveRenderer renderer(scene, options);
@@ -155,10 +155,10 @@ TEST(LiveRenderer, ANewViewEndsTheFrameAndItsLateTilesAreDropped) {
   const SceneDescription d = smallDefaultScene();
   const Scene scene(d);
   LiveOptions options;
-  options.threads = 2;
+  options.distribution.threads = 2;
   options.previewScale = 1;  // straight to full passes
   options.maxPasses = 1;
-  options.tileSize = 8;
+  options.distribution.tileSize = 8;
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -207,7 +207,7 @@ ImageRgb renderPassFrame(SceneDescription d, int pass, std::shared_ptr<const Ren
   d.render.seed = LiveRenderer::passSeed(d.render.seed, pass);
   const Scene scene(d);
   FrameOptions options;
-  options.threads = 2;
+  options.distribution.threads = 2;
   options.pass = std::move(light);
   return renderFrame(scene, options).image;
 }
@@ -224,7 +224,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   const CausticSettings& c = d.caustics;
   constexpr int kPasses = 3;
   LiveOptions options;
-  options.threads = 2;
+  options.distribution.threads = 2;
   options.previewScale = 2;
   options.maxPasses = kPasses;
   LiveRenderer renderer(scene, options);
@@ -242,7 +242,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
 
   // Pass i: the photon pass numbered by its frame id, the radius schedule of the scene.
   const PhotonTracer tracer(scene, c.photons, c.maxBounces);
-  ClusterRoster roster;
+  SlaveLink alone(nullptr, {});
   float radius = 0.0f;
   ImageRgb mean(d.render.width, d.render.height), expectedMean(d.render.width, d.render.height);
   ImageRgb causticMean(d.render.width, d.render.height);
@@ -254,7 +254,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
     EXPECT_TRUE(pass.light->direct);
     const PhotonGather& gather = gatherOf(pass);
     PhotonPassStats stats;
-    const auto map = tracePhotonPass(tracer, pass.frame, 2, nullptr, roster, 30.0, stats);
+    const auto map = tracePhotonPass(tracer, pass.frame, 2, alone, stats);
     ASSERT_EQ(gather.map().size(), map->size());
     ASSERT_GT(map->size(), 1000u);
     EXPECT_EQ(std::memcmp(gather.map().photons().data(), map->photons().data(),
@@ -292,11 +292,9 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   progressive.caustics.progressive = true;
   progressive.caustics.passes = kPasses;
   const Scene progressiveScene(progressive);
-  ClusterRoster renderRoster;
   FrameOptions frameOptions;
-  frameOptions.threads = 2;
-  const CausticFrame reference =
-      renderWithCaustics(progressiveScene, frameOptions, nullptr, renderRoster);
+  frameOptions.distribution.threads = 2;
+  const CausticFrame reference = renderWithCaustics(progressiveScene, frameOptions);
   EXPECT_EQ(reference.caustics.passes, kPasses);
   const ImageRgb referenceDirect = renderFrame(scene, frameOptions).image;
   double referenceCaustic = 0.0;
@@ -322,7 +320,7 @@ TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {
   const SceneDescription d = causticScene();
   const Scene scene(d);
   LiveOptions options;
-  options.threads = 2;
+  options.distribution.threads = 2;
   options.previewScale = 1;
   options.maxPasses = 1;
   LiveRenderer renderer(scene, options);

@@ -110,14 +110,6 @@ TEST(TileScheduler, StaticScheduleHandsARetiredWorkersShareToOthers) {
   EXPECT_EQ(got, (std::set<uint32_t>{0, 1, 2, 3, 4, 5}));
 }
 
-TEST(TileScheduler, HeartbeatKeepsASlowWorkerAlive) {
-  TileScheduler s(4, 2, Schedule::Dynamic, 5.0);
-  s.next(1, 0.0);
-  s.heardFrom(1, 4.0);
-  EXPECT_TRUE(s.reclaimExpired(8.0).empty());
-  EXPECT_EQ(s.reclaimExpired(9.5), std::vector<int>{1});
-}
-
 TEST(TileScheduler, ReconcileReissuesOnlyTilesReceivedButNoLongerHeld) {
   TileScheduler s(10, 2, Schedule::Dynamic, 30.0);
   const uint32_t a = *s.next(1, 0.0);  // job 0

@@ -367,7 +367,7 @@ TEST(SceneTraversal, ImagesAreBitIdenticalToTheBinaryWalk) {
     for (TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::PlaneThenInside}) {
       d.render.triangleTest = test;
       FrameOptions options;
-      options.threads = 1;
+      options.distribution.threads = 1;
       const FrameResult a = renderFrame(Scene(d, Traversal::WideSimd), options);
       const FrameResult b = renderFrame(Scene(d, Traversal::BinaryScalar), options);
       ASSERT_EQ(a.image.width, b.image.width);

@@ -1,4 +1,6 @@
-#include "master/TileJobWire.h"
+#include "wire/TileJobWire.h"
+
+#include <utility>
 
 namespace prism {
 
@@ -11,6 +13,12 @@ wire::TileJobMessage tileJobMessage(const TileJob& job) {
                                          (job.pass->caustics ? caustics : 0));
   }
   return message;
+}
+
+TileJob tileJobFromMessage(const wire::TileJobMessage& message,
+                           std::shared_ptr<const RenderView> view,
+                           std::shared_ptr<const RenderPass> pass) {
+  return TileJob(message.tileIndex, message.rect, message.frame, std::move(view), std::move(pass));
 }
 
 }  // namespace prism

@@ -1,4 +1,4 @@
-#include "slave/FaultInjection.h"
+#include "cluster/FaultInjection.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "slave/TileWorkerPool.h"
+#include "cluster/TileWorkerPool.h"
 
 #include <sched.h>
 

@@ -14,28 +14,11 @@
 #include <thread>
 #include <vector>
 
-#include "render/RenderPass.h"
-#include "render/RenderView.h"
+#include "cluster/TileJob.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
 
 namespace prism {
-
-struct TileJob {
-  TileJob() = default;
-  TileJob(uint32_t tile, const TileRect& r, uint32_t f = 0,
-          std::shared_ptr<const RenderView> v = nullptr,
-          std::shared_ptr<const RenderPass> p = nullptr)
-      : tileIndex(tile), rect(r), frame(f), view(std::move(v)), pass(std::move(p)) {}
-
-  uint32_t tileIndex = 0;
-  TileRect rect;
-  // Which frame the job belongs to, and (the viewer) what it renders. Without a view the
-  // tile is rendered with the scene's own camera and settings, as `prism render` does.
-  uint32_t frame = 0;
-  std::shared_ptr<const RenderView> view;
-  std::shared_ptr<const RenderPass> pass;  // the light terms; null: direct light only
-};
 
 class TileWorkerPool {
  public:
