@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <map>
@@ -15,7 +16,9 @@
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/PhotonPass.h"
+#include "master/ScriptedSlave.h"
 #include "parse/SceneLoader.h"
+#include "transport/LoopbackTransport.h"
 
 namespace prism {
 namespace {
@@ -356,6 +359,109 @@ TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {
   const ImageRgb got = recorder.image(passes[0].frame);
   for (size_t px = 0; px < got.pixels.size(); ++px) ASSERT_EQ(got.pixels[px], plain.pixels[px]);
   EXPECT_GT(imageSum(recorder.image(passes[1].frame)), imageSum(got));  // the caustic adds light
+}
+
+// The viewer over the loopback with a slave played by the test: the dispatcher `prism render`
+// uses serves the viewer too, so a late PhotonShare (of a photon pass finished without it) is
+// ignored instead of ending the viewer, and a tile the slave's heartbeat names lost comes back
+// at once instead of after the lease.
+TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBackAtOnce) {
+  const SceneDescription d = smallDefaultScene();
+  const Scene scene(d);
+  LoopbackNetwork network(2);
+  ScriptedSlave slave(network.endpoint(1), scene);
+  std::atomic<bool> stop{false};
+  std::thread slaveThread([&] {
+    slave.ready();
+    wire::PhotonShareMessage late{77, 0, 5, {}, 0.1, {}};
+    late.photons.resize(5);
+    slave.send(wire::encodePhotonShare(late));
+    bool lost = false;
+    while (!stop) {
+      const auto job = slave.nextJob(0.1);
+      if (!job) continue;
+      if (!lost) {
+        slave.lose(job->tileIndex);
+        slave.heartbeat();
+        lost = true;
+        continue;
+      }
+      slave.deliver(slave.render(*job));
+    }
+  });
+  LiveOptions options;
+  options.distribution.threads = 1;
+  options.distribution.heartbeatTimeoutSeconds = 60.0;
+  options.distribution.leaseSeconds = 60.0;  // only the heartbeat can bring the tile back
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  LiveRenderer renderer(scene, options, &network.endpoint(0));
+  Recorder recorder;
+  std::exception_ptr failure;
+  std::thread coordinator([&] {
+    try {
+      renderer.run(recorder);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  const auto start = std::chrono::steady_clock::now();
+  renderer.setView({d.camera, d.render.samplesPerPixel, DebugView::Image});
+  const bool finished = recorder.waitForFinished(1);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const LiveStats stats = renderer.stats();
+  renderer.stop();
+  coordinator.join();
+  stop = true;
+  slaveThread.join();
+
+  ASSERT_TRUE(finished);
+  EXPECT_FALSE(failure);
+  EXPECT_LT(seconds, 20.0);
+  ASSERT_EQ(stats.ranks.size(), 2u);
+  EXPECT_EQ(stats.ranks[1].lostTiles, 1u);
+  EXPECT_GT(stats.ranks[1].tiles, 0u);
+  EXPECT_FALSE(stats.ranks[1].retired);
+  const std::vector<PassInfo> passes = recorder.passes();
+  ASSERT_EQ(passes.size(), 1u);
+  const ImageRgb expected = renderFrame(scene, FrameOptions{}).image;
+  const ImageRgb pass1 = recorder.image(passes[0].frame);
+  ASSERT_EQ(pass1.pixels.size(), expected.pixels.size());
+  EXPECT_EQ(std::memcmp(pass1.pixels.data(), expected.pixels.data(),
+                        expected.pixels.size() * sizeof(Color)),
+            0);
+}
+
+// A viewer slave that dies mid-pass costs the heartbeat timeout, not the lease.
+TEST(LiveRenderer, OverTheLoopbackADeadSlaveIsRetiredWithinSeconds) {
+  const SceneDescription d = smallDefaultScene();
+  const Scene scene(d);
+  LoopbackNetwork network(2);
+  ScriptedSlave slave(network.endpoint(1), scene);
+  std::thread slaveThread([&] {
+    slave.ready();
+    slave.nextJob();  // takes its jobs and dies
+    slave.nextJob();
+  });
+  LiveOptions options;
+  options.distribution.threads = 1;
+  options.distribution.heartbeatTimeoutSeconds = 0.6;
+  options.distribution.leaseSeconds = 120.0;
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  LiveRenderer renderer(scene, options, &network.endpoint(0));
+  Recorder recorder;
+  std::thread coordinator([&] { renderer.run(recorder); });
+  renderer.setView({d.camera, d.render.samplesPerPixel, DebugView::Image});
+  const bool finished = recorder.waitForFinished(1);
+  const LiveStats stats = renderer.stats();
+  renderer.stop();
+  coordinator.join();
+  slaveThread.join();
+  ASSERT_TRUE(finished);  // within the recorder's 30 s; the lease is 120 s
+  EXPECT_TRUE(stats.ranks[1].retired);
+  EXPECT_EQ(stats.ranks[0].tiles, recorder.passes()[0].tiles.size());
 }
 
 }  // namespace

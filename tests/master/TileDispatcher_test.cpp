@@ -1,0 +1,283 @@
+// The master's side of the tile protocol, in one process: rank 0 renders frames through the one
+// dispatcher (renderFrame) while slaves, played message by message over the loopback transport
+// (ScriptedSlave.h) or real ones (runSlave on threads), answer late, twice, out of order, lose
+// tiles, fall silent, freeze or vanish. The image must be bit-identical to one process's, and
+// each failure must cost what the design says: seconds, not the lease.
+#include "master/TileDispatcher.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <sstream>
+#include <thread>
+
+#include "master/CausticPasses.h"
+#include "master/FrameRenderer.h"
+#include "master/ScriptedSlave.h"
+#include "master/SlaveShutdown.h"
+#include "parse/SceneLoader.h"
+#include "slave/SlaveLoop.h"
+#include "transport/LoopbackTransport.h"
+
+namespace prism {
+namespace {
+
+SceneDescription smallScene() {
+  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/default.yaml");
+  d.render.width = 64;
+  d.render.height = 48;
+  d.render.samplesPerPixel = 1;
+  return d;
+}
+
+bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
+  return a.width == b.width && a.height == b.height &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
+}
+
+// A two-rank job: the test thread is rank 0; rank 1 runs `script` on its own thread until it
+// returns or the test says stop.
+class TwoRanks {
+ public:
+  explicit TwoRanks(const Scene& scene) : network_(2), slave_(network_.endpoint(1), scene) {}
+  ~TwoRanks() { join(); }
+
+  template <typename Script>
+  void start(Script script) {
+    thread_ = std::thread([this, script] { script(slave_, stop_); });
+  }
+  void join() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  Transport& master() { return network_.endpoint(0); }
+  LoopbackNetwork& network() { return network_; }
+
+ private:
+  LoopbackNetwork network_;
+  ScriptedSlave slave_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+FrameOptions options(bool masterRenders, double heartbeatTimeout, double lease) {
+  FrameOptions o;
+  o.distribution.threads = 1;
+  o.distribution.tileSize = 16;  // 12 tiles
+  o.distribution.heartbeatTimeoutSeconds = heartbeatTimeout;
+  o.distribution.leaseSeconds = lease;
+  o.masterRenders = masterRenders;
+  o.frameId = 5;
+  return o;
+}
+
+TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExact) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
+    s.ready();
+    while (!stop) {
+      // Two jobs (the prefetch), answered in reverse order, each twice, and a copy tagged with
+      // another frame.
+      const auto a = s.nextJob(0.2);
+      const auto b = a ? s.nextJob(0.2) : std::nullopt;
+      for (const auto& job : {b, a}) {
+        if (!job) continue;
+        const wire::TileResultMessage tile = s.render(*job);
+        s.deliver(tile);
+        s.deliver(tile);
+        wire::TileResultMessage other = tile;
+        other.frame = tile.frame - 1;
+        s.deliver(other);
+      }
+    }
+  });
+  SlaveLink link(&job.master(), options(false, 2.0, 30.0).distribution);
+  const FrameResult f = renderFrame(scene, options(false, 2.0, 30.0), link);
+  job.join();
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_EQ(f.workers[1].tiles, f.tileCount);  // only the slave rendered
+  EXPECT_EQ(f.workers[0].tiles, 0u);
+  // Every copy but the first is dropped; those of the last pair may come after the frame.
+  EXPECT_GE(f.workers[1].staleTiles, 2 * (f.tileCount - 2));
+  EXPECT_EQ(f.reissuedTiles, 0u);
+  EXPECT_FALSE(f.workers[1].retired);
+}
+
+TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
+    s.ready();
+    bool lost = false;
+    while (!stop) {
+      const auto next = s.nextJob(0.2);
+      if (!next) continue;
+      if (!lost) {  // the first job vanishes (say a render thread died) and the heartbeat says so
+        s.lose(next->tileIndex);
+        s.heartbeat();
+        lost = true;
+        continue;
+      }
+      s.deliver(s.render(*next));
+    }
+  });
+  // Lease and silence far away: only the heartbeat can bring the tile back in time.
+  SlaveLink link(&job.master(), options(false, 60.0, 60.0).distribution);
+  const FrameResult f = renderFrame(scene, options(false, 60.0, 60.0), link);
+  job.join();
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_EQ(f.workers[1].lostTiles, 1u);
+  EXPECT_EQ(f.reissuedTiles, 1u);
+  EXPECT_LT(f.seconds, 20.0);
+  EXPECT_FALSE(f.workers[1].retired);
+}
+
+TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
+    s.ready();
+    // Takes two jobs and dies: no result, no heartbeat.
+    s.nextJob();
+    s.nextJob();
+    while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  });
+  SlaveLink link(&job.master(), options(true, 0.6, 120.0).distribution);
+  const FrameResult f = renderFrame(scene, options(true, 0.6, 120.0), link);
+  job.join();
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_TRUE(f.workers[1].retired);
+  EXPECT_TRUE(link.retired(1));
+  EXPECT_EQ(f.reissuedTiles, 2u);
+  EXPECT_LT(f.seconds, 20.0);  // the lease is 120 s
+}
+
+TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
+    s.ready();
+    s.nextJob();
+    s.nextJob();
+    while (!stop) {  // frozen render threads, live message loop
+      s.heartbeat();
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  });
+  SlaveLink link(&job.master(), options(true, 0.6, 1.0).distribution);
+  const FrameResult f = renderFrame(scene, options(true, 0.6, 1.0), link);
+  job.join();
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_TRUE(f.workers[1].retired);
+  EXPECT_EQ(f.reissuedTiles, 2u);
+  EXPECT_EQ(f.workers[1].lostTiles, 0u);  // it says it holds them: not lost, just stuck
+}
+
+TEST(TileDispatcher, ASlaveTheTransportKnowsIsGoneIsRetiredAtTheFirstSend) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  job.network().disconnect(1);
+  SlaveLink link(&job.master(), options(true, 60.0, 60.0).distribution);
+  const FrameResult f = renderFrame(scene, options(true, 60.0, 60.0), link);
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_TRUE(f.workers[1].retired);
+  EXPECT_EQ(f.workers[0].tiles, f.tileCount);
+  EXPECT_LT(f.seconds, 20.0);
+}
+
+TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
+  const Scene scene(smallScene());
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>&) {
+    s.ready();
+    s.send(wire::encodePhotonJob({1, 0, 10, 10}));  // a master's message, from a slave
+  });
+  SlaveLink link(&job.master(), options(false, 60.0, 60.0).distribution);
+  try {
+    renderFrame(scene, options(false, 60.0, 60.0), link);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("rank 1 sent an unexpected"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A slave retired during a photon pass (silent past the heartbeat timeout) that sends its share
+// afterwards: rank 0 traced the share itself, the late one is ignored wherever it lands.
+TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
+  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
+  d.render.width = 48;
+  d.render.height = 36;
+  d.render.samplesPerPixel = 1;
+  d.caustics.photons = 20000;
+  const Scene scene(d);
+  FrameOptions o = options(true, 0.6, 60.0);
+  const CausticFrame alone = renderWithCaustics(scene, o);
+  TwoRanks job(scene);
+  job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
+    s.ready();
+    // Takes its photon job without a word, and answers long after it was given up on.
+    const auto photonJob = s.waitFor(wire::MessageType::PhotonJob);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+    if (photonJob) {
+      const wire::PhotonJobMessage asked = wire::decodePhotonJob(*photonJob);
+      wire::PhotonShareMessage late{asked.pass, asked.first, asked.count, {}, 0.1, {}};
+      late.photons.resize(static_cast<size_t>(asked.count));  // would spoil the image if used
+      s.send(wire::encodePhotonShare(late));
+    }
+    while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  });
+  SlaveLink link(&job.master(), o.distribution);
+  const CausticFrame f = renderWithCaustics(scene, o, link);
+  job.join();
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_TRUE(link.retired(1));
+}
+
+// Real slaves (runSlave on threads) over the loopback: photon shares, the map broadcast and
+// tiles, then the shutdown handshake; the same image as one process.
+TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
+  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
+  d.render.width = 48;
+  d.render.height = 36;
+  d.render.samplesPerPixel = 1;
+  d.caustics.photons = 20000;
+  const Scene scene(d);
+  FrameOptions o = options(true, 2.0, 60.0);
+  const CausticFrame alone = renderWithCaustics(scene, o);
+
+  LoopbackNetwork network(3);
+  std::vector<std::thread> slaves;
+  std::vector<int> exitCodes(3, -1);
+  for (int r = 1; r < 3; ++r) {
+    slaves.emplace_back([&network, &exitCodes, r] {
+      DistributionOptions slave;
+      slave.threads = 1;
+      slave.masterTimeoutSeconds = 30.0;
+      exitCodes[static_cast<size_t>(r)] = runSlave(network.endpoint(r), slave);
+    });
+  }
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  network.endpoint(0).broadcast(bytes, 10.0);
+  SlaveLink link(&network.endpoint(0), o.distribution);
+  const CausticFrame f = renderWithCaustics(scene, o, link);
+  std::ostringstream err;
+  EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, link.retiredRanks(), err), 0) << err.str();
+  for (std::thread& t : slaves) t.join();
+  EXPECT_EQ(exitCodes[1], 0);
+  EXPECT_EQ(exitCodes[2], 0);
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+  EXPECT_EQ(f.caustics.photonsByRank.size(), 3u);
+  EXPECT_GT(f.caustics.photonsByRank[1], 0u);
+  EXPECT_GT(f.frames.workers[1].tiles + f.frames.workers[2].tiles, 0u);
+}
+
+}  // namespace
+}  // namespace prism
