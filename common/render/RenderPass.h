@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "caustics/CausticEstimator.h"
-#include "render/WhittedIntegrator.h"
+#include "render/LightTerms.h"
 
 namespace prism {
 

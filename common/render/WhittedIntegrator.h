@@ -5,17 +5,11 @@
 #pragma once
 
 #include "caustics/CausticEstimator.h"
+#include "render/LightTerms.h"
 #include "render/RayCounters.h"
 #include "scene/Scene.h"
 
 namespace prism {
-
-// Which parts of the light a render adds up. Progressive caustics render the direct part once
-// and the caustic part once per pass, then sum them.
-struct LightTerms {
-  bool direct = true;                          // ambient, lights through shadow rays, environment
-  const CausticEstimator* caustics = nullptr;  // caustic irradiance on receivers, if any
-};
 
 class WhittedIntegrator {
  public:
