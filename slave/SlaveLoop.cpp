@@ -1,5 +1,6 @@
 #include "slave/SlaveLoop.h"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <thread>
 #include <utility>
 
 #include "caustics/CausticMapEstimator.h"
@@ -210,26 +212,53 @@ int runSlave(Transport& session, const DistributionOptions& options) {
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
   const bool drop = options.fault.appliesTo(session.rank()) &&
                     options.fault.kind == FaultInjection::Kind::DropTiles;
+  // The message loop and the heartbeat thread share the transport and the frame's counts under
+  // one lock (MPI is called from one thread at a time). The loop lets go of it for anything
+  // long (a wait, building caustic maps or a photon kd-tree), so the heartbeat never stops
+  // while this rank is alive, and the master never takes a busy slave for a dead one.
+  std::mutex shared;
+  std::condition_variable beatStop;
+  bool stopBeating = false;
+  std::atomic<bool> masterGone{false};
   // The current frame. Frame ids only grow: a View (the viewer) or a job of a later frame (the
   // passes of `prism render`) starts a new one, and work of earlier frames is stale.
   uint32_t frame = 0;
   std::shared_ptr<const RenderView> view;  // the viewer's; `prism render` uses the scene's
   uint64_t received = 0;                   // jobs of this frame
   std::set<uint32_t> held;                 // tiles of this frame received, not yet returned
-  auto lastHeartbeat = Clock::now();
+  // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets the
+  // master spot tiles this rank lost.
+  std::thread heartbeat([&] {
+    std::unique_lock<std::mutex> lock(shared);
+    while (!beatStop.wait_for(lock, std::chrono::duration<double>(kHeartbeatSeconds),
+                              [&] { return stopBeating; })) {
+      if (hang) continue;
+      const wire::ProgressMessage progress{frame, received, {held.begin(), held.end()}};
+      if (!session.send(0, wire::encodeProgress(progress))) masterGone = true;
+    }
+  });
+  const auto stopHeartbeat = [&] {
+    {
+      const std::lock_guard<std::mutex> lock(shared);
+      stopBeating = true;
+    }
+    beatStop.notify_all();
+    if (heartbeat.joinable()) heartbeat.join();
+  };
   bool shutdownReceived = false;
   bool masterSilent = false;
   bool interrupted = false;
   auto lastHeard = Clock::now();
   int exitCode = 0;
   try {
+    std::unique_lock<std::mutex> lock(shared);
     for (;;) {
       if (pool.failed()) break;
       if (interruptRequested()) {
         interrupted = true;
         break;
       }
-      bool masterReachable = true;
+      bool masterReachable = !masterGone;
       for (wire::TileResultMessage& result : outbox.take()) {
         if (result.frame != frame) continue;  // finished after the viewer moved on: stale
         held.erase(result.result.tileIndex);
@@ -237,13 +266,6 @@ int runSlave(Transport& session, const DistributionOptions& options) {
       }
       if (std::optional<wire::PhotonShareMessage> share = photons.finished()) {
         masterReachable = session.send(0, wire::encodePhotonShare(*share)) && masterReachable;
-      }
-      // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets
-      // the master spot tiles this rank lost.
-      if (!hang && secondsSince(lastHeartbeat) > kHeartbeatSeconds) {
-        const wire::ProgressMessage progress{frame, received, {held.begin(), held.end()}};
-        masterReachable = session.send(0, wire::encodeProgress(progress)) && masterReachable;
-        lastHeartbeat = Clock::now();
       }
       if (!masterReachable) {
         std::fprintf(stderr, "prism: rank %d: rank 0 is gone, stopping\n", session.rank());
@@ -255,7 +277,9 @@ int runSlave(Transport& session, const DistributionOptions& options) {
       // again), so neither a job nor a result waits longer than that.
       auto incoming = session.poll();
       if (!incoming) {
+        lock.unlock();
         outbox.waitForTile(std::chrono::milliseconds(1));
+        lock.lock();
         incoming = session.poll();
       }
       if (!incoming) {
@@ -289,11 +313,16 @@ int runSlave(Transport& session, const DistributionOptions& options) {
         continue;
       }
       if (message.type == wire::MessageType::PhotonJob) {
-        if (!hang) photons.start(wire::decodePhotonJob(message));
+        if (hang) continue;
+        lock.unlock();  // waits for a share still being traced
+        photons.start(wire::decodePhotonJob(message));
+        lock.lock();
         continue;
       }
       if (message.type == wire::MessageType::PhotonMap) {
+        lock.unlock();  // builds the kd-tree
         photons.acceptMap(wire::decodePhotonMap(message));
+        lock.lock();
         continue;
       }
       if (message.type != wire::MessageType::TileJob) continue;
@@ -310,14 +339,19 @@ int runSlave(Transport& session, const DistributionOptions& options) {
         std::_Exit(9);  // dies without MPI_Finalize, like a killed process
       }
       if (hang || (drop && received % 2 == 0)) continue;
-      held.insert(job.tileIndex);
-      jobs.push(tileJobFromMessage(
-          job, view, photons.pass(job.pass, job.terms, !view || view->causticMapBlur)));
+      held.insert(job.tileIndex);  // with the count, so no heartbeat sees it received, not held
+      lock.unlock();               // the first tile of a caustic-map pass may build the maps
+      std::shared_ptr<const RenderPass> pass =
+          photons.pass(job.pass, job.terms, !view || view->causticMapBlur);
+      lock.lock();
+      jobs.push(tileJobFromMessage(job, view, std::move(pass)));
     }
   } catch (const std::exception& e) {
+    stopHeartbeat();
     session.send(0, wire::encodeError({e.what()}));
     exitCode = 1;
   }
+  stopHeartbeat();
   jobs.clear();
   jobs.close();
   pool.cancel();  // nobody will take a tile still being rendered: stop it after its row

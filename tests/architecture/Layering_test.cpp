@@ -24,10 +24,10 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Include {
-  std::string file;    // relative to the root, e.g. "common/wire/Messages.h"
+  std::string file;  // relative to the root, e.g. "common/wire/Messages.h"
   int line = 0;
-  std::string target;  // as written
-  bool system = false;  // <...>
+  std::string target;    // as written
+  bool system = false;   // <...>
   std::string resolved;  // the project file it names, relative to the root; "" if none
 };
 
@@ -190,15 +190,17 @@ TEST(Layering, TheCoreIncludesNoTransport) {
 }
 
 TEST(Layering, QtOnlyInGui) {
-  EXPECT_EQ(violations(project(),
-                       [](const Include& inc) { return isQt(inc) && !startsWith(inc.file, "gui/"); }),
-            "");
+  EXPECT_EQ(
+      violations(project(),
+                 [](const Include& inc) { return isQt(inc) && !startsWith(inc.file, "gui/"); }),
+      "");
 }
 
 TEST(Layering, MpiOnlyInTheMpiTransport) {
   EXPECT_EQ(violations(project(),
                        [](const Include& inc) {
-                         return inc.system && (inc.target == "mpi.h" || startsWith(inc.target, "mpi")) &&
+                         return inc.system &&
+                                (inc.target == "mpi.h" || startsWith(inc.target, "mpi")) &&
                                 inc.file != "common/transport/MpiSession.cpp";
                        }),
             "");
@@ -213,16 +215,15 @@ TEST(Layering, MpiOnlyInTheMpiTransport) {
 }
 
 TEST(Layering, MasterAndSlaveNeverIncludeEachOther) {
-  EXPECT_EQ(violations(project(),
-                       [](const Include& inc) {
-                         if (inc.file == "master/main.cpp") return false;  // the composition root
-                         return (startsWith(inc.file, "master/") &&
-                                 startsWith(inc.resolved, "slave/")) ||
-                                (startsWith(inc.file, "slave/") &&
-                                 (startsWith(inc.resolved, "master/") ||
-                                  startsWith(inc.resolved, "gui/")));
-                       }),
-            "");
+  EXPECT_EQ(
+      violations(project(),
+                 [](const Include& inc) {
+                   if (inc.file == "master/main.cpp") return false;  // the composition root
+                   return (startsWith(inc.file, "master/") && startsWith(inc.resolved, "slave/")) ||
+                          (startsWith(inc.file, "slave/") && (startsWith(inc.resolved, "master/") ||
+                                                              startsWith(inc.resolved, "gui/")));
+                 }),
+      "");
 }
 
 TEST(Layering, TheWireFormatDoesNotReachTheAccelerationStructures) {
@@ -267,8 +268,9 @@ TEST(Layering, APlantedViolationOfEachKindIsFound) {
   std::ofstream(root / "common/b/B.h", std::ios::app) << "#include \"b/C.h\"\n";
   const IncludeGraph graph(root);
   EXPECT_NE(folderCycle(graph), "");
-  EXPECT_NE(violations(graph, [](const Include& i) { return isQt(i) && !startsWith(i.file, "gui/"); }),
-            "");
+  EXPECT_NE(
+      violations(graph, [](const Include& i) { return isQt(i) && !startsWith(i.file, "gui/"); }),
+      "");
   EXPECT_EQ(graph.reachable("common/wire/W.h").count("common/accel/Bvh.h"), 1u);
   EXPECT_NE(violations(graph,
                        [](const Include& i) {

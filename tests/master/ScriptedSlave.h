@@ -20,8 +20,7 @@ namespace prism {
 
 class ScriptedSlave {
  public:
-  ScriptedSlave(Transport& transport, const Scene& scene)
-      : transport_(transport), scene_(scene) {}
+  ScriptedSlave(Transport& transport, const Scene& scene) : transport_(transport), scene_(scene) {}
 
   void ready(int threads = 1) { transport_.send(0, wire::encodeReady({0.01, threads})); }
 

@@ -7,7 +7,9 @@
 namespace prism {
 namespace {
 
-std::vector<uint8_t> bytes(std::initializer_list<uint8_t> b) { return b; }
+std::vector<uint8_t> bytes(std::initializer_list<uint8_t> b) {
+  return b;
+}
 
 TEST(LoopbackTransport, MessagesArriveInOrderWithTheirSource) {
   LoopbackNetwork network(3);
