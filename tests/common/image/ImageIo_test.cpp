@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "image/ToneMap.h"
 
@@ -195,6 +198,37 @@ TEST(ToneMap, TableEncoderMatchesTheFormula) {
   EXPECT_EQ(encode(1e30f), 255);
   EXPECT_EQ(encode(0.0f), 0);
   EXPECT_EQ(encode(1.0f), 255);
+}
+
+// The bucket table must give exactly the binary search's byte, or PNGs would change: every float
+// near a threshold (one ulp either side) and a dense sweep of the whole range, for exposures
+// from tiny to huge.
+TEST(ToneMap, BucketTableMatchesTheBinarySearchExactly) {
+  for (float exposure : {1.0f, 0.37f, 4.0f, 1e-3f, 1e3f, 0.7f}) {
+    const DisplayEncoder encode(exposure);
+    const float first = srgbToLinear(0.5f / 255.0f) / exposure;
+    const float last = srgbToLinear(254.5f / 255.0f) / exposure;
+    int checked = 0;
+    for (int b = 1; b < 256; ++b) {
+      const float t = srgbToLinear((static_cast<float>(b) - 0.5f) / 255.0f) / exposure;
+      for (float v : {std::nextafter(t, 0.0f), t, std::nextafter(t, 1e30f)}) {
+        ASSERT_EQ(encode(v), encode.encode(v)) << "exposure " << exposure << " value " << v;
+        ++checked;
+      }
+    }
+    const uint32_t from = std::bit_cast<uint32_t>(first * 0.5f);
+    const uint32_t to = std::bit_cast<uint32_t>(last * 2.0f);
+    for (uint32_t bits = from; bits < to; bits += 97) {
+      const float v = std::bit_cast<float>(bits);
+      ASSERT_EQ(encode(v), encode.encode(v)) << "exposure " << exposure << " value " << v;
+      ++checked;
+    }
+    EXPECT_GT(checked, 1000000);
+    for (float v : {0.0f, -0.0f, -1.0f, std::nanf(""), std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity(), 1e-45f}) {
+      EXPECT_EQ(encode(v), encode.encode(v)) << v;
+    }
+  }
 }
 
 }  // namespace
