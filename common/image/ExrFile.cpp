@@ -191,7 +191,11 @@ std::optional<ImageRgb> readExr(const std::string& path) {
   for (int c = 0; c < channels->num_channels; ++c) {
     const exr_attr_chlist_entry_t& entry = channels->entries[c];
     if (rgbIndex(entry.name.str) < 0) continue;
-    if (entry.x_sampling != 1 || entry.y_sampling != 1) return std::nullopt;
+    // Subsampled channels, and 32-bit integers (which OpenImageIO normalises to [0, 1] and takes
+    // as display-encoded), are OpenImageIO's to read.
+    if (entry.x_sampling != 1 || entry.y_sampling != 1 || entry.pixel_type == EXR_PIXEL_UINT) {
+      return std::nullopt;
+    }
     ++rgb;
   }
   if (parts != 1 || storage != EXR_STORAGE_SCANLINE || rgb != 3) return std::nullopt;

@@ -1,7 +1,7 @@
 // OpenEXR through its C library (OpenEXRCore: one shared library plus zlib, no C++ runtime of its
 // own to load): the linear float image of every `-o x.exr` render, untouched, and the EXRs users
-// bring. Only single-part scanline files with R, G and B channels (half, float or uint) are read
-// here; other EXRs (tiled, multi-part, deep, luminance, subsampled) are left to OpenImageIO
+// bring. Only single-part scanline files with R, G and B channels of half or float are read here;
+// other EXRs (tiled, multi-part, deep, luminance, subsampled, integer) are left to OpenImageIO
 // (ImageIo.cpp).
 #pragma once
 

@@ -3,11 +3,15 @@
 #include <OpenEXR/openexr.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <vector>
+
+#include "image/ImageIo.h"
 
 namespace prism {
 namespace {
@@ -84,6 +88,48 @@ TEST_F(ExrFileTest, StringAttributesRoundTripUnderOpenImageIosNames) {
   EXPECT_EQ(readExrText(path("m.exr"), "Nothing"), std::nullopt);
   EXPECT_EQ(readExrText(path("m.exr"), "dataWindow"), std::nullopt);  // not a string
   EXPECT_EQ(readExrText(path("missing.exr"), "Software"), std::nullopt);
+}
+
+// A 2×1 uncompressed scanline EXR of half-float channels, written chunk by chunk with OpenEXRCore
+// (writeExr only writes float RGB). halves holds, per channel in name order, two half bit patterns.
+void writeHalfExr(const std::string& path, const std::vector<const char*>& names,
+                  const std::vector<std::array<uint16_t, 2>>& halves) {
+  exr_context_t ctx = nullptr;
+  ASSERT_EQ(exr_start_write(&ctx, path.c_str(), EXR_WRITE_FILE_DIRECTLY, nullptr), EXR_ERR_SUCCESS);
+  int part = 0;
+  ASSERT_EQ(exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &part), EXR_ERR_SUCCESS);
+  ASSERT_EQ(exr_initialize_required_attr_simple(ctx, part, 2, 1, EXR_COMPRESSION_NONE),
+            EXR_ERR_SUCCESS);
+  for (const char* name : names) {
+    ASSERT_EQ(exr_add_channel(ctx, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1),
+              EXR_ERR_SUCCESS);
+  }
+  ASSERT_EQ(exr_write_header(ctx), EXR_ERR_SUCCESS);
+  // One scanline: each channel's two values in turn, little-endian (names are already sorted).
+  std::vector<uint16_t> line;
+  for (const auto& channel : halves) line.insert(line.end(), channel.begin(), channel.end());
+  ASSERT_EQ(exr_write_scanline_chunk(ctx, part, 0, line.data(), line.size() * 2), EXR_ERR_SUCCESS);
+  ASSERT_EQ(exr_finish(&ctx), EXR_ERR_SUCCESS);
+}
+
+constexpr uint16_t kHalfQuarter = 0x3400, kHalfHalf = 0x3800, kHalfOne = 0x3c00, kHalfTwo = 0x4000;
+
+TEST_F(ExrFileTest, HalfChannelsReadAsTheirExactFloats) {
+  writeHalfExr(path("h.exr"), {"B", "G", "R"},
+               {{kHalfOne, kHalfHalf}, {kHalfQuarter, 0}, {kHalfHalf, kHalfTwo}});
+  const std::optional<ImageRgb> image = readExr(path("h.exr"));
+  ASSERT_TRUE(image.has_value());
+  EXPECT_EQ(image->at(0, 0), Color(0.5f, 0.25f, 1.0f));
+  EXPECT_EQ(image->at(1, 0), Color(2.0f, 0.0f, 0.5f));
+  EXPECT_TRUE(sameBits(readImageWithOpenImageIo(path("h.exr")), *image));
+}
+
+TEST_F(ExrFileTest, OtherKindsAreLeftToOpenImageIo) {
+  writeHalfExr(path("y.exr"), {"Y"}, {{kHalfHalf, kHalfTwo}});  // luminance only
+  EXPECT_EQ(readExr(path("y.exr")), std::nullopt);
+  const ImageRgb image = readImage(path("y.exr"));  // through OpenImageIO: one grey channel
+  EXPECT_EQ(image.at(0, 0), Color(0.5f));
+  EXPECT_EQ(image.at(1, 0), Color(2.0f));
 }
 
 TEST_F(ExrFileTest, MissingAndCorruptFilesThrow) {
