@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -17,7 +18,7 @@ namespace fs = std::filesystem;
 constexpr const char* kModuleFile = "prism_image_oiio.so";
 
 std::once_flag loadOnce;
-const OiioModuleApi* loaded = nullptr;
+std::atomic<const OiioModuleApi*> loaded{nullptr};
 std::string loadError;
 
 std::vector<std::string> candidatePaths() {
@@ -67,12 +68,13 @@ void load() {
 
 const OiioModuleApi& oiioModule(const std::string& what) {
   std::call_once(loadOnce, load);
-  if (!loaded) throw std::runtime_error(what + ": " + loadError);
-  return *loaded;
+  const OiioModuleApi* api = loaded.load();
+  if (!api) throw std::runtime_error(what + ": " + loadError);
+  return *api;
 }
 
 bool oiioModuleLoaded() {
-  return loaded != nullptr;
+  return loaded.load() != nullptr;
 }
 
 }  // namespace prism
