@@ -6,7 +6,9 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
-  libglm-dev libyaml-cpp-dev libopenimageio-dev   # renderer core: math, scenes, images
+  libglm-dev libyaml-cpp-dev                      # renderer core: math, scenes
+  libpng-dev libopenexr-dev                       # PNG and EXR, written on every render
+  libopenimageio-dev                              # other image formats (loaded on first use)
   libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
   libnanoflann-dev                                # k-nearest photons (caustics)
   libopenmpi-dev openmpi-bin                      # distribution over MPI

