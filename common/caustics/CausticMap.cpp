@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/LightFalloff.h"
-#include "render/SpecularSplit.h"
+#include "shading/LightFalloff.h"
+#include "shading/SpecularSplit.h"
 #include "util/Stopwatch.h"
 
 namespace prism {

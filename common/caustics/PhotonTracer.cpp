@@ -7,9 +7,9 @@
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
-#include "render/LightFalloff.h"
-#include "render/MaterialEval.h"
-#include "render/SpecularSplit.h"
+#include "shading/LightFalloff.h"
+#include "shading/MaterialEval.h"
+#include "shading/SpecularSplit.h"
 
 namespace prism {
 namespace {

@@ -10,9 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "geometry/MaterialId.h"
 #include "image/ImageRgb.h"
 #include "math/Vec.h"
-#include "parse/FileLoc.h"
+#include "scene/FileLoc.h"
 
 namespace prism {
 
@@ -63,8 +64,6 @@ struct MaterialDesc {
   std::optional<CheckerDesc> checker;
   FileLoc loc;
 };
-
-using MaterialId = uint32_t;
 
 // An object's part in caustics. Auto: casts when its material reflects or transmits
 // specularly, receives when it has a diffuse albedo. Cast/Receive restrict it to one role,
