@@ -5,7 +5,7 @@
 
 #include "caustics/PhotonGather.h"
 #include "master/PhotonPass.h"
-#include "slave/TileWorkerPool.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {

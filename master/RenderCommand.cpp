@@ -1,6 +1,5 @@
 #include "master/RenderCommand.h"
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -125,7 +124,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   }
   // From here on Ctrl-C stops the run (at the first tile boundary) instead of the process.
   installInterruptHandlers();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
   RunSummary summary;
@@ -137,7 +136,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
       throw std::runtime_error("--photon-image: " + why);
     }
-    const auto parseStart = std::chrono::steady_clock::now();
+    const auto parseStart = SteadyClock::now();
     description = loadSceneWithOverrides(options);
     summary.parseSeconds = secondsSince(parseStart);
   } catch (const std::exception& e) {
@@ -148,13 +147,13 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   std::vector<bool> silentRanks;
   try {
     if (session) {
-      const auto broadcastStart = std::chrono::steady_clock::now();
+      const auto broadcastStart = SteadyClock::now();
       std::vector<uint8_t> bytes = wire::encodeScene(description);
       session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
       summary.broadcastSeconds = secondsSince(broadcastStart);
       summary.broadcastBytes = bytes.size();
     }
-    const auto buildStart = std::chrono::steady_clock::now();
+    const auto buildStart = SteadyClock::now();
     const Scene scene(description);
     summary.buildSeconds = secondsSince(buildStart);
 
@@ -200,7 +199,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
              "(a reflective or transparent object): rendered without photons\n";
     }
 
-    const auto writeStart = std::chrono::steady_clock::now();
+    const auto writeStart = SteadyClock::now();
     writeImage(result.image, output, description.render.exposure);
     summary.writeSeconds = secondsSince(writeStart);
     if (!options.photonImagePath.empty()) {

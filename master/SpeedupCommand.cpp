@@ -6,7 +6,6 @@
 #include <map>
 #include <memory>
 #include <ostream>
-#include <thread>
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
@@ -23,8 +22,8 @@
 #include "master/TilePlan.h"
 #include "scene/Scene.h"
 #include "slave/SlaveLoop.h"
-#include "slave/TileWorkerPool.h"
 #include "transport/MpiSession.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -190,7 +189,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
   SpeedupReport report;
   report.scenePath = options.render.scenePath;
   report.ranks = session->size();
-  report.cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  report.cores = machineCores();
   report.threadsPerRank = options.threadsPerRank;
   report.repeats = options.repeats;
   report.prefetch = options.render.prefetch;

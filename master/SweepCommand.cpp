@@ -12,8 +12,8 @@
 #include "master/ProgressBar.h"
 #include "master/SweepReport.h"
 #include "slave/SlaveLoop.h"
-#include "slave/TileWorkerPool.h"
 #include "transport/MpiSession.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
