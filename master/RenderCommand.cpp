@@ -17,6 +17,7 @@
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
+#include "scene/SceneValidation.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiSession.h"
 #include "util/InterruptSignal.h"
@@ -64,7 +65,7 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
   SceneDescription description = loadScene(options.scenePath, limit);
   applyOverrides(options, description.render);
   applyOverrides(options, description.caustics);
-  checkSettingsSane(description.render);
+  validate(description);
   checkRenderFits(description.render, limit);
   checkTilesFit(description.render, options.tileSize, limit);
   checkCausticsFit(description.caustics, limit);

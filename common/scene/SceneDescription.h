@@ -118,6 +118,8 @@ struct CubeMapDesc {
   float scale = 1.0f;  // multiplies the stored radiance
 };
 
+// Names and limits of these settings: SettingNames.h, SettingLimits.h; validate() checks them
+// (SceneValidation.h).
 enum class TriangleTest { MollerTrumbore, PlaneThenInside };
 
 struct RenderSettings {
@@ -138,12 +140,6 @@ enum class CausticMethod { None, PhotonMap, CausticMap };
 enum class CausticMapPaths { FrontFace, Traced };
 // Density estimation kernels over the gathered disc (see caustics/DensityKernel.h).
 enum class PhotonFilter { Box, Cone, Epanechnikov };
-
-// Bounds of the caustic-map parameters (parser, codec and command line agree on them).
-inline constexpr int kMinCausticMapResolution = 16;
-inline constexpr int kMaxCausticMapResolution = 4096;
-inline constexpr int kMaxCausticMapSteps = 64;
-inline constexpr int kMaxCausticMapBlurRadius = 64;
 
 // How caustics are computed; see docs/caustics.md.
 struct CausticSettings {
