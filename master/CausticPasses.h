@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "caustics/CausticMapEstimator.h"
+#include "caustics/GatherRadius.h"
 #include "caustics/PhotonMap.h"
 #include "caustics/PhotonTracer.h"
 #include "master/FrameRenderer.h"
@@ -76,17 +77,5 @@ CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
 // whose tiles tell the slaves to use the caustic maps they build themselves.
 std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
                                                  std::shared_ptr<const CausticMapEstimator> maps);
-
-// The k-NN gather radius cap when the scene leaves it at 0: a tenth of the largest bounded
-// caster's bounding radius, or a hundredth of the scene's size when only planes cast.
-float automaticMaxRadius(const Scene& scene);
-
-// The first progressive radius when the scene leaves it at 0: the mean distance from a spread
-// of stored photons to their k-th nearest neighbour, capped at maxRadius.
-float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius);
-
-// The progressive gather radius of pass `pass` ≥ 2, given pass − 1's:
-// r²(pass) = r²(pass − 1)·(pass − 1 + α)/pass.
-float nextProgressiveRadius(float previous, int pass, float alpha);
 
 }  // namespace prism

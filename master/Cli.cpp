@@ -3,12 +3,13 @@
 #include <CLI/CLI.hpp>
 #include <cctype>
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "master/RenderCommand.h"
 #include "master/SpeedupCommand.h"
 #include "master/SweepCommand.h"
+#include "scene/SettingLimits.h"
+#include "scene/SettingNames.h"
 #include "util/MemorySize.h"
 
 namespace prism {
@@ -16,22 +17,43 @@ namespace {
 
 constexpr const char* kVersion = "0.1.0";
 
-// Raw values of the options that override scene settings; only those the user gave are applied.
-struct RenderOverrideValues {
-  int width = 0, height = 0, samples = 0, maxDepth = 0;
-  uint64_t seed = 0;
-  float exposure = 1.0f;
-  TriangleTest triangleTest = TriangleTest::MollerTrumbore;
-  CausticMethod causticMethod = CausticMethod::None;
-  uint64_t photons = 0;
-  int gather = 0, passes = 0;
-  float gatherRadius = 0.0f;
-  double timeBudget = 0.0;
-  bool progressive = false;
-  int mapResolution = 0, mapSteps = 0, mapBlurRadius = 0;
-  float mapBlurSigma = 0.0f;
-  CausticMapPaths mapPaths = CausticMapPaths::Traced;
-};
+inline constexpr NamedValue<Schedule> kScheduleList[] = {{"dynamic", Schedule::Dynamic},
+                                                         {"static", Schedule::Static}};
+inline constexpr NameTable<Schedule> kScheduleNames{kScheduleList};
+
+// An option whose value is one of a setting's names (scene/SettingNames.h), spelt as in scene
+// files or with '-' for '_', in any case; help and errors list the canonical names.
+template <typename T, typename E>
+CLI::Option* addNamed(CLI::App* command, const std::string& flags, T& target,
+                      const NameTable<E>& names, const std::string& help) {
+  CLI::Validator toValue(
+      [names](std::string& text) {
+        const std::optional<E> value = names.find(text);
+        if (!value) return "unknown value '" + text + "' (expected " + names.list() + ")";
+        text = std::to_string(static_cast<int>(*value));  // CLI11 converts enums from integers
+        return std::string();
+      },
+      "");
+  return command->add_option(flags, target, help)
+      ->transform(toValue)
+      ->option_text(names.list("|", "|"));
+}
+
+// An option bounded like the scene-file key it overrides (scene/SettingLimits.h).
+template <typename T>
+CLI::Option* addLimited(CLI::App* command, const std::string& flags, T& target,
+                        const SettingLimit& limit, const std::string& help) {
+  return command->add_option(flags, target, help)->check(CLI::Range(limit.min, limit.max));
+}
+
+// -W, -H and -s: every command that renders has them.
+void addImageSizeOptions(CLI::App* command, RenderOptions& o, const std::string& sppHelp) {
+  addLimited(command, "-W,--width", o.width, limits::kWidth,
+             "Image width in pixels (overrides the scene)");
+  addLimited(command, "-H,--height", o.height, limits::kHeight,
+             "Image height in pixels (overrides the scene)");
+  addLimited(command, "-s,--spp", o.samples, limits::kSamples, sppHelp);
+}
 
 void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
   command
@@ -44,43 +66,26 @@ void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
 }
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
-void addSceneOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
+void addSceneOptions(CLI::App* render, RenderOptions& o) {
   render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
   render
       ->add_option("-t,--threads", o.distribution.threads,
                    "Worker threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
-  render->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  render->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  render->add_option("-s,--spp", v.samples, "Samples per pixel, stratified (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 16));
-  render->add_option("-d,--max-depth", v.maxDepth, "Maximum reflection/refraction depth")
-      ->check(CLI::Range(0, 64));
-  render->add_option("--seed", v.seed, "Seed of the per-pixel random streams");
-  render->add_option("--exposure", v.exposure, "Radiance multiplier before PNG tone mapping")
+  addImageSizeOptions(render, o, "Samples per pixel, stratified (overrides the scene)");
+  addLimited(render, "-d,--max-depth", o.maxDepth, limits::kMaxDepth,
+             "Maximum reflection/refraction depth");
+  render->add_option("--seed", o.seed, "Seed of the per-pixel random streams");
+  render->add_option("--exposure", o.exposure, "Radiance multiplier before PNG tone mapping")
       ->check(CLI::PositiveNumber);
-  render
-      ->add_option("--triangle-test", v.triangleTest,
-                   "Ray/triangle intersector: moller-trumbore (default) or plane-inside")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, TriangleTest>{{"moller-trumbore", TriangleTest::MollerTrumbore},
-                                              {"plane-inside", TriangleTest::PlaneThenInside}},
-          CLI::ignore_case))
-      ->option_text("moller-trumbore|plane-inside");
+  addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
+           "Ray/triangle intersector: moller_trumbore (default) or plane_inside");
   render
       ->add_option("--tile-size", o.distribution.tileSize,
                    "Tile edge in pixels (default 0: automatic)")
       ->check(CLI::Range(0, 4096));
-  render
-      ->add_option("--schedule", o.distribution.schedule,
-                   "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)")
-      ->transform(
-          CLI::CheckedTransformer(std::map<std::string, Schedule>{{"dynamic", Schedule::Dynamic},
-                                                                  {"static", Schedule::Static}},
-                                  CLI::ignore_case))
-      ->option_text("dynamic|static");
+  addNamed(render, "--schedule", o.distribution.schedule, kScheduleNames,
+           "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)");
   render
       ->add_option("--lease-timeout", o.distribution.leaseSeconds,
                    "Seconds a slave may hold tiles without delivering one before they are "
@@ -109,78 +114,57 @@ constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics
 
 // The caustics options `render` and `view` share: the method, the photon budget and the
 // caustic-map parameters.
-void addCausticMethodOptions(CLI::App* command, RenderOverrideValues& v) {
+void addCausticMethodOptions(CLI::App* command, RenderOptions& o) {
   const char* caustics = kCausticsGroup;
-  const std::map<std::string, CausticMethod> methods{
-      {"none", CausticMethod::None},
-      {"photon-map", CausticMethod::PhotonMap},
-      {"caustic-map", CausticMethod::CausticMap},
-      {"map", CausticMethod::CausticMap}};  // the short name the design uses
-  command
-      ->add_option("--caustics", v.causticMethod,
-                   "Caustics method: none, photon-map or caustic-map (default: the scene's)")
-      ->transform(CLI::CheckedTransformer(methods, CLI::ignore_case))
-      ->option_text("none|photon-map|caustic-map (or map)")
+  addNamed(command, "--caustics", o.causticMethod, kCausticMethodNames,
+           "Caustics method: none, photon_map or caustic_map (or map; default: the scene's)")
+      ->group(caustics);
+  addLimited(command, "--photons", o.photons, limits::kPhotons,
+             "Photons emitted per pass towards the caustic casters (implies photon_map)")
+      ->group(caustics);
+  addLimited(command, "--map-resolution", o.mapResolution, limits::kMapResolution,
+             "Caustic map: texels per side of each light-space view (default 512)")
+      ->group(caustics);
+  addLimited(command, "--map-steps", o.mapSteps, limits::kMapSteps,
+             "Caustic map: iterations of the receiver-distance estimate (default 10)")
       ->group(caustics);
   command
-      ->add_option("--photons", v.photons,
-                   "Photons emitted per pass towards the caustic casters (implies photon-map)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40))
-      ->group(caustics);
-  command
-      ->add_option("--map-resolution", v.mapResolution,
-                   "Caustic map: texels per side of each light-space view (default 512)")
-      ->check(CLI::Range(kMinCausticMapResolution, kMaxCausticMapResolution))
-      ->group(caustics);
-  command
-      ->add_option("--map-steps", v.mapSteps,
-                   "Caustic map: iterations of the receiver-distance estimate (default 10)")
-      ->check(CLI::Range(1, kMaxCausticMapSteps))
-      ->group(caustics);
-  command
-      ->add_option("--map-blur-sigma", v.mapBlurSigma,
+      ->add_option("--map-blur-sigma", o.mapBlurSigma,
                    "Caustic map: Gaussian blur sigma in texels (default 1)")
       ->check(CLI::NonNegativeNumber)
       ->group(caustics);
-  command
-      ->add_option("--map-blur-radius", v.mapBlurRadius,
-                   "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
-      ->check(CLI::Range(0, kMaxCausticMapBlurRadius))
+  addLimited(command, "--map-blur-radius", o.mapBlurRadius, limits::kMapBlurRadius,
+             "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
       ->group(caustics);
-  command
-      ->add_option("--map-paths", v.mapPaths,
-                   "Caustic map: traced (through every caster surface, default) or front-face "
-                   "(one interface, as in the thesis)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, CausticMapPaths>{{"traced", CausticMapPaths::Traced},
-                                                 {"front-face", CausticMapPaths::FrontFace}},
-          CLI::ignore_case))
-      ->option_text("traced|front-face")
+  addNamed(command, "--map-paths", o.mapPaths, kCausticMapPathsNames,
+           "Caustic map: traced (through every caster surface, default) or front_face (one "
+           "interface, as in the thesis)")
       ->group(caustics);
 }
 
 // The caustics options of `render` only: the viewer always refines progressively, with the
 // scene's gather settings.
-void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues& v) {
+void addCausticOptions(CLI::App* render, RenderOptions& o) {
   const char* caustics = kCausticsGroup;
-  addCausticMethodOptions(render, v);
-  render->add_option("--gather", v.gather, "Nearest photons per estimate, k (default 100)")
-      ->check(CLI::Range(1, 100000))
+  addCausticMethodOptions(render, o);
+  addLimited(render, "--gather", o.gather, limits::kGather,
+             "Nearest photons per estimate, k (default 100)")
       ->group(caustics);
   render
-      ->add_option("--gather-radius", v.gatherRadius,
+      ->add_option("--gather-radius", o.gatherRadius,
                    "Largest gather radius (k-NN), or the first radius (progressive); world units")
       ->check(CLI::PositiveNumber)
       ->group(caustics);
   render
-      ->add_flag("--progressive", v.progressive,
-                 "Progressive photon mapping: passes with a shrinking radius (implies photon-map)")
+      ->add_flag_callback(
+          "--progressive", [&o] { o.progressive = true; },
+          "Progressive photon mapping: passes with a shrinking radius (implies photon_map)")
       ->group(caustics);
-  render->add_option("--passes", v.passes, "Progressive photon passes (implies photon-map)")
-      ->check(CLI::Range(1, 1 << 20))
+  addLimited(render, "--passes", o.passes, limits::kPasses,
+             "Progressive photon passes (implies photon_map)")
       ->group(caustics);
   render
-      ->add_option("--time-budget", v.timeBudget,
+      ->add_option("--time-budget", o.timeBudget,
                    "Seconds after which no further progressive pass starts")
       ->check(CLI::PositiveNumber)
       ->group(caustics);
@@ -195,13 +179,13 @@ void addCausticOptions(CLI::App* render, RenderOptions& o, RenderOverrideValues&
       ->group(caustics);
 }
 
-void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) {
+void addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* render = app.add_subcommand(
       "render",
       "Render a scene to an image file.\n"
       "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
       "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
-  addSceneOptions(render, o, v);
+  addSceneOptions(render, o);
   render->add_option("-o,--output", o.outputPath,
                      "Image to write; the extension picks the format (default: <scene>.png)");
   render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
@@ -209,18 +193,18 @@ void addRenderCommand(CLI::App& app, RenderOptions& o, RenderOverrideValues& v) 
   render->add_flag("--save-partial", o.savePartial,
                    "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
                    "marked partial; the run exits with status 130 either way");
-  addCausticOptions(render, o, v);
+  addCausticOptions(render, o);
 }
 
-void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
+void addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* view = app.add_subcommand(
       "view",
       "Render a scene live in a Qt window (rank 0 only; other ranks render tiles).\n"
       "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
       "N normals, n image, R/P/C caustic-map casters/receivers/irradiance, b caustic-map\n"
       "blur, q quits, h or F1 shows every key. See docs/viewer.md.");
-  addSceneOptions(view, o.render, v);
-  addCausticMethodOptions(view, v);
+  addSceneOptions(view, o.render);
+  addCausticMethodOptions(view, o.render);
   view->add_option("--preview-scale", o.previewScale,
                    "After a camera change, first render 1/N of each side at 1 spp (default 4; "
                    "1: no preview)")
@@ -259,7 +243,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o, RenderOverrideValues& v) {
       ->check(CLI::Range(1, 100000));
 }
 
-void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v) {
+void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
   CLI::App* speedup = app.add_subcommand(
       "speedup",
       "Measure strong scaling inside one MPI job (table, CSVs, charts).\n"
@@ -275,14 +259,9 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
   speedup->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
   speedup->add_option("-o,--output", o.outputPrefix,
                       "Prefix of the files written (default: speedup-<scene name>)");
-  speedup
-      ->add_option("--schedules", o.schedules,
-                   "Tile schedules to measure, comma-separated (default: dynamic,static)")
+  addNamed(speedup, "--schedules", o.schedules, kScheduleNames,
+           "Tile schedules to measure, comma-separated (default: dynamic,static)")
       ->delimiter(',')
-      ->transform(
-          CLI::CheckedTransformer(std::map<std::string, Schedule>{{"dynamic", Schedule::Dynamic},
-                                                                  {"static", Schedule::Static}},
-                                  CLI::ignore_case))
       ->option_text("dynamic,static");
   speedup
       ->add_option("--tile-sizes", o.tileSizes,
@@ -307,18 +286,13 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o, RenderOverrideValues& v
       ->add_option("--project-workers", o.projectWorkers,
                    "Largest worker count of the projection (default 1024)")
       ->check(CLI::Range(1, 1 << 16));
-  speedup->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  speedup->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  speedup->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 16));
-  addCausticMethodOptions(speedup, v);
+  addImageSizeOptions(speedup, o.render, "Samples per pixel (overrides the scene)");
+  addCausticMethodOptions(speedup, o.render);
   addMemoryLimitOption(speedup, o.render);
   speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
 }
 
-void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
+void addSweepCommand(CLI::App& app, SweepOptions& o) {
   CLI::App* sweep = app.add_subcommand(
       "sweep",
       "Chart speed against accuracy of the caustic methods (CSV, chart).\n"
@@ -338,18 +312,10 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
   sweep->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
   sweep->add_option("-o,--output", o.outputPrefix,
                     "Prefix of the files written (default: sweep-<scene name>)");
-  const std::map<std::string, SweepFamily> families{
-      {"photons", SweepFamily::Photons}, {"k", SweepFamily::Gather},
-      {"passes", SweepFamily::Passes},   {"resolution", SweepFamily::Resolution},
-      {"steps", SweepFamily::Steps},     {"blur", SweepFamily::Blur},
-      {"spp", SweepFamily::Samples}};
-  sweep
-      ->add_option("--families", o.families,
-                   "Families to sweep, comma-separated (default: "
-                   "photons,k,passes,resolution,steps,blur)")
+  addNamed(sweep, "--families", o.families, kSweepFamilyNames,
+           "Families to sweep, comma-separated (default: photons,k,passes,resolution,steps,blur)")
       ->delimiter(',')
-      ->transform(CLI::CheckedTransformer(families, CLI::ignore_case))
-      ->option_text("photons,k,passes,resolution,steps,blur,spp");
+      ->option_text(kSweepFamilyNames.list(",", ","));
   const char* values = "Values swept (comma-separated; each overrides its family's defaults)";
   const auto list = [&](const char* name, std::vector<uint64_t>& target, const char* help) {
     sweep->add_option(name, target, help)->delimiter(',')->group(values);
@@ -373,16 +339,16 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
   sweep
       ->add_option("--reference-passes", o.reference.passes,
                    "Progressive reference: passes (default 64)")
-      ->check(CLI::Range(2, 1 << 20));
+      ->check(CLI::Range(int64_t{2}, limits::kPasses.max));
   sweep
       ->add_option("--reference-photons", o.reference.photons,
                    "Progressive reference: photons per pass (default 1000000)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+      ->check(CLI::Range(limits::kPhotons.min, limits::kPhotons.max));
   sweep
       ->add_option("--reference-k", o.reference.k,
                    "Progressive reference: photons whose mean distance sets the first radius "
                    "(default 5)")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(limits::kGather.min, limits::kGather.max));
   sweep->add_flag("--refresh-reference", o.reference.refresh,
                   "Render the progressive reference again even when the cached one matches");
   sweep
@@ -403,40 +369,9 @@ void addSweepCommand(CLI::App& app, SweepOptions& o, RenderOverrideValues& v) {
       ->add_option("-t,--threads", o.render.distribution.threads,
                    "Render threads (default 0: all available cores)")
       ->check(CLI::Range(0, 4096));
-  sweep->add_option("-W,--width", v.width, "Image width in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  sweep->add_option("-H,--height", v.height, "Image height in pixels (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
-  sweep->add_option("-s,--spp", v.samples, "Samples per pixel (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 16));
-  addCausticMethodOptions(sweep, v);
+  addImageSizeOptions(sweep, o.render, "Samples per pixel (overrides the scene)");
+  addCausticMethodOptions(sweep, o.render);
   sweep->add_flag("-q,--quiet", o.quiet, "No progress bar and no table");
-}
-
-void applyGivenOverrides(CLI::App* command, const RenderOverrideValues& overrides,
-                         RenderOptions& options) {
-  auto given = [&](const char* name) { return command->get_option(name)->count() > 0; };
-  if (given("--width")) options.width = overrides.width;
-  if (given("--height")) options.height = overrides.height;
-  if (given("--spp")) options.samples = overrides.samples;
-  if (given("--caustics")) options.causticMethod = overrides.causticMethod;
-  if (given("--photons")) options.photons = overrides.photons;
-  if (given("--map-resolution")) options.mapResolution = overrides.mapResolution;
-  if (given("--map-steps")) options.mapSteps = overrides.mapSteps;
-  if (given("--map-blur-sigma")) options.mapBlurSigma = overrides.mapBlurSigma;
-  if (given("--map-blur-radius")) options.mapBlurRadius = overrides.mapBlurRadius;
-  if (given("--map-paths")) options.mapPaths = overrides.mapPaths;
-  if (!command->get_option_no_throw("--max-depth")) return;  // `speedup`, `sweep`: only those
-  if (given("--max-depth")) options.maxDepth = overrides.maxDepth;
-  if (given("--seed")) options.seed = overrides.seed;
-  if (given("--exposure")) options.exposure = overrides.exposure;
-  if (given("--triangle-test")) options.triangleTest = overrides.triangleTest;
-  if (!command->get_option_no_throw("--gather")) return;  // `view` has only those above
-  if (given("--gather")) options.gather = overrides.gather;
-  if (given("--gather-radius")) options.gatherRadius = overrides.gatherRadius;
-  if (given("--progressive")) options.progressive = true;
-  if (given("--passes")) options.passes = overrides.passes;
-  if (given("--time-budget")) options.timeBudget = overrides.timeBudget;
 }
 
 // `prism` alone: the commands, one line each (the first line of each one's help), and where
@@ -466,11 +401,10 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
   auto viewOptions = std::make_shared<ViewOptions>();
   auto speedupOptions = std::make_shared<SpeedupOptions>();
   auto sweepOptions = std::make_shared<SweepOptions>();
-  RenderOverrideValues overrides, viewOverrides, speedupOverrides, sweepOverrides;
-  addRenderCommand(app, *renderOptions, overrides);
-  addViewCommand(app, *viewOptions, viewOverrides);
-  addSpeedupCommand(app, *speedupOptions, speedupOverrides);
-  addSweepCommand(app, *sweepOptions, sweepOverrides);
+  addRenderCommand(app, *renderOptions);
+  addViewCommand(app, *viewOptions);
+  addSpeedupCommand(app, *speedupOptions);
+  addSweepCommand(app, *sweepOptions);
 
   ParsedCommand parsed;
   if (argc <= 1) {
@@ -491,27 +425,23 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
     return parsed;
   }
 
-  if (CLI::App* render = app.get_subcommand("render"); render->parsed()) {
-    applyGivenOverrides(render, overrides, *renderOptions);
+  if (app.get_subcommand("render")->parsed()) {
     parsed.distribution = renderOptions->distribution;
     parsed.runMaster = [renderOptions](Transport* session) {
       return runRender(*renderOptions, std::cout, std::cerr, session);
     };
-  } else if (CLI::App* view = app.get_subcommand("view"); view->parsed()) {
-    applyGivenOverrides(view, viewOverrides, viewOptions->render);
+  } else if (app.get_subcommand("view")->parsed()) {
     parsed.distribution = viewOptions->render.distribution;
     parsed.runMaster = [viewOptions, viewer](Transport* session) {
       return runView(*viewOptions, std::cout, std::cerr, session, viewer);
     };
-  } else if (CLI::App* speedup = app.get_subcommand("speedup"); speedup->parsed()) {
-    applyGivenOverrides(speedup, speedupOverrides, speedupOptions->render);
+  } else if (app.get_subcommand("speedup")->parsed()) {
     parsed.distribution = speedupOptions->render.distribution;
     parsed.distribution.threads = speedupOptions->threadsPerRank;  // what p counts
     parsed.runMaster = [speedupOptions, chartWriter](Transport* session) {
       return runSpeedup(*speedupOptions, std::cout, std::cerr, session, chartWriter);
     };
-  } else if (CLI::App* sweep = app.get_subcommand("sweep"); sweep->parsed()) {
-    applyGivenOverrides(sweep, sweepOverrides, sweepOptions->render);
+  } else if (app.get_subcommand("sweep")->parsed()) {
     parsed.distribution = sweepOptions->render.distribution;
     parsed.runMaster = [sweepOptions, chartWriter](Transport* session) {
       return runSweep(*sweepOptions, std::cout, std::cerr, session, chartWriter);

@@ -37,7 +37,7 @@ ProgressBar::ProgressBar(std::string label, size_t total, std::string unit, bool
       total_(total),
       unit_(std::move(unit)),
       enabled_(enabled && stderrIsTerminal()),
-      start_(std::chrono::steady_clock::now()) {}
+      start_(SteadyClock::now()) {}
 
 ProgressBar::~ProgressBar() {
   if (enabled_ && !finished_) std::fputs("\n", stderr);
@@ -59,8 +59,7 @@ std::string ProgressBar::format(const std::string& label, size_t done, size_t to
 
 void ProgressBar::update(size_t done) {
   if (!enabled_) return;
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = secondsSince(start_);
   const std::string line = format(label_, done, total_, unit_, elapsed, terminalColumns() - 1);
   std::fprintf(stderr, "\r%s\033[K", line.c_str());
   std::fflush(stderr);

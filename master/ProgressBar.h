@@ -2,9 +2,10 @@
 // a terminal (logs, CI) it stays silent so output files are not filled with redraws.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <string>
+
+#include "util/Stopwatch.h"
 
 namespace prism {
 
@@ -29,7 +30,7 @@ class ProgressBar {
   std::string unit_;
   bool enabled_;
   bool finished_ = false;
-  std::chrono::steady_clock::time_point start_;
+  SteadyClock::time_point start_;
 };
 
 // Whether stderr is an interactive terminal.

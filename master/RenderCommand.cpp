@@ -1,6 +1,5 @@
 #include "master/RenderCommand.h"
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
+#include "scene/SceneValidation.h"
 #include "transport/Transport.h"
 #include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
@@ -64,7 +64,7 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
   SceneDescription description = loadScene(options.scenePath, limit);
   applyOverrides(options, description.render);
   applyOverrides(options, description.caustics);
-  checkSettingsSane(description.render);
+  validate(description);
   checkRenderFits(description.render, limit);
   checkTilesFit(description.render, options.distribution.tileSize, limit);
   checkCausticsFit(description.caustics, limit);
@@ -118,7 +118,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
               Transport* session) {
   // From here on Ctrl-C stops the run (at the first tile boundary) instead of the process.
   installInterruptHandlers();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
   RunSummary summary;
@@ -130,7 +130,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
       throw std::runtime_error("--photon-image: " + why);
     }
-    const auto parseStart = std::chrono::steady_clock::now();
+    const auto parseStart = SteadyClock::now();
     description = loadSceneWithOverrides(options);
     summary.parseSeconds = secondsSince(parseStart);
   } catch (const std::exception& e) {
@@ -141,13 +141,13 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   std::vector<bool> silentRanks;
   try {
     if (session) {
-      const auto broadcastStart = std::chrono::steady_clock::now();
+      const auto broadcastStart = SteadyClock::now();
       std::vector<uint8_t> bytes = wire::encodeScene(description);
       session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
       summary.broadcastSeconds = secondsSince(broadcastStart);
       summary.broadcastBytes = bytes.size();
     }
-    const auto buildStart = std::chrono::steady_clock::now();
+    const auto buildStart = SteadyClock::now();
     const Scene scene(description);
     summary.buildSeconds = secondsSince(buildStart);
 
@@ -188,7 +188,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
              "(a reflective or transparent object): rendered without photons\n";
     }
 
-    const auto writeStart = std::chrono::steady_clock::now();
+    const auto writeStart = SteadyClock::now();
     writeImage(result.image, output, description.render.exposure);
     summary.writeSeconds = secondsSince(writeStart);
     if (!options.photonImagePath.empty()) {

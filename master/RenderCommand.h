@@ -15,6 +15,9 @@ namespace prism {
 struct RenderOptions {
   std::string scenePath;
   std::string outputPath;  // empty: <scene name>.png in the current folder
+  // Scene settings given on the command line (master/Cli.cpp binds each option straight to its
+  // field, bounded and named as in scene files); applyOverrides writes the given ones over the
+  // scene's. Unset: the scene's value stands.
   std::optional<int> width, height, samples, maxDepth;
   std::optional<uint64_t> seed;
   std::optional<float> exposure;

@@ -66,19 +66,6 @@ void checkTilesFit(const RenderSettings& s, int tileSize, const MemoryLimit& lim
           "raise --tile-size");
 }
 
-void checkSettingsSane(const RenderSettings& s) {
-  if (s.samplesPerPixel > kMaxSamplesPerPixel) {
-    throw ResourceLimitError(std::to_string(s.samplesPerPixel) +
-                             " samples per pixel is more than the " +
-                             std::to_string(kMaxSamplesPerPixel) + " allowed (reduce --spp)");
-  }
-  if (s.maxDepth > kMaxRecursionDepth) {
-    throw ResourceLimitError("a recursion depth of " + std::to_string(s.maxDepth) +
-                             " is more than the " + std::to_string(kMaxRecursionDepth) +
-                             " allowed (reduce --max-depth)");
-  }
-}
-
 uint64_t photonMemoryBytes(const CausticSettings& c) {
   if (c.method != CausticMethod::PhotonMap) return 0;
   // 28-byte photons held three times (shares, map, outgoing message) plus a 4-byte tree index

@@ -1,8 +1,9 @@
 // Refuses absurd requests before any work starts, saying what they would need. Every check
 // compares an estimate of the bytes a part of the run needs with the run's memory limit
 // (--memory-limit, default the machine's physical memory) and throws ResourceLimitError with
-// the bytes and the limit; where memory is not what runs out (samples per pixel, recursion
-// depth, tile count) a fixed bound applies. docs/reliability.md, "Limits", gives the formulas.
+// the bytes and the limit; where memory is not what runs out (the tile count) a fixed bound
+// applies. The bounds of the settings themselves (samples per pixel, recursion depth, ...) are
+// scene/SettingLimits.h, checked by validate(). docs/reliability.md, "Limits", gives the formulas.
 #pragma once
 
 #include <cstdint>
@@ -13,8 +14,6 @@
 
 namespace prism {
 
-inline constexpr int kMaxSamplesPerPixel = 1 << 16;  // 65536: days per frame at any resolution
-inline constexpr int kMaxRecursionDepth = 256;       // as the scene parser allows
 inline constexpr uint64_t kMaxTileCount = 1u << 24;  // tile indices and job counts stay small
 
 // Bytes a render of these settings needs at least: the frame buffer and, at worst, every tile
@@ -36,9 +35,6 @@ uint64_t tileCount(const RenderSettings& settings, int tileSize);
 uint64_t tileMemoryBytes(uint64_t tiles);
 // Throws past kMaxTileCount tiles or when their bookkeeping cannot fit.
 void checkTilesFit(const RenderSettings& settings, int tileSize, const MemoryLimit& limit);
-
-// Throws when samples per pixel or the recursion depth exceed their bounds.
-void checkSettingsSane(const RenderSettings& settings);
 
 // Bytes a photon pass of these settings may need on rank 0 at worst (every photon stored): the
 // shares as they arrive, the assembled map with its kd-tree, and the message that sends it on.

@@ -52,6 +52,7 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
   }
   err.flush();
   session->abortJob(exitCode);
+  return exitCode;  // not reached; GCC does not carry [[noreturn]] through a virtual call
 }
 
 void leaveEndingJob(Transport& session, int exitCode) {

@@ -6,12 +6,10 @@
 #include <map>
 #include <memory>
 #include <ostream>
-#include <thread>
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
-#include "cluster/TileWorkerPool.h"
 #include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
@@ -24,6 +22,7 @@
 #include "master/TilePlan.h"
 #include "scene/Scene.h"
 #include "transport/Transport.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -180,7 +179,7 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
   SpeedupReport report;
   report.scenePath = options.render.scenePath;
   report.ranks = session->size();
-  report.cores = availableCores();
+  report.cores = machineCores();
   report.threadsPerRank = options.threadsPerRank;
   report.repeats = options.repeats;
   report.prefetch = options.render.distribution.prefetch;

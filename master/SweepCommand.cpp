@@ -6,13 +6,13 @@
 #include <memory>
 #include <ostream>
 
-#include "cluster/TileWorkerPool.h"
 #include "image/Thumbnail.h"
 #include "master/AtomicFile.h"
 #include "master/CausticPasses.h"
 #include "master/ProgressBar.h"
 #include "master/SweepReport.h"
 #include "transport/Transport.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {

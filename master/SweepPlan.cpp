@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/SettingLimits.h"
+
 namespace prism {
 namespace {
 
@@ -12,7 +14,9 @@ std::vector<uint64_t> orDefault(const std::vector<uint64_t>& given,
   return given.empty() ? defaults : given;
 }
 
-void requireRange(SweepFamily family, uint64_t value, uint64_t low, uint64_t high) {
+// The same bounds as the scene file and the command line.
+void requireRange(SweepFamily family, uint64_t value, const SettingLimit& limit) {
+  const uint64_t low = static_cast<uint64_t>(limit.min), high = static_cast<uint64_t>(limit.max);
   if (value < low || value > high) {
     throw std::invalid_argument(std::string("sweep ") + familyName(family) + ": " +
                                 std::to_string(value) + " is outside " + std::to_string(low) +
@@ -20,32 +24,22 @@ void requireRange(SweepFamily family, uint64_t value, uint64_t low, uint64_t hig
   }
 }
 
-struct FamilyText {
-  const char* name;    // command line and CSV
-  const char* method;  // the method its renders use
+// The method each family's renders use, indexed by SweepFamily.
+constexpr const char* kFamilyMethod[] = {
+    "photon map",  "photon map",  "progressive photon map", "caustic map",
+    "caustic map", "caustic map", "scene's method",
 };
 
-// Indexed by SweepFamily.
-constexpr FamilyText kFamilyText[] = {
-    {"photons", "photon map"},     {"k", "photon map"},      {"passes", "progressive photon map"},
-    {"resolution", "caustic map"}, {"steps", "caustic map"}, {"blur", "caustic map"},
-    {"spp", "scene's method"},
-};
-
-static_assert(std::size(kFamilyText) == static_cast<size_t>(SweepFamily::Samples) + 1);
-
-const FamilyText& textOf(SweepFamily f) {
-  return kFamilyText[static_cast<size_t>(f)];
-}
+static_assert(std::size(kFamilyMethod) == static_cast<size_t>(SweepFamily::Samples) + 1);
 
 }  // namespace
 
 const char* familyName(SweepFamily f) {
-  return textOf(f).name;
+  return kSweepFamilyNames.nameOf(f).data();  // a literal: null-terminated
 }
 
 const char* familyMethod(SweepFamily f) {
-  return textOf(f).method;
+  return kFamilyMethod[static_cast<size_t>(f)];
 }
 
 std::vector<SweepFamily> defaultSweepFamilies() {
@@ -105,32 +99,32 @@ std::vector<SweepPoint> planSweep(const std::vector<SweepFamily>& families,
       p.value = value;
       switch (family) {
         case SweepFamily::Photons:
-          requireRange(family, value, 1, uint64_t{1} << 40);
+          requireRange(family, value, limits::kPhotons);
           p.caustics.photons = value;
           break;
         case SweepFamily::Gather:
-          requireRange(family, value, 1, 100000);
+          requireRange(family, value, limits::kGather);
           p.caustics.gather = static_cast<int>(value);
           break;
         case SweepFamily::Passes:
-          requireRange(family, value, 1, 1 << 20);
+          requireRange(family, value, limits::kPasses);
           p.caustics.passes = static_cast<int>(value);
           break;
         case SweepFamily::Resolution:
-          requireRange(family, value, kMinCausticMapResolution, kMaxCausticMapResolution);
+          requireRange(family, value, limits::kMapResolution);
           p.caustics.mapResolution = static_cast<int>(value);
           break;
         case SweepFamily::Steps:
-          requireRange(family, value, 1, kMaxCausticMapSteps);
+          requireRange(family, value, limits::kMapSteps);
           p.caustics.mapSteps = static_cast<int>(value);
           break;
         case SweepFamily::Blur:
-          requireRange(family, value, 0, kMaxCausticMapBlurRadius);
+          requireRange(family, value, limits::kMapBlurRadius);
           p.caustics.mapBlurRadius = static_cast<int>(value);
           p.caustics.mapBlurSigma = 0.5f * static_cast<float>(value);
           break;
         case SweepFamily::Samples:
-          requireRange(family, value, 1, 1 << 16);
+          requireRange(family, value, limits::kSamples);
           p.samplesPerPixel = static_cast<int>(value);
           break;
       }

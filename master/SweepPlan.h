@@ -13,12 +13,20 @@
 #include <vector>
 
 #include "scene/SceneDescription.h"
+#include "scene/SettingNames.h"
 
 namespace prism {
 
 enum class SweepFamily { Photons, Gather, Passes, Resolution, Steps, Blur, Samples };
 
 // "photons", "k", ...: the names the command line and the CSV use.
+inline constexpr NamedValue<SweepFamily> kSweepFamilyList[] = {
+    {"photons", SweepFamily::Photons}, {"k", SweepFamily::Gather},
+    {"passes", SweepFamily::Passes},   {"resolution", SweepFamily::Resolution},
+    {"steps", SweepFamily::Steps},     {"blur", SweepFamily::Blur},
+    {"spp", SweepFamily::Samples}};
+inline constexpr NameTable<SweepFamily> kSweepFamilyNames{kSweepFamilyList};
+
 const char* familyName(SweepFamily family);
 // The method a family's renders use, for the CSV and the chart ("photon map", ...).
 const char* familyMethod(SweepFamily family);

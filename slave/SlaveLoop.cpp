@@ -21,6 +21,7 @@
 #include "slave/JobQueue.h"
 #include "transport/Transport.h"
 #include "util/InterruptSignal.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 #include "wire/TileJobWire.h"

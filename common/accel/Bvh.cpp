@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
-#include <thread>
+
+#include "util/Stopwatch.h"
 
 namespace prism {
 namespace {
@@ -67,9 +67,13 @@ struct Builder {
     rightNodes.reserve(2 * (end - middle));
     BvhBuildStats rightStats;
     Builder right{bounds, centers, order, rightNodes, rightStats, block, parallelLevels};
-    std::thread worker([&] { right.build(middle, end, depth + 1); });
-    build(begin, middle, depth + 1);
-    worker.join();
+    parallelFor(2, 2, [&](uint64_t half) {
+      if (half == 0) {
+        build(begin, middle, depth + 1);
+      } else {
+        right.build(middle, end, depth + 1);
+      }
+    });
     const uint32_t base = static_cast<uint32_t>(nodes.size());
     for (BvhNode node : rightNodes) {
       if (!node.isLeaf()) node.offset += base;
@@ -161,7 +165,7 @@ struct Builder {
 }  // namespace
 
 void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   nodes_.clear();
   order_.resize(primitiveBounds.size());
   stats_ = {};
@@ -182,7 +186,7 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions&
   }
   stats_.nodeCount = nodes_.size();
   stats_.memoryBytes = nodes_.size() * sizeof(BvhNode) + order_.size() * sizeof(uint32_t);
-  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.seconds = secondsSince(start);
 }
 
 }  // namespace prism

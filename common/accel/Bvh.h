@@ -7,10 +7,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <thread>
 #include <vector>
 
 #include "math/Aabb.h"
+#include "util/Parallel.h"
 
 namespace prism {
 
@@ -32,7 +32,7 @@ static_assert(sizeof(BvhNode) == 32);
 struct BvhBuildOptions {
   uint32_t primitiveBlock = 1;
   // Threads the build may use; the tree is the same for any number.
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  unsigned threads = static_cast<unsigned>(availableCores());
 };
 
 struct BvhBuildStats {

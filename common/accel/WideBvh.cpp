@@ -1,8 +1,9 @@
 #include "accel/WideBvh.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
+
+#include "util/Stopwatch.h"
 
 namespace prism {
 namespace {
@@ -37,7 +38,7 @@ uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float 
 }
 
 void WideBvh::build(const Bvh& binary) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   nodes_.clear();
   stats_ = {};
   const std::vector<BvhNode>& bin = binary.nodes();
@@ -100,7 +101,7 @@ void WideBvh::build(const Bvh& binary) {
   }
   stats_.nodeCount = nodes_.size();
   stats_.memoryBytes = nodes_.size() * sizeof(WideBvhNode);
-  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.seconds = secondsSince(start);
 }
 
 }  // namespace prism

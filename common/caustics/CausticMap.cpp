@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/LightFalloff.h"
-#include "render/SpecularSplit.h"
+#include "shading/LightFalloff.h"
+#include "shading/SpecularSplit.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -159,7 +160,8 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
   const int rows = views * n;
   std::vector<std::vector<Splat>> rowSplats(static_cast<size_t>(rows));
   std::vector<CausticMapStats> rowStats(static_cast<size_t>(rows));
-  parallelRows(rows, threads, [&](int row) {
+  parallelFor(static_cast<uint64_t>(rows), threads, [&](uint64_t r) {
+    const int row = static_cast<int>(r);
     const int view = row / n, j = row % n;
     CausticMapStats& st = rowStats[static_cast<size_t>(row)];
     TexelTransport transport(scene, frustum_, *receivers_, settings,

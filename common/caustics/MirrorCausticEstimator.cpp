@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/LightFalloff.h"
+#include "shading/LightFalloff.h"
 
 namespace prism {
 namespace {

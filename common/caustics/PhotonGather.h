@@ -7,17 +7,10 @@
 #include <memory>
 
 #include "caustics/CausticEstimator.h"
+#include "caustics/PhotonGatherSettings.h"
 #include "caustics/PhotonMap.h"
-#include "scene/SceneDescription.h"
 
 namespace prism {
-
-struct PhotonGatherSettings {
-  bool fixedRadius = false;  // true: every photon within radius; false: k nearest within it
-  int k = 100;
-  float radius = 0.1f;
-  PhotonFilter filter = PhotonFilter::Cone;
-};
 
 class PhotonGather : public CausticEstimator {
  public:

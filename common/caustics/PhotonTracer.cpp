@@ -1,15 +1,14 @@
 #include "caustics/PhotonTracer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
-#include "render/LightFalloff.h"
-#include "render/MaterialEval.h"
-#include "render/SpecularSplit.h"
+#include "shading/LightFalloff.h"
+#include "shading/MaterialEval.h"
+#include "shading/SpecularSplit.h"
+#include "util/Parallel.h"
 
 namespace prism {
 namespace {
@@ -142,20 +141,10 @@ std::vector<Photon> tracePhotons(const PhotonTracer& tracer, uint32_t pass, uint
   const uint64_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<std::vector<Photon>> results(chunks);
   std::vector<PhotonTraceStats> chunkStats(chunks);
-  std::atomic<uint64_t> next{0};
-  const auto work = [&] {
-    for (uint64_t c = next++; c < chunks; c = next++) {
-      const uint64_t begin = first + c * kChunk;
-      chunkStats[c] =
-          tracer.trace(pass, begin, std::min(kChunk, first + count - begin), results[c]);
-    }
-  };
-  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  n = static_cast<unsigned>(std::min<uint64_t>(std::max(n, 1u), std::max<uint64_t>(chunks, 1)));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  parallelFor(chunks, threads, [&](uint64_t c) {
+    const uint64_t begin = first + c * kChunk;
+    chunkStats[c] = tracer.trace(pass, begin, std::min(kChunk, first + count - begin), results[c]);
+  });
 
   size_t total = 0;
   for (const auto& r : results) total += r.size();

@@ -1,30 +1,18 @@
 #include "caustics/ReceiverMap.h"
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
+
+#include "util/Parallel.h"
 
 namespace prism {
-
-void parallelRows(int rows, int threads, const std::function<void(int)>& body) {
-  unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-  n = std::clamp(n, 1u, static_cast<unsigned>(std::max(rows, 1)));
-  std::atomic<int> next{0};
-  const auto work = [&] {
-    for (int r = next++; r < rows; r = next++) body(r);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < n; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-}
 
 ReceiverMap::ReceiverMap(const Scene& scene, const LightFrustum& frustum, int threads)
     : n_(frustum.resolution()) {
   const int views = static_cast<int>(frustum.views().size());
   texels_.resize(static_cast<size_t>(views) * n_ * n_);
   constexpr int kMaxSkips = 64;  // casters passed through along one ray
-  parallelRows(views * n_, threads, [&](int row) {
+  parallelFor(static_cast<uint64_t>(views) * n_, threads, [&](uint64_t r) {
+    const int row = static_cast<int>(r);
     const int view = row / n_, j = row % n_;
     for (int i = 0; i < n_; ++i) {
       ReceiverTexel& t = texels_[(static_cast<size_t>(view) * n_ + j) * n_ + i];

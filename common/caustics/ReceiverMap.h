@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "caustics/LightFrustum.h"
@@ -39,8 +38,5 @@ class ReceiverMap {
   int n_ = 0;
   std::vector<ReceiverTexel> texels_;  // view-major, then rows
 };
-
-// Runs body(row) for rows [0, rows) on `threads` threads (0: all cores); rows are independent.
-void parallelRows(int rows, int threads, const std::function<void(int)>& body);
 
 }  // namespace prism

@@ -1,21 +1,9 @@
 #include "cluster/TileWorkerPool.h"
 
-#include <sched.h>
-
 #include "render/TileRenderer.h"
+#include "util/Parallel.h"
 
 namespace prism {
-
-int availableCores() {
-  // The affinity mask respects taskset, cgroups' cpusets and mpirun's binding.
-  cpu_set_t set;
-  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
-    const int count = CPU_COUNT(&set);
-    if (count > 0) return count;
-  }
-  const unsigned hardware = std::thread::hardware_concurrency();
-  return hardware > 0 ? static_cast<int>(hardware) : 1;
-}
 
 TileWorkerPool::TileWorkerPool(const Scene& scene, int threadCount)
     : scene_(scene), threadCount_(threadCount > 0 ? threadCount : availableCores()) {}

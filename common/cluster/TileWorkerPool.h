@@ -53,7 +53,4 @@ class TileWorkerPool {
   std::atomic<bool> cancelled_{false};
 };
 
-// Threads to use when the user asks for 0 ("all"): the cores this process may run on.
-int availableCores();
-
 }  // namespace prism

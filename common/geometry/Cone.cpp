@@ -2,12 +2,10 @@
 
 namespace prism {
 
-Cone::Cone(const ConeDesc& desc)
-    : base_(desc.base),
-      baseRadius_(desc.baseRadius),
-      apexRadius_(desc.apexRadius),
-      material_(desc.material) {
-  const Vec3 along = desc.apex - desc.base;
+Cone::Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius,
+           MaterialId material)
+    : base_(base), baseRadius_(baseRadius), apexRadius_(apexRadius), material_(material) {
+  const Vec3 along = apex - base;
   height_ = glm::length(along);
   axis_ = along / height_;
   orthonormalBasis(axis_, side1_, side2_);

@@ -2,14 +2,14 @@
 // without caps; a cylinder when both radii are equal.
 #pragma once
 
+#include "geometry/MaterialId.h"
 #include "math/Aabb.h"
-#include "scene/SceneDescription.h"
 
 namespace prism {
 
 class Cone {
  public:
-  Cone(const ConeDesc& desc);
+  Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius, MaterialId material);
 
   Aabb bounds() const;
   // Nearest hit in (ray.tMin, tMax); the surface is two-sided.

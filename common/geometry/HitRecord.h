@@ -4,8 +4,8 @@
 
 #include <cstdint>
 
+#include "geometry/MaterialId.h"
 #include "math/Vec.h"
-#include "scene/SceneDescription.h"
 
 namespace prism {
 

@@ -1,8 +1,8 @@
 // Infinite plane. Unbounded, so it lives outside the BVH and is tested for every ray.
 #pragma once
 
+#include "geometry/MaterialId.h"
 #include "math/Ray.h"
-#include "scene/SceneDescription.h"
 
 namespace prism {
 

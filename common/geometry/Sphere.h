@@ -1,8 +1,8 @@
 // Sphere: centre and radius.
 #pragma once
 
+#include "geometry/MaterialId.h"
 #include "math/Aabb.h"
-#include "scene/SceneDescription.h"
 
 namespace prism {
 

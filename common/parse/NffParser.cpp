@@ -25,6 +25,8 @@
 
 #include "parse/PolygonTriangulator.h"
 #include "parse/PrintableText.h"
+#include "scene/SceneValidation.h"
+#include "scene/SettingLimits.h"
 
 namespace prism {
 
@@ -133,6 +135,11 @@ class NffParser {
     scene_.ambientLight = Color(0.0f);
     while (std::optional<Token> command = tokens_.next()) parseStatement(*command);
     finishLights();
+    try {
+      validate(scene_);  // each statement checks its own values: this is the backstop
+    } catch (const SettingError& e) {
+      throw SceneError(FileLoc{path_}, e.what());
+    }
     return std::move(scene_);
   }
 
@@ -288,8 +295,12 @@ class NffParser {
         Token where;
         for (int* size : {&scene_.render.width, &scene_.render.height}) {
           const long long value = readInteger(keyword, kThing, &where);
-          if (value <= 0 || value > std::numeric_limits<int>::max()) {
+          if (value <= 0) {
             fail(where, "resolution must be positive (got " + std::string(where.text) + ")");
+          }
+          if (value > limits::kWidth.max) {  // the same bound as the YAML render width
+            fail(where, "resolution must be at most " + std::to_string(limits::kWidth.max) +
+                            " (got " + std::string(where.text) + ")");
           }
           *size = static_cast<int>(value);
         }

@@ -1,35 +1,37 @@
 // Prism's YAML scene format, read with yaml-cpp. docs/scene-format.md is the reference; the key
 // tables below are exactly what the parser accepts, and a test checks that each is documented.
 //
-// yaml-cpp only builds the node tree; every value is checked here so that a mistake is reported
-// at its own line and column with what was expected and what was found. The parser never uses
-// yaml-cpp's as<T>() conversions: their errors do not say which key was wrong.
+// This file is the schema: which sections and keys exist, their types, defaults and limits.
+// Reading and checking the YAML itself (positions, types, unknown keys) is parse/CheckedYaml.h;
+// enumerated values and numeric limits come from scene/SettingNames.h and SettingLimits.h, which
+// the command line shares.
 #include "parse/YamlSceneParser.h"
 
-#include <yaml-cpp/eventhandler.h>
-#include <yaml-cpp/yaml.h>
-
 #include <array>
-#include <charconv>
-#include <cmath>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
-#include <limits>
 #include <map>
-#include <span>
-#include <sstream>
 #include <string_view>
 #include <utility>
 
 #include "image/ImageIo.h"
+#include "parse/CheckedYaml.h"
 #include "parse/ObjLoader.h"
 #include "parse/PrintableText.h"
 #include "scene/MeshBudget.h"
+#include "scene/SceneValidation.h"
+#include "util/MemoryBudget.h"
 
 namespace prism {
 namespace {
 
-using KeyTable = std::span<const std::string_view>;
+using yaml::CheckedYaml;
+using yaml::describe;
+using yaml::Entry;
+using yaml::joined;
+using yaml::KeyTable;
+using yaml::Mapping;
+using yaml::shown;
 
 constexpr std::string_view kTopLevelKeys[] = {"camera",  "render",      "background",
                                               "ambient", "environment", "materials",
@@ -63,153 +65,19 @@ constexpr std::string_view kTriangleKeys[] = {"vertices", "normals", "material",
 constexpr std::string_view kMeshKeys[] = {"file", "material", "transform", "caustic"};
 constexpr std::string_view kTransformKeys[] = {"scale", "rotate", "translate"};
 
-constexpr std::pair<std::string_view, Projection> kProjections[] = {
-    {"perspective", Projection::Perspective}, {"orthographic", Projection::Orthographic}};
-constexpr std::pair<std::string_view, TriangleTest> kTriangleTests[] = {
-    {"moller-trumbore", TriangleTest::MollerTrumbore},
-    {"plane-inside", TriangleTest::PlaneThenInside}};
-constexpr std::pair<std::string_view, CausticMethod> kCausticMethods[] = {
-    {"none", CausticMethod::None},
-    {"photon_map", CausticMethod::PhotonMap},
-    {"caustic_map", CausticMethod::CausticMap}};
-constexpr std::pair<std::string_view, CausticMapPaths> kCausticMapPaths[] = {
-    {"front_face", CausticMapPaths::FrontFace}, {"traced", CausticMapPaths::Traced}};
-constexpr std::pair<std::string_view, PhotonFilter> kPhotonFilters[] = {
-    {"box", PhotonFilter::Box},
-    {"cone", PhotonFilter::Cone},
-    {"epanechnikov", PhotonFilter::Epanechnikov}};
-constexpr std::pair<std::string_view, CausticRole> kCausticRoles[] = {
-    {"auto", CausticRole::Auto},
-    {"cast", CausticRole::Cast},
-    {"receive", CausticRole::Receive},
-    {"both", CausticRole::Both},
-    {"off", CausticRole::Off}};
-
-// Deeper recursion than this risks the tracer's stack and never changes an image visibly.
-constexpr int64_t kMaxDepthLimit = 256;
 constexpr std::string_view kDefaultMaterialName = "default";
 
-std::string joined(KeyTable keys, std::string_view separator = ", ") {
-  std::string out;
-  for (size_t i = 0; i < keys.size(); ++i) {
-    if (i > 0) out += separator;
-    out += keys[i];
-  }
-  return out;
-}
-
-// A scalar as it appears in an error message: quoted, printable, and short.
-std::string shown(std::string_view text) {
-  return "'" + printableExcerpt(text, 40) + "'";
-}
-
-// What a node holds, for "found ..." in messages. Never walks into the node: aliases can make
-// a YAML tree cyclic.
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Null:
-      return "nothing";
-    case YAML::NodeType::Scalar:
-      return (node.Tag() == "!" ? "the quoted string " : "") + shown(node.Scalar());
-    case YAML::NodeType::Sequence:
-      return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
-    case YAML::NodeType::Map:
-      return "a mapping";
-    case YAML::NodeType::Undefined:
-      break;
-  }
-  return "an undefined value";
-}
-
-bool isQuoted(const YAML::Node& node) {
-  return node.Tag() == "!";
-}
-
-enum class NumberStatus { Ok, NotANumber, NotFinite, OutOfRange };
-
-// YAML 1.2 core-schema floats (plus the integers they include). .inf and .nan are recognised
-// so they can be refused as "not finite" rather than "not a number".
-NumberStatus parseNumber(std::string_view text, double& value) {
-  std::string_view body = text;
-  if (!body.empty() && (body.front() == '+' || body.front() == '-')) body.remove_prefix(1);
-  if (body == ".inf" || body == ".Inf" || body == ".INF" || body == ".nan" || body == ".NaN" ||
-      body == ".NAN") {
-    return NumberStatus::NotFinite;
-  }
-  if (body.empty() ||
-      !(std::isdigit(static_cast<unsigned char>(body.front())) || body.front() == '.')) {
-    return NumberStatus::NotANumber;
-  }
-  const char* first = text.data() + (text.front() == '+' ? 1 : 0);
-  const char* last = text.data() + text.size();
-  const auto [end, error] = std::from_chars(first, last, value, std::chars_format::general);
-  if (end != last) return NumberStatus::NotANumber;
-  if (error == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
-  if (error != std::errc()) return NumberStatus::NotANumber;
-  if (!std::isfinite(value)) return NumberStatus::NotFinite;
-  if (std::abs(value) > std::numeric_limits<float>::max()) return NumberStatus::OutOfRange;
-  return NumberStatus::Ok;
-}
-
-// One key: value pair of a mapping. The key node is kept because an empty value has no useful
-// position of its own (yaml-cpp marks it where the next token starts).
-struct Entry {
-  std::string key;
-  YAML::Node keyNode;
-  YAML::Node value;
-};
-
-// A mapping whose keys have been checked against a table: no unknown and no duplicate keys.
-struct Mapping {
-  std::string what;  // "sphere", "camera", ...: names it in "sphere needs 'radius'"
-  FileLoc loc;
-  std::vector<Entry> entries;
-
-  const Entry* find(std::string_view key) const {
-    for (const Entry& e : entries) {
-      if (e.key == key) return &e;
-    }
-    return nullptr;
-  }
-
-  const Entry& require(std::string_view key) const {
-    if (const Entry* e = find(key)) return *e;
-    throw SceneError(loc, what + " needs '" + std::string(key) + "'");
-  }
-};
-
-// Sees where each YAML document starts, and nothing else.
-class DocumentStarts : public YAML::EventHandler {
- public:
-  std::vector<YAML::Mark> starts;
-
-  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {}
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {}
-  void OnMapEnd() override {}
-};
-
-class YamlSceneReader {
+// The scene schema, written in the checked reader's vocabulary (number, mapping, choice, ...).
+class YamlSceneReader : private CheckedYaml {
  public:
   YamlSceneReader(const std::string& path, const MemoryLimit& limit)
-      : path_(path), baseDir_(std::filesystem::path(path).parent_path()), limit_(limit) {}
+      : CheckedYaml(path),
+        path_(path),
+        baseDir_(std::filesystem::path(path).parent_path()),
+        meshBudget_(limit, "the meshes before this one") {}
 
   SceneDescription read(const std::string& text) {
-    YAML::Node root;
-    try {
-      checkSingleDocument(text);
-      root = YAML::Load(text);
-    } catch (const YAML::Exception& e) {
-      throw SceneError(loc(e.mark), "invalid YAML: " + printableExcerpt(e.msg, 200));
-    }
+    const YAML::Node root = load(text);
     if (root.IsNull()) throw SceneError(FileLoc{path_}, "scene is empty");
     if (!root.IsMap()) {
       throw SceneError(loc(root.Mark()), "expected a mapping of scene sections (" +
@@ -227,262 +95,10 @@ class YamlSceneReader {
  private:
   std::string path_;
   std::filesystem::path baseDir_;
-  MemoryLimit limit_;  // less what the meshes read so far need
+  MemoryBudget meshBudget_;  // each mesh is read against the limit less the meshes before it
   SceneDescription scene_;
   std::map<std::string, MaterialId, std::less<>> materialIds_;
   std::optional<MaterialId> defaultMaterial_;
-
-  // A scene is one YAML document. This also guards against a yaml-cpp 0.7 bug: on some
-  // malformed input (a lone ',', jbeder/yaml-cpp#1040) its parser reports an empty document
-  // again and again without consuming anything, and YAML::LoadAll allocates until memory runs
-  // out. So documents are counted here, two at most, and one that makes no progress is a
-  // syntax error at the token that stopped it.
-  void checkSingleDocument(const std::string& text) const {
-    std::istringstream stream(text);
-    YAML::Parser parser(stream);
-    DocumentStarts documents;
-    if (!parser.HandleNextDocument(documents) || !parser.HandleNextDocument(documents)) return;
-    if (documents.starts.size() != 2) {
-      throw SceneError(FileLoc{path_}, "expected one YAML document, found more");
-    }
-    const YAML::Mark& first = documents.starts.front();
-    const YAML::Mark& second = documents.starts.back();
-    if (second.pos == first.pos) {
-      const size_t pos = std::min(static_cast<size_t>(std::max(second.pos, 0)), text.size());
-      throw SceneError(loc(second),
-                       "invalid YAML: unexpected " + shown(std::string_view(text).substr(pos, 1)));
-    }
-    throw SceneError(loc(second), "expected one YAML document, found more (a second starts here)");
-  }
-
-  // ---- positions and messages ------------------------------------------------------------
-
-  FileLoc loc(const YAML::Mark& mark) const {
-    if (mark.is_null() || mark.line < 0) return FileLoc{path_};
-    return FileLoc{path_, mark.line + 1, mark.column + 1};
-  }
-  FileLoc loc(const YAML::Node& node) const { return loc(node.Mark()); }
-  FileLoc loc(const Entry& e) const { return e.value.IsNull() ? loc(e.keyNode) : loc(e.value); }
-  // A list item's own position, or the list's when the item is empty.
-  FileLoc itemLoc(const YAML::Node& item, const FileLoc& listLoc) const {
-    return item.IsNull() ? listLoc : loc(item);
-  }
-
-  [[noreturn]] void fail(const FileLoc& where, const std::string& message) const {
-    throw SceneError(where, message);
-  }
-
-  // ---- structure --------------------------------------------------------------------------
-
-  // Checks that node is a mapping with only the keys in table, each once. An empty value (as
-  // in "camera:" with nothing under it) is an empty mapping: everything takes its default.
-  Mapping mapping(const YAML::Node& node, const FileLoc& where, std::string_view what,
-                  KeyTable table, std::string_view keyNoun = "key") const {
-    Mapping m{std::string(what), where, {}};
-    if (node.IsNull()) return m;
-    if (!node.IsMap()) {
-      fail(where, "expected a mapping of " + std::string(what) + " keys (" + joined(table) +
-                      "), found " + describe(node));
-    }
-    for (auto it = node.begin(); it != node.end(); ++it) {
-      const YAML::Node key = it->first;  // a copy: it-> yields a temporary
-      if (!key.IsScalar()) fail(loc(key), "expected a key name, found " + describe(key));
-      const std::string& name = key.Scalar();
-      if (const Entry* earlier = m.find(name)) {
-        const FileLoc first = loc(earlier->keyNode);
-        fail(loc(key), "duplicate key " + shown(name) + " (first given at " +
-                           std::to_string(first.line) + ":" + std::to_string(first.column) + ")");
-      }
-      bool known = false;
-      for (std::string_view k : table) known = known || k == name;
-      if (!known) {
-        fail(loc(key), "unknown " + std::string(what) + " " + std::string(keyNoun) + " " +
-                           shown(name) + " (expected one of: " + joined(table) + ")");
-      }
-      m.entries.push_back(Entry{name, key, it->second});
-    }
-    return m;
-  }
-
-  Mapping mapping(const Entry& e, std::string_view what, KeyTable table) const {
-    return mapping(e.value, loc(e), what, table);
-  }
-
-  // The items of a list section; an empty value is an empty list.
-  std::vector<YAML::Node> list(const Entry& e, std::string_view itemsName) const {
-    std::vector<YAML::Node> items;
-    if (e.value.IsNull()) return items;
-    if (!e.value.IsSequence()) {
-      fail(loc(e), "expected a list of " + std::string(itemsName) + " for '" + e.key + "', found " +
-                       describe(e.value));
-    }
-    for (const YAML::Node& item : e.value) items.push_back(item);
-    return items;
-  }
-
-  // ---- values -----------------------------------------------------------------------------
-
-  float number(const YAML::Node& node, const FileLoc& where, std::string_view name) const {
-    const std::string forName = " for '" + std::string(name) + "'";
-    if (!node.IsScalar() || isQuoted(node)) {
-      fail(where, "expected a number" + forName + ", found " + describe(node));
-    }
-    double value = 0.0;
-    switch (parseNumber(node.Scalar(), value)) {
-      case NumberStatus::Ok:
-        return static_cast<float>(value);
-      case NumberStatus::NotANumber:
-        fail(where, "expected a number" + forName + ", found " + describe(node));
-      case NumberStatus::NotFinite:
-        fail(where, "'" + std::string(name) + "' must be finite, found " + describe(node));
-      case NumberStatus::OutOfRange:
-        fail(where, "'" + std::string(name) + "' is out of range for a 32-bit float, found " +
-                        describe(node));
-    }
-    fail(where, "expected a number" + forName);
-  }
-
-  float number(const Entry& e) const { return number(e.value, loc(e), e.key); }
-
-  float positive(const Entry& e) const {
-    const float v = number(e);
-    if (!(v > 0.0f)) fail(loc(e), "'" + e.key + "' must be greater than 0, found " + text(e));
-    return v;
-  }
-
-  float nonNegative(const Entry& e) const {
-    const float v = number(e);
-    if (v < 0.0f) fail(loc(e), "'" + e.key + "' must not be negative, found " + text(e));
-    return v;
-  }
-
-  static std::string text(const Entry& e) { return e.value.Scalar(); }
-
-  int64_t integer(const Entry& e, int64_t min, int64_t max) const {
-    const YAML::Node& node = e.value;
-    if (!node.IsScalar() || isQuoted(node)) {
-      fail(loc(e), "expected an integer for '" + e.key + "', found " + describe(node));
-    }
-    const std::string& s = node.Scalar();
-    const char* first = s.data() + (!s.empty() && s.front() == '+' ? 1 : 0);
-    const char* last = s.data() + s.size();
-    int64_t value = 0;
-    const auto [end, error] = std::from_chars(first, last, value);
-    if (end != last || error == std::errc::invalid_argument) {
-      fail(loc(e), "expected an integer for '" + e.key + "', found " + describe(node));
-    }
-    if (error == std::errc::result_out_of_range || value > max) {
-      fail(loc(e), "'" + e.key + "' must be at most " + std::to_string(max) + ", found " + s);
-    }
-    if (value < min) {
-      fail(loc(e), "'" + e.key + "' must be at least " + std::to_string(min) + ", found " + s);
-    }
-    return value;
-  }
-
-  uint64_t unsignedInteger(const Entry& e) const {
-    const YAML::Node& node = e.value;
-    const std::string s = node.IsScalar() ? node.Scalar() : std::string();
-    if (!node.IsScalar() || isQuoted(node)) {
-      fail(loc(e), "expected an integer for '" + e.key + "', found " + describe(node));
-    }
-    if (!s.empty() && s.front() == '-') {
-      fail(loc(e), "'" + e.key + "' must not be negative, found " + s);
-    }
-    const char* first = s.data() + (!s.empty() && s.front() == '+' ? 1 : 0);
-    const char* last = s.data() + s.size();
-    uint64_t value = 0;
-    const auto [end, error] = std::from_chars(first, last, value);
-    if (end != last || error == std::errc::invalid_argument) {
-      fail(loc(e), "expected an integer for '" + e.key + "', found " + describe(node));
-    }
-    if (error == std::errc::result_out_of_range) {
-      fail(loc(e), "'" + e.key + "' must be at most " +
-                       std::to_string(std::numeric_limits<uint64_t>::max()) + ", found " + s);
-    }
-    return value;
-  }
-
-  bool boolean(const Entry& e) const {
-    const YAML::Node& node = e.value;
-    if (node.IsScalar() && !isQuoted(node)) {
-      const std::string& s = node.Scalar();
-      if (s == "true" || s == "True" || s == "TRUE") return true;
-      if (s == "false" || s == "False" || s == "FALSE") return false;
-    }
-    fail(loc(e), "expected true or false for '" + e.key + "', found " + describe(node));
-  }
-
-  std::string string(const Entry& e) const {
-    const YAML::Node& node = e.value;
-    if (!node.IsScalar()) {
-      fail(loc(e), "expected a name for '" + e.key + "', found " + describe(node));
-    }
-    if (node.Scalar().empty()) fail(loc(e), "'" + e.key + "' must not be empty");
-    return node.Scalar();
-  }
-
-  template <typename T, size_t N>
-  T choice(const Entry& e, const std::pair<std::string_view, T> (&choices)[N]) const {
-    std::string options;
-    for (size_t i = 0; i < N; ++i) {
-      if (i > 0) options += i + 1 == N ? " or " : ", ";
-      options += choices[i].first;
-    }
-    if (!e.value.IsScalar()) {
-      fail(loc(e), "expected " + options + " for '" + e.key + "', found " + describe(e.value));
-    }
-    for (const auto& [name, value] : choices) {
-      if (e.value.Scalar() == name) return value;
-    }
-    fail(loc(e),
-         "unknown " + e.key + " " + shown(e.value.Scalar()) + " (expected " + options + ")");
-  }
-
-  // Three numbers; with nonNegative, a negative component is reported at its own position.
-  Vec3 vec3(const YAML::Node& node, const FileLoc& where, std::string_view name,
-            bool nonNegative = false) const {
-    if (!node.IsSequence() || node.size() != 3) {
-      fail(where,
-           "expected a list of 3 numbers for '" + std::string(name) + "', found " + describe(node));
-    }
-    Vec3 v;
-    for (int i = 0; i < 3; ++i) {
-      const YAML::Node item = node[i];
-      const FileLoc itemAt = itemLoc(item, where);
-      v[i] = number(item, itemAt, name);
-      if (nonNegative && v[i] < 0.0f) {
-        fail(itemAt, "'" + std::string(name) + "' must not be negative, found " + item.Scalar());
-      }
-    }
-    return v;
-  }
-
-  Vec3 vec3(const Entry& e) const { return vec3(e.value, loc(e), e.key); }
-
-  Vec3 direction(const Entry& e) const {
-    const Vec3 v = vec3(e);
-    if (v == Vec3(0.0f)) fail(loc(e), "'" + e.key + "' must not be the zero vector");
-    return glm::normalize(v);
-  }
-
-  // A colour is one number s (meaning [s, s, s]) or [r, g, b]; components are never negative.
-  Color color(const YAML::Node& node, const FileLoc& where, std::string_view name) const {
-    if (node.IsScalar()) {
-      const float s = number(node, where, name);
-      if (s < 0.0f) {
-        fail(where, "'" + std::string(name) + "' must not be negative, found " + node.Scalar());
-      }
-      return Color(s);
-    }
-    if (!node.IsSequence() || node.size() != 3) {
-      fail(where, "expected a colour (a number or a list of 3 numbers) for '" + std::string(name) +
-                      "', found " + describe(node));
-    }
-    return vec3(node, where, name, /*nonNegative=*/true);
-  }
-
-  Color color(const Entry& e) const { return color(e.value, loc(e), e.key); }
 
   std::filesystem::path resolve(const std::string& file) const {
     const std::filesystem::path p(file);
@@ -505,6 +121,11 @@ class YamlSceneReader {
     if (const Entry* e = top.find("environment")) readEnvironment(*e);
     if (const Entry* e = top.find("lights")) readLights(*e);
     if (const Entry* e = top.find("objects")) readObjects(*e);
+    try {
+      validate(scene_);  // each key was checked where it was read: this is the backstop
+    } catch (const SettingError& e) {
+      fail(FileLoc{path_}, e.what());
+    }
     return std::move(scene_);
   }
 
@@ -512,7 +133,7 @@ class YamlSceneReader {
     const Mapping m = mapping(section, "camera", kCameraKeys);
     CameraDesc& cam = scene_.camera;
     cam.loc = m.loc;
-    if (const Entry* e = m.find("projection")) cam.projection = choice(*e, kProjections);
+    if (const Entry* e = m.find("projection")) cam.projection = choice(*e, kProjectionNames);
     if (const Entry* e = m.find("position")) cam.position = vec3(*e);
     if (const Entry* e = m.find("look_at")) cam.lookAt = vec3(*e);
     if (const Entry* e = m.find("up")) cam.up = vec3(*e);
@@ -546,38 +167,39 @@ class YamlSceneReader {
   void readRender(const Entry& section) {
     const Mapping m = mapping(section, "render", kRenderKeys);
     RenderSettings& r = scene_.render;
-    constexpr int64_t kIntMax = std::numeric_limits<int>::max();
-    if (const Entry* e = m.find("width")) r.width = static_cast<int>(integer(*e, 1, kIntMax));
-    if (const Entry* e = m.find("height")) r.height = static_cast<int>(integer(*e, 1, kIntMax));
+    if (const Entry* e = m.find("width")) r.width = static_cast<int>(integer(*e, limits::kWidth));
+    if (const Entry* e = m.find("height")) {
+      r.height = static_cast<int>(integer(*e, limits::kHeight));
+    }
     if (const Entry* e = m.find("samples")) {
-      r.samplesPerPixel = static_cast<int>(integer(*e, 1, kIntMax));
+      r.samplesPerPixel = static_cast<int>(integer(*e, limits::kSamples));
     }
     if (const Entry* e = m.find("max_depth")) {
-      r.maxDepth = static_cast<int>(integer(*e, 0, kMaxDepthLimit));
+      r.maxDepth = static_cast<int>(integer(*e, limits::kMaxDepth));
     }
     if (const Entry* e = m.find("min_contribution")) r.minContribution = nonNegative(*e);
     if (const Entry* e = m.find("seed")) r.seed = unsignedInteger(*e);
     if (const Entry* e = m.find("exposure")) r.exposure = positive(*e);
-    if (const Entry* e = m.find("triangle_test")) r.triangleTest = choice(*e, kTriangleTests);
+    if (const Entry* e = m.find("triangle_test")) r.triangleTest = choice(*e, kTriangleTestNames);
   }
 
   void readCaustics(const Entry& section) {
     const Mapping m = mapping(section, "caustics", kCausticsKeys);
     CausticSettings& c = scene_.caustics;
-    constexpr int64_t kIntMax = std::numeric_limits<int>::max();
-    if (const Entry* e = m.find("method")) c.method = choice(*e, kCausticMethods);
+    if (const Entry* e = m.find("method")) c.method = choice(*e, kCausticMethodNames);
     if (const Entry* e = m.find("photons")) {
-      c.photons = unsignedInteger(*e);
-      if (c.photons == 0) fail(loc(*e), "'photons' must be at least 1");
+      c.photons = static_cast<uint64_t>(integer(*e, limits::kPhotons));
     }
-    if (const Entry* e = m.find("gather")) c.gather = static_cast<int>(integer(*e, 1, 100000));
+    if (const Entry* e = m.find("gather"))
+      c.gather = static_cast<int>(integer(*e, limits::kGather));
     if (const Entry* e = m.find("max_radius")) c.maxRadius = nonNegative(*e);
-    if (const Entry* e = m.find("filter")) c.filter = choice(*e, kPhotonFilters);
+    if (const Entry* e = m.find("filter")) c.filter = choice(*e, kPhotonFilterNames);
     if (const Entry* e = m.find("max_bounces")) {
-      c.maxBounces = static_cast<int>(integer(*e, 1, kMaxDepthLimit));
+      c.maxBounces = static_cast<int>(integer(*e, limits::kMaxBounces));
     }
     if (const Entry* e = m.find("progressive")) c.progressive = boolean(*e);
-    if (const Entry* e = m.find("passes")) c.passes = static_cast<int>(integer(*e, 1, kIntMax));
+    if (const Entry* e = m.find("passes"))
+      c.passes = static_cast<int>(integer(*e, limits::kPasses));
     if (const Entry* e = m.find("alpha")) {
       c.alpha = number(*e);
       if (!(c.alpha > 0.0f && c.alpha < 1.0f)) {
@@ -587,22 +209,21 @@ class YamlSceneReader {
     if (const Entry* e = m.find("radius")) c.radius = nonNegative(*e);
     if (const Entry* e = m.find("time_budget")) c.timeBudgetSeconds = nonNegative(*e);
     if (const Entry* e = m.find("map_resolution")) {
-      c.mapResolution =
-          static_cast<int>(integer(*e, kMinCausticMapResolution, kMaxCausticMapResolution));
+      c.mapResolution = static_cast<int>(integer(*e, limits::kMapResolution));
     }
     if (const Entry* e = m.find("map_steps")) {
-      c.mapSteps = static_cast<int>(integer(*e, 1, kMaxCausticMapSteps));
+      c.mapSteps = static_cast<int>(integer(*e, limits::kMapSteps));
     }
     if (const Entry* e = m.find("map_blur_sigma")) c.mapBlurSigma = nonNegative(*e);
     if (const Entry* e = m.find("map_blur_radius")) {
-      c.mapBlurRadius = static_cast<int>(integer(*e, 0, kMaxCausticMapBlurRadius));
+      c.mapBlurRadius = static_cast<int>(integer(*e, limits::kMapBlurRadius));
     }
-    if (const Entry* e = m.find("map_paths")) c.mapPaths = choice(*e, kCausticMapPaths);
+    if (const Entry* e = m.find("map_paths")) c.mapPaths = choice(*e, kCausticMapPathsNames);
   }
 
   CausticRole causticRole(const Mapping& m) const {
     const Entry* e = m.find("caustic");
-    return e ? choice(*e, kCausticRoles) : CausticRole::Auto;
+    return e ? choice(*e, kCausticRoleNames) : CausticRole::Auto;
   }
 
   void readEnvironment(const Entry& section) {
@@ -856,11 +477,8 @@ class YamlSceneReader {
                                (exists ? " is not a regular file" : " not found") +
                                " (looked for '" + resolved.string() + "')");
     }
-    MeshDesc mesh = loadObjMesh(resolved.string(), loc(fileEntry), limit_);
-    const uint64_t meshBytes = meshBuildBytes(mesh.triangleCount(), mesh.positions.size());
-    limit_.bytes -= std::min(limit_.bytes, meshBytes);
-    if (limit_.source.find("less the meshes") == std::string::npos)
-      limit_.source += ", less the meshes before this one";
+    MeshDesc mesh = loadObjMesh(resolved.string(), loc(fileEntry), meshBudget_.remaining());
+    meshBudget_.spend(meshBuildBytes(mesh.triangleCount(), mesh.positions.size()));
     if (mesh.triangleCount() == 0)
       fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");
     if (mesh.source.empty()) mesh.source = resolved.string();

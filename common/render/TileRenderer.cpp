@@ -1,8 +1,7 @@
 #include "render/TileRenderer.h"
 
-#include <chrono>
-
 #include "render/DebugShading.h"
+#include "util/Stopwatch.h"
 
 namespace prism {
 
@@ -50,7 +49,7 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
 
 TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
                                 const std::atomic<bool>* cancel) const {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = SteadyClock::now();
   TileResult result;
   result.tileIndex = tileIndex;
   result.rect = rect;
@@ -62,7 +61,7 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
       result.pixels[i++] = renderPixel(x, y, result.rays);
     }
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = secondsSince(start);
   return result;
 }
 

@@ -1,9 +1,9 @@
 #include "render/WhittedIntegrator.h"
 
-#include "render/LightFalloff.h"
-#include "render/MaterialEval.h"
-#include "render/Optics.h"
-#include "render/SpecularSplit.h"
+#include "shading/LightFalloff.h"
+#include "shading/MaterialEval.h"
+#include "shading/Optics.h"
+#include "shading/SpecularSplit.h"
 
 namespace prism {
 namespace {}  // namespace

@@ -78,7 +78,7 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
   }
   for (const ConeDesc& c : d.cones) {
     refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
-    cones.emplace_back(c);
+    cones.emplace_back(c.base, c.baseRadius, c.apex, c.apexRadius, c.material);
     bounds.push_back(cones.back().bounds());
     coneCaustic.push_back(causticFlags(c.caustic, materialOf(c.material)));
     if (coneCaustic.back() & kCastsCaustics) casters_.push_back(boundingSphere(bounds.back()));

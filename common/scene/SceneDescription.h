@@ -10,9 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "geometry/MaterialId.h"
 #include "image/ImageRgb.h"
 #include "math/Vec.h"
-#include "parse/FileLoc.h"
+#include "scene/FileLoc.h"
 
 namespace prism {
 
@@ -63,8 +64,6 @@ struct MaterialDesc {
   std::optional<CheckerDesc> checker;
   FileLoc loc;
 };
-
-using MaterialId = uint32_t;
 
 // An object's part in caustics. Auto: casts when its material reflects or transmits
 // specularly, receives when it has a diffuse albedo. Cast/Receive restrict it to one role,
@@ -119,6 +118,8 @@ struct CubeMapDesc {
   float scale = 1.0f;  // multiplies the stored radiance
 };
 
+// Names and limits of these settings: SettingNames.h, SettingLimits.h; validate() checks them
+// (SceneValidation.h).
 enum class TriangleTest { MollerTrumbore, PlaneThenInside };
 
 struct RenderSettings {
@@ -139,12 +140,6 @@ enum class CausticMethod { None, PhotonMap, CausticMap };
 enum class CausticMapPaths { FrontFace, Traced };
 // Density estimation kernels over the gathered disc (see caustics/DensityKernel.h).
 enum class PhotonFilter { Box, Cone, Epanechnikov };
-
-// Bounds of the caustic-map parameters (parser, codec and command line agree on them).
-inline constexpr int kMinCausticMapResolution = 16;
-inline constexpr int kMaxCausticMapResolution = 4096;
-inline constexpr int kMaxCausticMapSteps = 64;
-inline constexpr int kMaxCausticMapBlurRadius = 64;
 
 // How caustics are computed; see docs/caustics.md.
 struct CausticSettings {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "caustics/Photon.h"
-#include "caustics/PhotonGather.h"
-#include "caustics/PhotonTracer.h"
+#include "caustics/PhotonGatherSettings.h"
+#include "caustics/PhotonTraceStats.h"
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"

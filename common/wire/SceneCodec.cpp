@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/SceneValidation.h"
+
 // Every struct is written and read through a structured binding that names all its fields: a
 // field added to SceneDescription.h makes this file fail to compile until the codec (and
 // tests/common/wire/SceneCodec_test.cpp) is updated, instead of silently not travelling.
@@ -163,13 +165,11 @@ RenderSettings readRender(ByteReader& r) {
   seed = r.readU64();
   exposure = r.readF32();
   triangleTest = readEnum<TriangleTest>(r, "triangle test");
-  if (width <= 0 || height <= 0) {
-    throw WireError("invalid render size " + std::to_string(width) + "x" + std::to_string(height));
+  try {
+    validate(s);
+  } catch (const SettingError& e) {
+    throw WireError(std::string("invalid render settings: ") + e.what());
   }
-  if (samplesPerPixel <= 0) {
-    throw WireError("invalid samples per pixel " + std::to_string(samplesPerPixel));
-  }
-  if (maxDepth < 0) throw WireError("invalid max depth " + std::to_string(maxDepth));
   return s;
 }
 
@@ -215,14 +215,10 @@ CausticSettings readCaustics(ByteReader& r) {
   mapBlurSigma = r.readF32();
   mapBlurRadius = r.readI32();
   mapPaths = readEnum<CausticMapPaths>(r, "caustic map paths");
-  if (mapResolution < kMinCausticMapResolution || mapResolution > kMaxCausticMapResolution ||
-      mapSteps < 1 || mapSteps > kMaxCausticMapSteps || !(mapBlurSigma >= 0.0f) ||
-      mapBlurRadius < 0 || mapBlurRadius > kMaxCausticMapBlurRadius) {
-    throw WireError("invalid caustic map settings");
-  }
-  if (gather <= 0 || maxBounces <= 0 || passes <= 0 || !(maxRadius >= 0.0f) || !(radius >= 0.0f) ||
-      !(alpha > 0.0f && alpha < 1.0f)) {
-    throw WireError("invalid caustic settings");
+  try {
+    validate(c);
+  } catch (const SettingError& e) {
+    throw WireError(std::string("invalid caustic settings: ") + e.what());
   }
   return c;
 }

@@ -34,7 +34,6 @@ TEST(ResourceCheck, AcceptsOrdinaryImages) {
   s.height = 4320;
   EXPECT_NO_THROW(checkRenderFits(s, k16GiB));
   EXPECT_NO_THROW(checkTilesFit(s, 0, k16GiB));
-  EXPECT_NO_THROW(checkSettingsSane(s));
 }
 
 TEST(ResourceCheck, TileCountHasABoundAndItsBookkeepingAMemoryCost) {
@@ -54,20 +53,6 @@ TEST(ResourceCheck, TileCountHasABoundAndItsBookkeepingAMemoryCost) {
             "16777216 tiles' bookkeeping needs 1.0 GiB (1073741824 bytes); the memory limit is "
             "512.0 MiB (536870912 bytes, test): raise --tile-size");
   EXPECT_NO_THROW(checkTilesFit(s, 1, k16GiB));
-}
-
-TEST(ResourceCheck, SamplesAndDepthHaveFixedBounds) {
-  RenderSettings s;
-  s.samplesPerPixel = kMaxSamplesPerPixel;
-  s.maxDepth = kMaxRecursionDepth;
-  EXPECT_NO_THROW(checkSettingsSane(s));
-  s.samplesPerPixel = 100000;
-  EXPECT_EQ(refusal([&] { checkSettingsSane(s); }),
-            "100000 samples per pixel is more than the 65536 allowed (reduce --spp)");
-  s.samplesPerPixel = 1;
-  s.maxDepth = 300;
-  EXPECT_EQ(refusal([&] { checkSettingsSane(s); }),
-            "a recursion depth of 300 is more than the 256 allowed (reduce --max-depth)");
 }
 
 // 10^12 photons at 96 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree) is

@@ -11,7 +11,7 @@
 #include <ios>
 
 #include "caustics/PhotonGather.h"
-#include "render/Optics.h"
+#include "shading/Optics.h"
 #include "tests/common/caustics/BallOverFloorScene.h"
 
 namespace prism {

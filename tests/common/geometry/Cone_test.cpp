@@ -8,12 +8,7 @@ namespace prism {
 namespace {
 
 Cone makeCone(Vec3 base, float r0, Vec3 apex, float r1) {
-  ConeDesc d;
-  d.base = base;
-  d.baseRadius = r0;
-  d.apex = apex;
-  d.apexRadius = r1;
-  return Cone(d);
+  return Cone(base, r0, apex, r1, 0);
 }
 
 TEST(Cone, CylinderHitFromTheSide) {
@@ -84,16 +79,12 @@ TEST(Cone, BoundsContainTheSurface) {
 TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
   // A thin tilted cone seen from 40 units away: in single precision the discriminant loses
   // enough digits to put hit points inside the surface, and shadow rays then hit the cone itself.
-  ConeDesc d;
-  d.base = {3.0f, -1.0f, 2.0f};
-  d.apex = {3.4f, 4.0f, 2.3f};
-  d.baseRadius = 0.12f;
-  d.apexRadius = 0.05f;
-  const Cone cone(d);
+  const Vec3 base{3.0f, -1.0f, 2.0f}, apex{3.4f, 4.0f, 2.3f};
+  const Cone cone = makeCone(base, 0.12f, apex, 0.05f);
   Pcg32 rng(17, 5);
   int hits = 0, selfShadowed = 0;
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 target = glm::mix(d.base, d.apex, rng.nextFloat()) +
+    const Vec3 target = glm::mix(base, apex, rng.nextFloat()) +
                         0.15f * Vec3(rng.nextFloat() - 0.5f, 0.0f, rng.nextFloat() - 0.5f);
     const Vec3 eye(-30.0f, 20.0f, 25.0f);
     const Ray primary{eye, glm::normalize(target - eye)};

@@ -253,6 +253,40 @@ TEST(YamlSceneParser, EveryCausticRoleAndFilterParses) {
   EXPECT_EQ(s.caustics.radius, 0.0f);
 }
 
+// Named values follow scene/SettingNames.h: '-' and '_' alike, any case, so a value copied from
+// the command line works in a scene file.
+TEST(YamlSceneParser, NamedValuesAcceptEitherSpelling) {
+  for (const char* method : {"photon_map", "photon-map", "Photon_Map"}) {
+    EXPECT_EQ(parse(std::string("caustics: {method: ") + method + "}").caustics.method,
+              CausticMethod::PhotonMap)
+        << method;
+  }
+  EXPECT_EQ(parse("caustics: {method: map}").caustics.method, CausticMethod::CausticMap);
+  for (const char* test : {"plane_inside", "plane-inside"}) {
+    EXPECT_EQ(parse(std::string("render: {triangle_test: ") + test + "}").render.triangleTest,
+              TriangleTest::PlaneThenInside)
+        << test;
+  }
+  EXPECT_EQ(parse("caustics: {map_paths: front-face}").caustics.mapPaths,
+            CausticMapPaths::FrontFace);
+  EXPECT_NE(std::string(parseError("render: {triangle_test: watertight}").what())
+                .find("(expected moller_trumbore or plane_inside)"),
+            std::string::npos);
+}
+
+// Integer settings share their ranges with the command line and the codec (SettingLimits.h).
+TEST(YamlSceneParser, IntegerSettingsHaveTheCommandLinesRanges) {
+  EXPECT_EQ(parse("render: {max_depth: 256}").render.maxDepth, 256);
+  EXPECT_EQ(parseError("render: {max_depth: 257}").message(),
+            "'max_depth' must be at most 256, found 257");
+  EXPECT_EQ(parseError("render: {samples: 65537}").message(),
+            "'samples' must be at most 65536, found 65537");
+  EXPECT_EQ(parseError("render: {width: 1048577}").message(),
+            "'width' must be at most 1048576, found 1048577");
+  EXPECT_EQ(parseError("caustics: {passes: 1048577}").message(),
+            "'passes' must be at most 1048576, found 1048577");
+}
+
 TEST(YamlSceneParser, ColoursAreScalarsOrTriples) {
   const SceneDescription s = parse(R"(
 materials:

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "master/FrameRenderer.h"
-#include "render/Optics.h"
+#include "shading/Optics.h"
 
 namespace prism {
 namespace {

@@ -443,13 +443,22 @@ TEST(SceneCodec, ImagesMustHoldWidthTimesHeightPixels) {
 TEST(SceneCodec, RenderSettingsThatCannotRenderAreRejected) {
   SceneDescription d = fullScene();
   d.render.width = 0;
-  expectWireError(d, "invalid render size 0x203");
+  expectWireError(d, "invalid render settings: render setting 'width' must be at least 1, found 0");
   d = fullScene();
   d.render.samplesPerPixel = 0;
-  expectWireError(d, "invalid samples per pixel 0");
+  expectWireError(d, "render setting 'samples' must be at least 1, found 0 (--spp on the");
   d = fullScene();
   d.render.maxDepth = -1;
-  expectWireError(d, "invalid max depth -1");
+  expectWireError(d, "render setting 'max_depth' must be at least 0, found -1");
+  // The same bound as the scene parser and the command line (scene/SettingLimits.h).
+  d = fullScene();
+  d.render.maxDepth = 257;
+  expectWireError(d, "render setting 'max_depth' must be at most 256, found 257 (--max-depth");
+  d = fullScene();
+  d.caustics.mapResolution = 8;
+  expectWireError(d,
+                  "invalid caustic settings: caustics setting 'map_resolution' must be at "
+                  "least 16, found 8");
 }
 
 TEST(SceneCodec, HugeCorruptedCountThrowsWithoutAllocating) {

@@ -1,4 +1,4 @@
-#include "render/Optics.h"
+#include "shading/Optics.h"
 
 #include <gtest/gtest.h>
 

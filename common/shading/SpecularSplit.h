@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "geometry/HitRecord.h"
-#include "render/Optics.h"
+#include "shading/Optics.h"
 
 namespace prism {
 
