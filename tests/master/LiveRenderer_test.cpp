@@ -370,12 +370,14 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
   const Scene scene(d);
   LoopbackNetwork network(2);
   ScriptedSlave slave(network.endpoint(1), scene);
+  // Ready and the late share are queued before the viewer starts, so the slave is known from the
+  // first tile on and gets tiles however fast rank 0's own thread is.
+  slave.ready();
+  wire::PhotonShareMessage late{77, 0, 5, {}, 0.1, {}};
+  late.photons.resize(5);
+  slave.send(wire::encodePhotonShare(late));
   std::atomic<bool> stop{false};
   std::thread slaveThread([&] {
-    slave.ready();
-    wire::PhotonShareMessage late{77, 0, 5, {}, 0.1, {}};
-    late.photons.resize(5);
-    slave.send(wire::encodePhotonShare(late));
     bool lost = false;
     while (!stop) {
       const auto job = slave.nextJob(0.1);
@@ -439,8 +441,8 @@ TEST(LiveRenderer, OverTheLoopbackADeadSlaveIsRetiredWithinSeconds) {
   const Scene scene(d);
   LoopbackNetwork network(2);
   ScriptedSlave slave(network.endpoint(1), scene);
+  slave.ready();  // known from the first tile on (see above)
   std::thread slaveThread([&] {
-    slave.ready();
     slave.nextJob();  // takes its jobs and dies
     slave.nextJob();
   });
