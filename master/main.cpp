@@ -1,17 +1,17 @@
 // prism: the one executable, and the composition root: the only place that decides a process's
 // role. Subcommands are described by `prism` alone and `prism --help`. Started by an MPI
 // launcher, every rank runs this: rank 0 becomes the master and runs the command, the others
-// slaves, whatever the command.
+// slaves, whatever the command. MPI and Qt are modules loaded only when used (MpiModule.h,
+// ViewerModule.h), so a process pays at start-up only for the libraries it needs.
 #include <iostream>
 #include <memory>
 
 #include "accel/Simd.h"
 #include "master/Cli.h"
 #include "slave/SlaveLoop.h"
-#include "transport/MpiSession.h"
+#include "transport/MpiModule.h"
 #ifdef PRISM_HAVE_VIEWER
-#include "gui/ChartImage.h"
-#include "gui/Viewer.h"
+#include "gui/ViewerModule.h"
 #endif
 
 int main(int argc, char** argv) {
@@ -21,10 +21,10 @@ int main(int argc, char** argv) {
                  "lower level (docs/performance.md)\n";
     return 1;
   }
-  std::unique_ptr<prism::MpiSession> session;
+  std::unique_ptr<prism::Transport> session;
   if (prism::launchedByMpiLauncher()) {
     try {
-      session = std::make_unique<prism::MpiSession>(&argc, &argv);
+      session = prism::openMpiTransport(&argc, &argv);
     } catch (const std::exception& e) {
       std::cerr << "prism: error: " << e.what() << "\n";
       return 1;
@@ -32,8 +32,8 @@ int main(int argc, char** argv) {
   }
   const bool slave = session && session->rank() != 0;
 #ifdef PRISM_HAVE_VIEWER
-  const prism::ParsedCommand command =
-      prism::parseCommandLine(argc, argv, slave, prism::runViewer, prism::writeChartImage);
+  const prism::ParsedCommand command = prism::parseCommandLine(
+      argc, argv, slave, prism::lazyViewerRunner(), prism::lazyChartWriter());
 #else
   const prism::ParsedCommand command = prism::parseCommandLine(argc, argv, slave);
 #endif

@@ -32,13 +32,6 @@ bool waitBounded(MPI_Request& request, double timeoutSeconds) {
 
 }  // namespace
 
-bool launchedByMpiLauncher() {
-  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"}) {
-    if (std::getenv(variable) != nullptr) return true;
-  }
-  return false;
-}
-
 struct MpiSession::PendingSend {
   std::vector<uint8_t> bytes;
   MPI_Request request = MPI_REQUEST_NULL;

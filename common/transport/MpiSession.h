@@ -1,5 +1,6 @@
 // The transport over MPI, and the only code in Prism that talks to MPI (common/transport/
-// Transport.h says what a transport does).
+// Transport.h says what a transport does). Built into the module prism_mpi.so, which a process
+// loads only when an MPI launcher started it (transport/MpiModule.h).
 #pragma once
 
 #include <list>
@@ -8,10 +9,6 @@
 #include "transport/Transport.h"
 
 namespace prism {
-
-// Whether this process was started by an MPI launcher (mpirun, mpiexec, srun). Without one,
-// Prism runs as a single process and never initialises MPI.
-bool launchedByMpiLauncher();
 
 class MpiSession final : public Transport {
  public:
