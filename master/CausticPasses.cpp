@@ -99,7 +99,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
     auto pass = causticMapPass(0, maps);
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
-    out.image = f.image;
+    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
     addFrame(out.frames, f, true);
     return out;
   }
@@ -112,7 +112,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
   }
   if (!tracer || !tracer->hasWork()) {  // nothing to trace: a plain frame, no photon cost
     FrameResult f = frame(nullptr, "render");
-    out.image = f.image;
+    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
     addFrame(out.frames, f, true);
     return out;
   }
@@ -142,7 +142,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
         RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
-    out.image = f.image;
+    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
     addFrame(out.frames, f, true);
     out.lastMap = map;
     return out;

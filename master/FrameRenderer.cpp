@@ -22,7 +22,7 @@ class FrameAssembly final : public FrameListener {
   }
 
   // Only after the dispatcher's threads have stopped.
-  const Framebuffer& framebuffer() const { return framebuffer_; }
+  Framebuffer& framebuffer() { return framebuffer_; }
   const std::vector<double>& tileSeconds() const { return tileSeconds_; }
 
  private:
@@ -76,8 +76,8 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLi
   dispatcher.join();
   if (options.progress && !result.interrupted) options.progress(rects.size(), rects.size());
 
-  result.image = assembly.framebuffer().image();
   result.tileDone = assembly.framebuffer().received();
+  result.image = assembly.framebuffer().takeImage();
   result.workers = dispatcher.stats();
   result.tiles = rects;
   result.tileSeconds = assembly.tileSeconds();

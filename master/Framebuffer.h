@@ -2,6 +2,7 @@
 // worker answered late) is ignored, so the frame never mixes two copies.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "image/ImageRgb.h"
@@ -21,6 +22,8 @@ class Framebuffer {
   size_t tileCount() const { return received_.size(); }
   bool complete() const { return tilesDone_ == received_.size(); }
   const ImageRgb& image() const { return image_; }
+  // The finished frame, moved out: the framebuffer holds no image afterwards.
+  ImageRgb takeImage() { return std::move(image_); }
   const std::vector<bool>& received() const { return received_; }  // index = tile
 
  private:
