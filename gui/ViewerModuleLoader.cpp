@@ -5,6 +5,10 @@
 #include "gui/ViewerModule.h"
 #include "util/PluginModule.h"
 
+#ifndef PRISM_VIEWER_MODULE_PATH
+#define PRISM_VIEWER_MODULE_PATH ""  // set by the build; without it, only next to the executable
+#endif
+
 namespace prism {
 namespace {
 
@@ -13,23 +17,12 @@ const ViewerModuleApi& viewerModule() {
   static const ViewerModuleApi* loaded = nullptr;
   static std::string loadError;
   std::call_once(loadOnce, [] {
-    PluginModuleSearch search;
-    search.fileName = "prism_viewer.so";
-    search.environmentVariable = "PRISM_VIEWER_MODULE";
-#ifdef PRISM_VIEWER_MODULE_PATH
-    search.buildPath = PRISM_VIEWER_MODULE_PATH;
-#endif
-    search.entryName = kViewerModuleEntryName;
+    const PluginModuleSearch search{.fileName = "prism_viewer.so",
+                                    .environmentVariable = "PRISM_VIEWER_MODULE",
+                                    .buildPath = PRISM_VIEWER_MODULE_PATH,
+                                    .entryName = kViewerModuleEntryName};
     std::string tried;
-    loadPluginModule(
-        search,
-        [](void* entry) {
-          const ViewerModuleApi* api = reinterpret_cast<ViewerModuleEntry>(entry)();
-          if (!api || api->version != kViewerModuleVersion) return false;
-          loaded = api;
-          return true;
-        },
-        &tried);
+    loaded = loadPluginApi<ViewerModuleApi>(search, kViewerModuleVersion, &tried);
     if (!loaded) loadError = pluginModuleNotFound("the viewer's module", search, tried, "");
   });
   if (!loaded) throw std::runtime_error(loadError);

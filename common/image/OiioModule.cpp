@@ -6,6 +6,10 @@
 
 #include "util/PluginModule.h"
 
+#ifndef PRISM_OIIO_MODULE_PATH
+#define PRISM_OIIO_MODULE_PATH ""  // set by the build; without it, only next to the executable
+#endif
+
 namespace prism {
 namespace {
 
@@ -14,25 +18,13 @@ std::atomic<const OiioModuleApi*> loaded{nullptr};
 std::string loadError;
 
 void load() {
-  PluginModuleSearch search;
-  search.fileName = "prism_image_oiio.so";
-  search.environmentVariable = "PRISM_OIIO_MODULE";
-#ifdef PRISM_OIIO_MODULE_PATH
-  search.buildPath = PRISM_OIIO_MODULE_PATH;
-#endif
-  search.entryName = kOiioModuleEntryName;
+  const PluginModuleSearch search{.fileName = "prism_image_oiio.so",
+                                  .environmentVariable = "PRISM_OIIO_MODULE",
+                                  .buildPath = PRISM_OIIO_MODULE_PATH,
+                                  .entryName = kOiioModuleEntryName};
   // RTLD_LOCAL (global = false): OpenImageIO's 260 libraries stay out of the global namespace.
-  const OiioModuleApi* api = nullptr;
   std::string tried;
-  loadPluginModule(
-      search,
-      [&api](void* entry) {
-        const OiioModuleApi* candidate = reinterpret_cast<OiioModuleEntry>(entry)();
-        if (!candidate || candidate->version != kOiioModuleVersion) return false;
-        api = candidate;
-        return true;
-      },
-      &tried);
+  const OiioModuleApi* api = loadPluginApi<OiioModuleApi>(search, kOiioModuleVersion, &tried);
   if (api) {
     loaded = api;
     return;

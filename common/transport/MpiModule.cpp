@@ -5,6 +5,10 @@
 
 #include "util/PluginModule.h"
 
+#ifndef PRISM_MPI_MODULE_PATH
+#define PRISM_MPI_MODULE_PATH ""  // set by the build; without it, only next to the executable
+#endif
+
 namespace prism {
 
 bool launchedByMpiLauncher() {
@@ -15,26 +19,15 @@ bool launchedByMpiLauncher() {
 }
 
 std::unique_ptr<Transport> openMpiTransport(int* argc, char*** argv) {
-  PluginModuleSearch search;
-  search.fileName = "prism_mpi.so";
-  search.environmentVariable = "PRISM_MPI_MODULE";
-#ifdef PRISM_MPI_MODULE_PATH
-  search.buildPath = PRISM_MPI_MODULE_PATH;
-#endif
-  search.entryName = kMpiModuleEntryName;
-  // Open MPI dlopen()s components of its own that expect libmpi's symbols in the global scope.
-  search.global = true;
-  const MpiModuleApi* api = nullptr;
+  const PluginModuleSearch search{.fileName = "prism_mpi.so",
+                                  .environmentVariable = "PRISM_MPI_MODULE",
+                                  .buildPath = PRISM_MPI_MODULE_PATH,
+                                  .entryName = kMpiModuleEntryName,
+                                  // Open MPI dlopen()s components of its own that expect
+                                  // libmpi's symbols in the global scope.
+                                  .global = true};
   std::string tried;
-  loadPluginModule(
-      search,
-      [&api](void* entry) {
-        const MpiModuleApi* candidate = reinterpret_cast<MpiModuleEntry>(entry)();
-        if (!candidate || candidate->version != kMpiModuleVersion) return false;
-        api = candidate;
-        return true;
-      },
-      &tried);
+  const MpiModuleApi* api = loadPluginApi<MpiModuleApi>(search, kMpiModuleVersion, &tried);
   if (!api) {
     throw std::runtime_error(
         pluginModuleNotFound("started by an MPI launcher, but MPI's module", search, tried, ""));

@@ -22,6 +22,23 @@ struct PluginModuleSearch {
 void* loadPluginModule(const PluginModuleSearch& search,
                        const std::function<bool(void* entry)>& accept, std::string* tried);
 
+// Loads the module and returns the table of functions its entry returns (an Api with an int
+// `version` first), or nullptr, with *tried filled, when no candidate has this build's version.
+template <typename Api>
+const Api* loadPluginApi(const PluginModuleSearch& search, int version, std::string* tried) {
+  const Api* api = nullptr;
+  loadPluginModule(
+      search,
+      [&api, version](void* entry) {
+        const Api* candidate = reinterpret_cast<const Api* (*)()>(entry)();
+        if (!candidate || candidate->version != version) return false;
+        api = candidate;
+        return true;
+      },
+      tried);
+  return api;
+}
+
 // The error text for a module that was not found: what it is (e.g. "OpenImageIO's module"),
 // where it was looked for, the variable that moves it, and a note for the user (may be empty).
 std::string pluginModuleNotFound(const std::string& what, const PluginModuleSearch& search,

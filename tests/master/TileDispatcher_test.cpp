@@ -36,8 +36,9 @@ bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
          std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
 }
 
-// A two-rank job: the test thread is rank 0; rank 1 runs `script` on its own thread until it
-// returns or the test says stop.
+// A two-rank job: the test thread is rank 0; rank 1 says Ready and then runs `script` on its own
+// thread until it returns or the test says stop. Ready is queued before rank 0 starts, so rank 0's
+// own render thread cannot finish a frame before the slave is known, however loaded the machine.
 class TwoRanks {
  public:
   explicit TwoRanks(const Scene& scene) : network_(2), slave_(network_.endpoint(1), scene) {}
@@ -45,6 +46,7 @@ class TwoRanks {
 
   template <typename Script>
   void start(Script script) {
+    slave_.ready();
     thread_ = std::thread([this, script] { script(slave_, stop_); });
   }
   void join() {
@@ -77,7 +79,6 @@ TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExa
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
-    s.ready();
     while (!stop) {
       // Two jobs (the prefetch), answered in reverse order, each twice, and a copy tagged with
       // another frame.
@@ -111,7 +112,6 @@ TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
-    s.ready();
     bool lost = false;
     while (!stop) {
       const auto next = s.nextJob(0.2);
@@ -141,7 +141,6 @@ TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
-    s.ready();
     // Takes two jobs and dies: no result, no heartbeat.
     s.nextJob();
     s.nextJob();
@@ -162,7 +161,6 @@ TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
-    s.ready();
     s.nextJob();
     s.nextJob();
     while (!stop) {  // frozen render threads, live message loop
@@ -196,7 +194,6 @@ TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
   const Scene scene(smallScene());
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>&) {
-    s.ready();
     s.send(wire::encodePhotonJob({1, 0, 10, 10}));  // a master's message, from a slave
   });
   SlaveLink link(&job.master(), options(false, 60.0, 60.0).distribution);
@@ -222,7 +219,6 @@ TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
   const CausticFrame alone = renderWithCaustics(scene, o);
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>& stop) {
-    s.ready();
     // Takes its photon job without a word, and answers long after it was given up on.
     const auto photonJob = s.waitFor(wire::MessageType::PhotonJob);
     std::this_thread::sleep_for(std::chrono::milliseconds(1200));
