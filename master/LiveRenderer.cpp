@@ -62,12 +62,16 @@ LiveRenderer::~LiveRenderer() {
 }
 
 void LiveRenderer::setView(const ViewSettings& view) {
+  std::optional<uint32_t> stale;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     pendingView_ = view;
     pendingSince_ = SteadyClock::now();
+    if (pass_) stale = pass_->info.frame;
   }
-  dispatcher_.endFrame();  // the old view's tiles are stale from now on
+  // The old view's tiles are stale from now on. By frame id: the coordinator may have begun a
+  // pass of the new view since the lock was released, and that one must run.
+  if (stale) dispatcher_.endFrame(*stale);
   changed_.notify_all();
 }
 

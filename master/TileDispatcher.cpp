@@ -103,10 +103,11 @@ void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
   changed_.notify_all();
 }
 
-void TileDispatcher::endFrame() {
+void TileDispatcher::endFrame(uint32_t frame) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (frame_) reissuedBefore_ += frame_->scheduler.reissuedCount();
+    if (!frame_ || frame_->plan.frame != frame) return;
+    reissuedBefore_ += frame_->scheduler.reissuedCount();
     frame_.reset();
   }
   changed_.notify_all();

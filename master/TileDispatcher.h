@@ -76,8 +76,9 @@ class TileDispatcher {
   // Makes plan the current frame; the one before is ended (its tiles left are dropped, its late
   // results are stale).
   void beginFrame(FramePlan plan, FrameListener* listener);
-  // Ends the current frame now: no more of its tiles are handed out.
-  void endFrame();
+  // Ends `frame` now if it is still the current one: no more of its tiles are handed out. A frame
+  // begun since is left alone, so a caller on another thread cannot end a newer frame by mistake.
+  void endFrame(uint32_t frame);
   // Whether the current frame has all its tiles (false with no frame).
   bool frameComplete();
   size_t tilesDone();

@@ -32,8 +32,9 @@ alternating runs each.  Wall seconds, CPU seconds and peak resident memory are
 reported per process (memory through /usr/bin/time -f %M, whose own start
 adds about a millisecond of wall time to both programs alike).  With
 --baseline-prism OTHER a second Prism binary (say, a build of an older
-commit) takes part in the same alternation, so before and after are measured
-in one run.  --fixed-only stops after this table.
+commit) takes part in the same alternation, in these rows and in every scene's
+runs (a table of Prism against the baseline follows the scenes' table), so
+before and after are measured in one run.  --fixed-only stops after this table.
 
 Scenes are names or paths: a path to an .nff file; a file name (with or
 without .nff) in --spd-dir; or NAME-sSIZE for NAME in balls, tetra, rings,
@@ -207,8 +208,8 @@ def run_timed(cmd, env, log_path, timeout):
     return (after.ru_utime - before.ru_utime, after.ru_stime - before.ru_stime, wall, rc, after.ru_maxrss)
 
 
-def prism_cmd(args, nff, png, quiet=True):
-    cmd = [args.prism, "render", nff, "-o", png, "--overwrite", "--threads", "1", "--width", str(args.width),
+def prism_cmd(args, nff, png, quiet=True, binary=None):
+    cmd = [binary or args.prism, "render", nff, "-o", png, "--overwrite", "--threads", "1", "--width", str(args.width),
            "--height", str(args.height), "--spp", "1", "--max-depth", str(args.depth)]
     return cmd + (["--quiet"] if quiet else [])
 
@@ -364,6 +365,17 @@ def print_table(rows, runs, p_start):
             r["ratio"], max(0.0, r["p_med"] - p_start) / r["t_med"],
             statistics.median(r["p_wall"]), statistics.median(r["t_wall"]),
             "met" if r["ratio"] <= TARGET_RATIO else "not met"))
+    if rows and "b_cpu" in rows[0]:
+        print()
+        print("| scene | baseline Prism CPU s (median, min..max) | Prism CPU s | Prism/baseline |")
+        print("|---|---|---:|---:|")
+        for r in rows:
+            b_med = statistics.median(r["b_cpu"])
+            print("| %s | %.3f (%s) | %.3f | %.2f |" % (r["scene"], b_med, spread(r["b_cpu"]), r["p_med"],
+                                                     r["p_med"] / b_med if b_med > 0 else float("inf")))
+        print()
+        print("geometric mean of Prism/baseline CPU-time ratios: %.2f"
+              % geomean([r["p_med"] / statistics.median(r["b_cpu"]) for r in rows]))
     gm = geomean([r["ratio"] for r in rows])
     print()
     print("geometric mean of Prism/Tachyon CPU-time ratios over %d scenes: %.2f (target <= %.1f: %s); "
@@ -391,7 +403,14 @@ def bench_scene(args, name, workdir, penv, tenv, writer):
     check_rc("tachyon on " + label, run_timed(tachyon_cmd(args, dat, t_png), tenv, log,
                                               args.timeout)[3], log, args.timeout)
 
-    res = {"prism": [], "tachyon": []}
+    who_all = ("prism", "tachyon") + (("baseline",) if args.baseline_prism else ())
+    if args.baseline_prism:  # its warm-up too, so its first timed run is not its first run
+        log = os.path.join(workdir, label + "-baseline-warmup.log")
+        png = os.path.join(workdir, label + "-baseline.png")
+        check_rc("baseline prism on " + label,
+                 run_timed(prism_cmd(args, nff, png, binary=args.baseline_prism), penv, log, args.timeout)[3],
+                 log, args.timeout)
+    res = {who: [] for who in who_all}
     p_start, t_start = [], []
     for i in range(args.runs):
         p_start.append(startup_cpu([args.prism, "--version"], penv, workdir, args.timeout))
@@ -399,12 +418,14 @@ def bench_scene(args, name, workdir, penv, tenv, writer):
         if writer:
             writer.writerow([label, "prism-startup", i + 1, "", "", "%.4f" % p_start[-1], "", "", 0])
             writer.writerow([label, "tachyon-startup", i + 1, "", "", "%.4f" % t_start[-1], "", "", 0])
-        order = ("prism", "tachyon") if i % 2 == 0 else ("tachyon", "prism")
+        order = who_all[i % len(who_all):] + who_all[:i % len(who_all)]  # rotates every round
         for who in order:
             log = os.path.join(workdir, "%s-%s-%d.log" % (label, who, i))
             png = os.path.join(workdir, "%s-%s.png" % (label, who))
             if who == "prism":
                 cmd, env = prism_cmd(args, nff, png), penv
+            elif who == "baseline":
+                cmd, env = prism_cmd(args, nff, png, binary=args.baseline_prism), penv
             else:
                 cmd, env = tachyon_cmd(args, dat, png), tenv
             user, sys_, wall, rc, _ = run_timed(cmd, env, log, args.timeout)
@@ -417,6 +438,8 @@ def bench_scene(args, name, workdir, penv, tenv, writer):
     row = {"scene": label, "prims": prims, "p_start": p_start, "t_start": t_start,
            "p_cpu": [c for c, _ in res["prism"]], "p_wall": [w for _, w in res["prism"]],
            "t_cpu": [c for c, _ in res["tachyon"]], "t_wall": [w for _, w in res["tachyon"]]}
+    if "baseline" in res:
+        row["b_cpu"] = [c for c, _ in res["baseline"]]
     row["p_med"] = statistics.median(row["p_cpu"])
     row["t_med"] = statistics.median(row["t_cpu"])
     row["ratio"] = row["p_med"] / row["t_med"] if row["t_med"] > 0 else float("inf")
@@ -453,8 +476,8 @@ def parse_args(argv):
     ap.add_argument("--fixed-runs", type=int, default=21, help="alternating runs of each fixed-cost row "
                     "(default: %(default)s; 0 skips them)")
     ap.add_argument("--fixed-only", action="store_true", help="measure the fixed costs only, no scenes")
-    ap.add_argument("--baseline-prism", help="a second Prism binary timed alongside in the fixed-cost rows "
-                    "(before/after in one run)")
+    ap.add_argument("--baseline-prism", help="a second Prism binary timed alongside, in the fixed-cost rows and "
+                    "on every scene (before/after in one run)")
     ap.add_argument("--csv", help="save every timed run to this CSV file")
     ap.add_argument("--keep-temp", action="store_true", help="keep the temp folder (converted scenes, logs)")
     args = ap.parse_args(argv)

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstring>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -16,6 +18,7 @@
 #include "master/FrameRenderer.h"
 #include "master/ScriptedSlave.h"
 #include "master/SlaveShutdown.h"
+#include "master/TilePlan.h"
 #include "parse/SceneLoader.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
@@ -273,6 +276,45 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_EQ(f.caustics.photonsByRank.size(), 3u);
   EXPECT_GT(f.caustics.photonsByRank[1], 0u);
   EXPECT_GT(f.frames.workers[1].tiles + f.frames.workers[2].tiles, 0u);
+}
+
+class CountingListener : public FrameListener {
+ public:
+  void tileFinished(uint32_t frame, TileResult&&, int) override { ++finished_[frame]; }
+  size_t finished(uint32_t frame) { return finished_[frame]; }  // only after the threads stop
+
+ private:
+  std::map<uint32_t, size_t> finished_;
+};
+
+// The viewer ends the frame of the view it leaves from the GUI thread while its coordinator may
+// already have begun the next view's frame; ending the older frame late must leave the newer one
+// running (before, it ended whatever frame was current and the viewer waited forever).
+TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
+  const Scene scene(smallScene());
+  DistributionOptions o;
+  o.threads = 1;
+  SlaveLink link(nullptr, o);
+  TileDispatcher dispatcher(scene, link, o);
+  CountingListener listener;
+  const std::vector<TileRect> tiles = planTiles(64, 48, 16);
+  dispatcher.beginFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.beginFrame({2, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.endFrame(1);
+  dispatcher.startLocalWorkers();
+  const auto start = std::chrono::steady_clock::now();
+  while (!dispatcher.frameComplete() &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    dispatcher.service(0.05);
+  }
+  const bool complete = dispatcher.frameComplete();
+  dispatcher.endFrame(2);  // the current frame: ends it
+  EXPECT_FALSE(dispatcher.frameComplete());
+  dispatcher.stop();
+  dispatcher.join();
+  EXPECT_TRUE(complete);
+  EXPECT_EQ(listener.finished(2), tiles.size());
+  EXPECT_EQ(listener.finished(1), 0u);
 }
 
 }  // namespace
