@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <limits>
+#include <string>
 #include <thread>
 
 #include "util/Stopwatch.h"
@@ -30,6 +31,18 @@ bool waitBounded(MPI_Request& request, double timeoutSeconds) {
   }
 }
 
+// On one node, Open MPI's default point-to-point layer (UCX) adds about 0.2 s to every job's
+// start for nothing: ob1's shared-memory transport carries Prism's messages as well
+// (docs/distributed.md has the measurements). So when mpirun says every rank is on this node and
+// the user chose no layer (an OMPI_MCA_pml of their own, or mpirun's --mca pml, wins), use ob1.
+// Other launchers (srun) do not say, and keep Open MPI's default.
+void preferSharedMemoryOnOneNode() {
+  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  if (!size || !local || std::string(size) != local) return;
+  ::setenv("OMPI_MCA_pml", "ob1", /*overwrite=*/0);
+}
+
 }  // namespace
 
 struct MpiSession::PendingSend {
@@ -38,6 +51,7 @@ struct MpiSession::PendingSend {
 };
 
 MpiSession::MpiSession(int* argc, char*** argv) {
+  preferSharedMemoryOnOneNode();
   int provided = 0;
   // SERIALIZED rather than FUNNELED: `prism view` keeps MPI in one coordinator thread that is
   // not the main one (the main thread runs the Qt event loop). Calls are never concurrent.
