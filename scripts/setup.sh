@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Prism needs (only those missing), then configures and builds
 # Prism in Release mode into ./build. Safe to run again: it only does what is left to do.
+# Usage: setup.sh [TARGET...]   (default: everything, tests included; demo.sh asks for `prism`,
+# which brings the modules it loads)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -42,4 +44,8 @@ fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j "$jobs"
+if (($# > 0)); then
+  cmake --build build -j "$jobs" --target "$@"
+else
+  cmake --build build -j "$jobs"
+fi
