@@ -31,11 +31,11 @@ bool waitBounded(MPI_Request& request, double timeoutSeconds) {
   }
 }
 
-// On one node, Open MPI's default point-to-point layer (UCX) adds about 0.2 s to every job's
-// start for nothing: ob1's shared-memory transport carries Prism's messages as well
-// (docs/distributed.md has the measurements). So when mpirun says every rank is on this node and
-// the user chose no layer (an OMPI_MCA_pml of their own, or mpirun's --mca pml, wins), use ob1.
-// Other launchers (srun) do not say, and keep Open MPI's default.
+// Left to choose its point-to-point layer, Open MPI opens and probes every candidate (UCX, cm,
+// ob1), which adds about 0.2 s to every job's start; on one node ob1's shared-memory transport
+// carries Prism's messages as well (docs/distributed.md, measured). So when mpirun says every rank
+// is on this node and the user chose no layer (an OMPI_MCA_pml of their own, or mpirun's --mca pml,
+// wins), use ob1. Other launchers (srun) do not say, and keep Open MPI's default.
 void preferSharedMemoryOnOneNode() {
   const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
   const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
