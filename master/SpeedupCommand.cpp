@@ -23,6 +23,7 @@
 #include "scene/Scene.h"
 #include "transport/Transport.h"
 #include "util/Parallel.h"
+#include "util/ProcessStart.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
@@ -177,6 +178,10 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     return 1;
   }
   SpeedupReport report;
+  // First, before the command's own work adds to the process's age.
+  report.setup.startSeconds = secondsSinceProcessStart().value_or(-1.0);
+  report.setup.launchSeconds = secondsFromParentStart().value_or(-1.0);
+  report.setup.mpiInitSeconds = session->setUpSeconds();
   report.scenePath = options.render.scenePath;
   report.ranks = session->size();
   report.cores = machineCores();

@@ -96,6 +96,14 @@ void writeSpeedupCsv(const SpeedupReport& r, std::ostream& out) {
   out << "# T1 = " << formatNumber("%.6g", r.serialSeconds)
       << " s: 1 process, 1 thread, no MPI, tile " << r.serialTileSize
       << "; p = slaves x threads per slave; set-up not in seconds\n";
+  const SpeedupSetup& s = r.setup;
+  out << "# set-up (s): launch " << formatNumber("%.3f", s.launchSeconds) << ", start "
+      << formatNumber("%.3f", s.startSeconds) << ", mpi_init "
+      << formatNumber("%.3f", s.mpiInitSeconds) << ", parse "
+      << formatNumber("%.3f", s.parseSeconds) << ", broadcast "
+      << formatNumber("%.3f", s.broadcastSeconds) << ", build "
+      << formatNumber("%.3f", s.buildSeconds) << ", slowest slave build "
+      << formatNumber("%.3f", s.slaveBuildSeconds) << " (-1: not known)\n";
   out << "# link: latency " << formatNumber("%.3g", r.link.model.latencySeconds * 1e3)
       << " ms one way, bandwidth " << formatNumber("%.3g", r.link.model.bytesPerSecond / 1e6)
       << " MB/s\n";
@@ -138,6 +146,15 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
       << r.threadsPerRank << " thread(s)) on " << r.cores << " cores; every time is the median of "
       << r.repeats << " runs [min-max]\n";
   const SpeedupSetup& s = r.setup;
+  if (s.startSeconds >= 0.0) {
+    out << "  start (rank 0, before the command): ";
+    if (s.launchSeconds >= 0.0) {
+      out << "launch " << formatNumber("%.3f", s.launchSeconds)
+          << " s (its parent's start to its own), ";
+    }
+    out << "process start to command " << formatNumber("%.3f", s.startSeconds)
+        << " s, of which MPI_Init " << formatNumber("%.3f", s.mpiInitSeconds) << " s\n";
+  }
   std::snprintf(line, sizeof line,
                 "  set-up (not in the frame times): parse %.3f s, broadcast %.3f s (%zu bytes), "
                 "build %.3f s (slowest slave %.3f s)",

@@ -49,6 +49,12 @@ struct SerialPoint {
 
 // Set-up, timed once and kept out of every frame time.
 struct SpeedupSetup {
+  // Rank 0's start, before the command: from its parent's start (under mpirun on one node, the
+  // launcher's share; -1 where /proc cannot say), from its own start to the command (loading
+  // libraries and MPI), and MPI_Init alone within that.
+  double launchSeconds = -1.0;
+  double startSeconds = -1.0;
+  double mpiInitSeconds = 0.0;
   double parseSeconds = 0.0;
   double broadcastSeconds = 0.0;
   size_t broadcastBytes = 0;

@@ -274,13 +274,12 @@ int runSlave(Transport& session, const DistributionOptions& options) {
         masterSilent = true;
         break;
       }
-      // Poll, else sleep until a tile finishes or 4 ms pass (when MPI is probed again): a result
-      // leaves at once, and a job waits at most that, which the prefetched job in the queue
-      // covers. Probing every millisecond cost the render thread on this core about 1 %.
+      // Poll, else sleep until a tile finishes or a millisecond passes (when MPI is probed
+      // again), so neither a job nor a result waits longer than that.
       auto incoming = session.poll();
       if (!incoming) {
         lock.unlock();
-        outbox.waitForTile(std::chrono::milliseconds(4));
+        outbox.waitForTile(std::chrono::milliseconds(1));
         lock.lock();
         incoming = session.poll();
       }

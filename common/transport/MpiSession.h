@@ -21,6 +21,7 @@ class MpiSession final : public Transport {
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
+  double setUpSeconds() const override { return initSeconds_; }
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) override;
@@ -44,6 +45,7 @@ class MpiSession final : public Transport {
   struct PendingSend;
   int rank_ = 0;
   int size_ = 1;
+  double initSeconds_ = 0.0;  // MPI_Init_thread
   std::list<std::unique_ptr<PendingSend>> pendingSends_;
 };
 

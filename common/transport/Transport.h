@@ -29,6 +29,8 @@ class Transport {
 
   virtual int rank() const = 0;
   virtual int size() const = 0;
+  // Seconds this process spent setting the transport up (MPI_Init), for `prism speedup`.
+  virtual double setUpSeconds() const { return 0.0; }
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
   virtual void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) = 0;
