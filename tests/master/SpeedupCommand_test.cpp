@@ -62,6 +62,12 @@ TEST_F(SpeedupCommand, ThreeRanksWriteEveryPointChartsAndProjection) {
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("T1 (1 process, 1 thread, no MPI)"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("Karp"), std::string::npos);
+  // Rank 0's start is accounted for apart from the set-up, with MPI_Init measured (not zero).
+  const size_t start = run.output.find("start (rank 0, before the command): launch ");
+  ASSERT_NE(start, std::string::npos) << run.output;
+  const size_t init = run.output.find("of which MPI_Init ", start);
+  ASSERT_NE(init, std::string::npos) << run.output;
+  EXPECT_GT(std::stod(run.output.substr(init + std::string("of which MPI_Init ").size())), 0.0);
 
   const SpeedupOutputs files = speedupOutputs(prefix);
   const auto rows = csvRows(files.csv);
