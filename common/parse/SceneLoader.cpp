@@ -44,6 +44,8 @@ std::string readTextFile(const std::string& path, const FileLoc& referencedFrom)
     failToRead(path, referencedFrom, "it is a directory");
   }
   std::string text;
+  // Sized once: appending chunk by chunk re-copied a 1.5 MB NFF file (teapot-s12) a dozen times.
+  if (info.st_size > 0) text.reserve(static_cast<size_t>(info.st_size));
   char buffer[1 << 16];
   size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
