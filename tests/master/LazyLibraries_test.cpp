@@ -37,12 +37,13 @@ TEST_F(LazyLibraries, ARenderToPngAndExrOpensNeitherQtNorMpiNorOpenImageIo) {
   }
 }
 
-TEST_F(LazyLibraries, VersionOpensOnlyTheCoreLibraries) {
+TEST_F(LazyLibraries, VersionOpensNoneOfTheLargeLibraries) {
   const test::ProcessRun run = loaderTrace("--version");
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("prism "), std::string::npos) << run.output;
   EXPECT_FALSE(opened(run, "libQt5")) << run.output;
   EXPECT_FALSE(opened(run, "libmpi")) << run.output;
+  EXPECT_FALSE(opened(run, "libOpenImageIO")) << run.output;
 }
 
 TEST_F(LazyLibraries, UnderALauncherEveryRankLoadsMpiAndRendersTheSamePixels) {
