@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "master/RenderCommand.h"
+#include "master/ScheduleNames.h"
 #include "master/SpeedupCommand.h"
 #include "master/SweepCommand.h"
 #include "scene/SettingLimits.h"
@@ -16,10 +17,6 @@ namespace prism {
 namespace {
 
 constexpr const char* kVersion = "0.1.0";
-
-inline constexpr NamedValue<Schedule> kScheduleList[] = {{"dynamic", Schedule::Dynamic},
-                                                         {"static", Schedule::Static}};
-inline constexpr NameTable<Schedule> kScheduleNames{kScheduleList};
 
 // An option whose value is one of a setting's names (scene/SettingNames.h), spelt as in scene
 // files or with '-' for '_', in any case; help and errors list the canonical names.

@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "master/ResourceCheck.h"
+#include "master/ScheduleNames.h"
 
 namespace prism {
 namespace {
@@ -26,10 +27,9 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
         << " thread-s)\n";
     return;
   }
-  out << "ranks     " << f.workers.size() << ", "
-      << (s.schedule == Schedule::Static ? "static" : "dynamic") << " schedule; scene broadcast "
-      << formatBytes(static_cast<double>(s.broadcastBytes)) << " in "
-      << milliseconds(s.broadcastSeconds);
+  out << "ranks     " << f.workers.size() << ", " << kScheduleNames.nameOf(s.schedule)
+      << " schedule; scene broadcast " << formatBytes(static_cast<double>(s.broadcastBytes))
+      << " in " << milliseconds(s.broadcastSeconds);
   if (f.reissuedTiles > 0) out << "; " << f.reissuedTiles << " tiles re-issued";
   out << "\n";
   for (const RankStats& w : f.workers) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "master/NumberText.h"
+#include "master/ScheduleNames.h"
 
 namespace prism {
 namespace {
@@ -30,7 +31,7 @@ double meanOf(const std::vector<double>& v) {
 }  // namespace
 
 const char* scheduleName(Schedule schedule) {
-  return schedule == Schedule::Static ? "static" : "dynamic";
+  return kScheduleNames.nameOf(schedule).data();  // the table's names are string literals
 }
 
 std::string ScalingPoint::series() const {

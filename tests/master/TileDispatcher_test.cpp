@@ -34,6 +34,16 @@ SceneDescription smallScene() {
   return d;
 }
 
+// A glass ball's caustic, small enough for a photon pass and a frame in a fraction of a second.
+SceneDescription smallCausticScene() {
+  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
+  d.render.width = 48;
+  d.render.height = 36;
+  d.render.samplesPerPixel = 1;
+  d.caustics.photons = 20000;
+  return d;
+}
+
 bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
   return a.width == b.width && a.height == b.height &&
          std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
@@ -212,11 +222,7 @@ TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
 // A slave retired during a photon pass (silent past the heartbeat timeout) that sends its share
 // afterwards: rank 0 traced the share itself, the late one is ignored wherever it lands.
 TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
-  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
-  d.render.width = 48;
-  d.render.height = 36;
-  d.render.samplesPerPixel = 1;
-  d.caustics.photons = 20000;
+  const SceneDescription d = smallCausticScene();
   const Scene scene(d);
   FrameOptions o = options(true, 0.6, 60.0);
   const CausticFrame alone = renderWithCaustics(scene, o);
@@ -243,11 +249,7 @@ TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
 // Real slaves (runSlave on threads) over the loopback: photon shares, the map broadcast and
 // tiles, then the shutdown handshake; the same image as one process.
 TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
-  SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
-  d.render.width = 48;
-  d.render.height = 36;
-  d.render.samplesPerPixel = 1;
-  d.caustics.photons = 20000;
+  const SceneDescription d = smallCausticScene();
   const Scene scene(d);
   FrameOptions o = options(true, 2.0, 60.0);
   const CausticFrame alone = renderWithCaustics(scene, o);

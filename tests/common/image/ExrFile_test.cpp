@@ -12,25 +12,14 @@
 #include <vector>
 
 #include "image/ImageIo.h"
+#include "master/PrismProcess.h"  // test::ScratchFolderTest
 
 namespace prism {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ExrFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("prism-exrfile-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class ExrFileTest : public test::ScratchFolderTest {};
 
 // Bit-exact comparison (NaN included).
 bool sameBits(const ImageRgb& a, const ImageRgb& b) {

@@ -9,24 +9,14 @@
 #include <limits>
 
 #include "image/ToneMap.h"
+#include "master/PrismProcess.h"  // test::ScratchFolderTest
 
 namespace prism {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ImageIoTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("prism-imageio-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class ImageIoTest : public test::ScratchFolderTest {};
 
 ImageRgb gradient() {
   ImageRgb image(7, 5);

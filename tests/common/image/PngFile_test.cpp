@@ -7,25 +7,14 @@
 #include <fstream>
 
 #include "image/ToneMap.h"
+#include "master/PrismProcess.h"  // test::ScratchFolderTest
 
 namespace prism {
 namespace {
 
 namespace fs = std::filesystem;
 
-class PngFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("prism-pngfile-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
+class PngFileTest : public test::ScratchFolderTest {};
 
 TEST_F(PngFileTest, BytesRoundTripExactlyForEveryEncoding) {
   // 5×3 pixels holding a spread of byte values, each channel different.
