@@ -61,7 +61,9 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLi
         dispatcher.cancel();
         break;
       }
-      dispatcher.service(link.hasSlaves() ? 0.005 : 0.1);
+      // Every tile that finishes, here or on a slave, wakes this wait; the bound is for the
+      // progress bar, a stop request and the slaves' silence.
+      dispatcher.service(0.1);
       if (options.progress && secondsSince(lastProgress) > 0.1) {
         options.progress(dispatcher.tilesDone(), rects.size());
         lastProgress = SteadyClock::now();

@@ -53,6 +53,7 @@ LinkMeasurement measureLink(SlaveLink& link, size_t largePayloadBytes, int round
   measured.smallBytes = small.size();
   measured.largeBytes = wire::encodeEcho({0, padding}).size();
   measured.roundTrips = roundTrips;
+  measured.wakesOnMessage = link.transport()->wakesOnMessage();
   measured.smallRoundTrip = spreadOf(smallTrips);
   measured.largeRoundTrip = spreadOf(largeTrips);
   measured.model.latencySeconds = measured.smallRoundTrip.median / 2;

@@ -17,6 +17,7 @@ struct LinkMeasurement {
   size_t smallBytes = 0;  // whole messages, envelope included
   size_t largeBytes = 0;
   int roundTrips = 0;           // per size and slave
+  bool wakesOnMessage = false;  // rank 0's waits (Transport::wakesOnMessage)
   TimingSpread smallRoundTrip;  // over every slave's round trips
   TimingSpread largeRoundTrip;
 };

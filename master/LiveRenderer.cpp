@@ -73,6 +73,7 @@ void LiveRenderer::setView(const ViewSettings& view) {
   // pass of the new view since the lock was released, and that one must run.
   if (stale) dispatcher_.endFrame(*stale);
   changed_.notify_all();
+  dispatcher_.wake();  // the coordinator may be waiting for slaves' messages
 }
 
 void LiveRenderer::stop() {
@@ -321,7 +322,8 @@ void LiveRenderer::run(LiveListener& listener) {
       }
       if (started) listener.passStarted(*started);
       if (link_.hasSlaves()) {
-        dispatcher_.service(0.001);
+        // A view, a stop or a finished tile wakes this wait; the bound is for the statistics.
+        dispatcher_.service(0.05);
       } else {
         std::unique_lock<std::mutex> lock(mutex_);
         changed_.wait_for(lock, std::chrono::milliseconds(2), [this] {

@@ -63,7 +63,10 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
   Share& local = shares.front();
   PhotonTraceStats localStats;
   auto localWork = std::async(std::launch::async, [&] {
-    return tracePhotons(tracer, pass, local.first, local.count, threads, &localStats);
+    std::vector<Photon> photons =
+        tracePhotons(tracer, pass, local.first, local.count, threads, &localStats);
+    link.wake();  // ends the wait for the slaves' shares below
+    return photons;
   });
 
   const auto shareOf = [&](int rank) -> Share* {
@@ -106,7 +109,7 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
       localWork.wait();
       continue;
     }
-    const std::optional<SlaveMessage> incoming = link.receive(0.002);
+    const std::optional<SlaveMessage> incoming = link.receive(0.1);
     link.retireSilent();
     if (!incoming) continue;
     switch (incoming->message.type) {

@@ -65,8 +65,13 @@ class SlaveLink {
   bool send(int r, std::vector<uint8_t> bytes);
 
   // Waits up to timeoutSeconds for a message and returns it unless it was only status. Throws
-  // std::runtime_error for a slave's Error, wire::WireError for a malformed message.
+  // std::runtime_error for a slave's Error, wire::WireError for a malformed message. Ends early,
+  // with none, after wake().
   std::optional<SlaveMessage> receive(double timeoutSeconds);
+  // Ends a receive() in progress, or the next one; safe from any thread.
+  void wake() {
+    if (cluster_) cluster_->wake();
+  }
 
   // Retires the slaves that said Ready and have been silent past the heartbeat timeout;
   // returns the ones retired now. Call after receiving what has arrived.

@@ -12,6 +12,11 @@
 namespace prism {
 namespace {
 
+// How rank 0 waits for messages (docs/distributed.md, "Waiting for messages").
+const char* linkWaits(const LinkMeasurement& link) {
+  return link.wakesOnMessage ? "waits woken by the sender" : "waits probe every 1 ms";
+}
+
 std::string joinBusy(const std::vector<double>& busy, const char* separator, double scale,
                      const char* pattern) {
   std::string text;
@@ -107,7 +112,7 @@ void writeSpeedupCsv(const SpeedupReport& r, std::ostream& out) {
       << formatNumber("%.3f", s.slaveBuildSeconds) << " (-1: not known)\n";
   out << "# link: latency " << formatNumber("%.3g", r.link.model.latencySeconds * 1e3)
       << " ms one way, bandwidth " << formatNumber("%.3g", r.link.model.bytesPerSecond / 1e6)
-      << " MB/s\n";
+      << " MB/s, " << linkWaits(r.link) << "\n";
   const std::vector<std::string>& columns = speedupCsvColumns();
   for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
   out << "\n";
@@ -167,9 +172,9 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   out << "\n";
   std::snprintf(line, sizeof line,
                 "  link (Echo through the transport, %d round trips per size and slave): latency "
-                "%.3f ms one way, bandwidth %.1f MB/s (%zu-byte messages)\n",
+                "%.3f ms one way, bandwidth %.1f MB/s (%zu-byte messages); %s\n",
                 r.link.roundTrips, r.link.model.latencySeconds * 1e3,
-                r.link.model.bytesPerSecond / 1e6, r.link.largeBytes);
+                r.link.model.bytesPerSecond / 1e6, r.link.largeBytes, linkWaits(r.link));
   out << line;
   out << "  T1 (1 process, 1 thread, no MPI):";
   for (const SerialPoint& p : r.serial) {

@@ -157,7 +157,12 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
     ++frame->done;
     if (frame->listener) frame->listener->tileFinished(frameId, std::move(tile), rank);
   }
+  wake();  // the coordinator feeds, or finishes the frame, at once
+}
+
+void TileDispatcher::wake() {
   changed_.notify_all();
+  link_.wake();
 }
 
 void TileDispatcher::feedSlaves() {
@@ -268,7 +273,7 @@ void TileDispatcher::stop() {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopped_ = true;
   }
-  changed_.notify_all();
+  wake();
 }
 
 void TileDispatcher::cancel() {

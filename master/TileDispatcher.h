@@ -84,10 +84,13 @@ class TileDispatcher {
   size_t tilesDone();
 
   // One step of the coordinating thread: feeds the slaves, waits up to waitSeconds for a
-  // message (without slaves: for a tile to finish here), routes every message that has
-  // arrived, and retires silent slaves and expired leases. Throws std::runtime_error when a
-  // slave reports an error or sends what it must not.
+  // message or a change here (a tile finished on this rank, stop(), wake()), routes every
+  // message that has arrived, and retires silent slaves and expired leases. Throws
+  // std::runtime_error when a slave reports an error or sends what it must not.
   void service(double waitSeconds);
+  // Ends a service() wait in progress, or the next one (another thread has news for the
+  // coordinating one); safe from any thread.
+  void wake();
 
   // Render threads stop after their current tile; cancel() abandons that tile too (no result).
   void stop();

@@ -32,20 +32,22 @@ namespace {
 using Clock = SteadyClock;
 
 constexpr double kInterruptedShutdownSeconds = 0.8;
+// The longest the message loop sleeps without news: the bound on noticing Ctrl-C or rank 0's
+// silence. Messages, finished tiles and photon shares wake it at once.
+constexpr double kIdleCheckSeconds = 0.1;
 
 // Finished tiles, with the frame they belong to, waiting for the main thread, the only one
-// that calls MPI. The main thread sleeps on it between polls, so a finished tile wakes it and
-// leaves at once instead of waiting out the poll interval.
+// that calls MPI. A finished tile wakes the main thread's wait for messages, so it leaves at
+// once.
 class Outbox {
  public:
+  explicit Outbox(Transport& session) : session_(session) {}
   void add(uint32_t frame, TileResult&& tile) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    tiles_.push_back({frame, std::move(tile)});
-    added_.notify_one();
-  }
-  void waitForTile(std::chrono::microseconds timeout) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    added_.wait_for(lock, timeout, [this] { return !tiles_.empty(); });
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      tiles_.push_back({frame, std::move(tile)});
+    }
+    session_.wake();
   }
   std::vector<wire::TileResultMessage> take() {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -53,8 +55,8 @@ class Outbox {
   }
 
  private:
+  Transport& session_;
   std::mutex mutex_;
-  std::condition_variable added_;
   std::vector<wire::TileResultMessage> tiles_;
 };
 
@@ -63,7 +65,8 @@ class Outbox {
 // for the tiles that need it, and builds the caustic maps.
 class PhotonWork {
  public:
-  PhotonWork(const Scene& scene, int threads) : scene_(scene), threads_(threads) {
+  PhotonWork(const Scene& scene, int threads, Transport& session)
+      : scene_(scene), threads_(threads), session_(session) {
     // A caustic-map scene: build the maps now, while rank 0 builds its own, rather than when
     // the first tile asks (which would put a second build on the frame's critical path).
     if (scene_.causticSettings().method == CausticMethod::CausticMap) {
@@ -86,6 +89,7 @@ class PhotonWork {
       share.photons =
           tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats);
       share.seconds = secondsSince(start);
+      session_.wake();  // the main thread sends it
       return share;
     });
   }
@@ -145,6 +149,7 @@ class PhotonWork {
  private:
   const Scene& scene_;
   int threads_;
+  Transport& session_;
   std::unique_ptr<PhotonTracer> tracer_;
   std::future<wire::PhotonShareMessage> running_;
   uint32_t mapPass_ = 0;
@@ -202,12 +207,12 @@ int runSlave(Transport& session, const DistributionOptions& options) {
   }
 
   JobQueue jobs;
-  Outbox outbox;
+  Outbox outbox(session);
   TileWorkerPool pool(*scene, options.threads);
   pool.start(
       [&] { return jobs.pop(); },
       [&](const TileJob& job, TileResult&& tile) { outbox.add(job.frame, std::move(tile)); });
-  PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores());
+  PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores(), session);
 
   const bool hang =
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;
@@ -274,12 +279,12 @@ int runSlave(Transport& session, const DistributionOptions& options) {
         masterSilent = true;
         break;
       }
-      // Poll, else sleep until a tile finishes or a millisecond passes (when MPI is probed
-      // again), so neither a job nor a result waits longer than that.
+      // Poll, else sleep (without the lock: the heartbeat may send meanwhile) until a message
+      // may have come, a tile or photon share finished, or the idle bound passes.
       auto incoming = session.poll();
       if (!incoming) {
         lock.unlock();
-        outbox.waitForTile(std::chrono::milliseconds(1));
+        session.awaitActivity(kIdleCheckSeconds);
         lock.lock();
         incoming = session.poll();
       }

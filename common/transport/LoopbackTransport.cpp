@@ -38,6 +38,9 @@ class LoopbackNetwork::Endpoint final : public Transport {
   std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) override {
     return network_.take(rank_, timeoutSeconds);
   }
+  void awaitActivity(double timeoutSeconds) override { network_.await(rank_, timeoutSeconds); }
+  void wake() override { network_.wake(rank_); }
+  bool wakesOnMessage() const override { return true; }  // a condition variable
 
   [[noreturn]] void abortJob(int exitCode) override {
     throw TransportError("job aborted by rank " + std::to_string(rank_) + " with exit code " +
@@ -96,11 +99,28 @@ bool LoopbackNetwork::deliver(int source, int dest, std::vector<uint8_t> bytes) 
   return true;
 }
 
+void LoopbackNetwork::wake(int rank) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    mailboxes_.at(static_cast<size_t>(rank)).woken = true;
+  }
+  changed_.notify_all();
+}
+
+void LoopbackNetwork::await(int rank, double timeoutSeconds) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  Mailbox& box = mailboxes_.at(static_cast<size_t>(rank));
+  changed_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds),
+                    [&box] { return !box.messages.empty() || box.woken; });
+  box.woken = false;
+}
+
 std::optional<IncomingMessage> LoopbackNetwork::take(int rank, double timeoutSeconds) {
   std::unique_lock<std::mutex> lock(mutex_);
   Mailbox& box = mailboxes_.at(static_cast<size_t>(rank));
   changed_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds),
-                    [&box] { return !box.messages.empty(); });
+                    [&box] { return !box.messages.empty() || box.woken; });
+  if (timeoutSeconds > 0.0) box.woken = false;  // a wait heard it; poll() leaves it for one
   if (box.messages.empty()) return std::nullopt;
   IncomingMessage message = std::move(box.messages.front());
   box.messages.pop_front();

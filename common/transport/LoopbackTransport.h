@@ -40,10 +40,13 @@ class LoopbackNetwork {
     std::deque<IncomingMessage> messages;
     size_t delivered = 0;
     bool connected = true;
+    bool woken = false;  // wake() since the rank last waited
   };
 
   bool deliver(int source, int dest, std::vector<uint8_t> bytes);
   std::optional<IncomingMessage> take(int rank, double timeoutSeconds);
+  void await(int rank, double timeoutSeconds);
+  void wake(int rank);
 
   std::mutex mutex_;
   std::condition_variable changed_;

@@ -2,8 +2,11 @@
 
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -15,6 +18,10 @@ namespace prism {
 namespace {
 
 constexpr int kMessageTag = 7;
+// Where a wait cannot sleep until a sender rings, MPI is probed this often. Each probe runs
+// MPI's progress engine; a millisecond keeps a waiting rank from taking measurable time from the
+// render threads on its core, and is short against a tile's render time.
+constexpr double kProbeIntervalSeconds = 0.001;
 
 using Clock = SteadyClock;
 
@@ -46,6 +53,7 @@ void preferSharedMemoryOnOneNode() {
 }  // namespace
 
 struct MpiSession::PendingSend {
+  int dest = 0;
   std::vector<uint8_t> bytes;
   MPI_Request request = MPI_REQUEST_NULL;
 };
@@ -66,6 +74,49 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  setUpDoorbells();
+}
+
+// Each rank binds a doorbell named after the job and its rank; the ranks on one machine learn
+// each other's names. Waits sleep until rung only where every rank this one exchanges messages
+// with (rank 0: all; a slave: rank 0) can ring it, and only if every bell on the machine bound.
+void MpiSession::setUpDoorbells() {
+  peerDoorbells_.assign(static_cast<size_t>(size_), std::string());
+  MPI_Comm node = MPI_COMM_NULL;
+  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) !=
+      MPI_SUCCESS) {
+    doorbell_ = std::make_unique<Doorbell>();
+    return;
+  }
+  int nodeRank = 0;
+  int nodeSize = 1;
+  MPI_Comm_rank(node, &nodeRank);
+  MPI_Comm_size(node, &nodeSize);
+  // The job's name on this machine, from its first rank here: unique while that process lives.
+  char job[64] = {};
+  if (nodeRank == 0) {
+    std::snprintf(job, sizeof job, "prism-%ld-%lld", static_cast<long>(::getpid()),
+                  static_cast<long long>(Clock::now().time_since_epoch().count()));
+  }
+  MPI_Bcast(job, sizeof job, MPI_CHAR, 0, node);
+  const auto bellName = [&job](int rank) { return std::string(job) + "-" + std::to_string(rank); };
+  doorbell_ = std::make_unique<Doorbell>(bellName(rank_));
+  int bound = doorbell_->reachable() ? 1 : 0;
+  int everyBound = 0;
+  MPI_Allreduce(&bound, &everyBound, 1, MPI_INT, MPI_MIN, node);
+  std::vector<int> ranksHere(static_cast<size_t>(nodeSize));
+  MPI_Allgather(&rank_, 1, MPI_INT, ranksHere.data(), 1, MPI_INT, node);
+  MPI_Comm_free(&node);
+  if (!everyBound) return;
+  for (int r : ranksHere) {
+    if (r != rank_) peerDoorbells_[static_cast<size_t>(r)] = bellName(r);
+  }
+  eventDriven_ = rank_ == 0 ? nodeSize == size_ : !peerDoorbells_[0].empty();
+}
+
+void MpiSession::ring(int dest) const {
+  const std::string& bell = peerDoorbells_[static_cast<size_t>(dest)];
+  if (!bell.empty()) doorbell_->ring(bell);
 }
 
 MpiSession::~MpiSession() {
@@ -106,11 +157,14 @@ bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
     throw TransportError("message of " + std::to_string(bytes.size()) + " bytes is too large");
   }
   auto pending = std::make_unique<PendingSend>();
+  pending->dest = dest;
   pending->bytes = std::move(bytes);
   const int error = MPI_Isend(pending->bytes.data(), static_cast<int>(pending->bytes.size()),
                               MPI_BYTE, dest, kMessageTag, MPI_COMM_WORLD, &pending->request);
   if (error != MPI_SUCCESS) return false;
   pendingSends_.push_back(std::move(pending));
+  pendingCount_ = pendingSends_.size();
+  ring(dest);
   return true;
 }
 
@@ -118,8 +172,16 @@ size_t MpiSession::progressSends() {
   for (auto it = pendingSends_.begin(); it != pendingSends_.end();) {
     int done = 0;
     MPI_Test(&(*it)->request, &done, MPI_STATUS_IGNORE);
-    it = done ? pendingSends_.erase(it) : std::next(it);
+    if (!done) {
+      ++it;
+      continue;
+    }
+    // A message MPI could not hand over at once (a full queue) went out only now: ring again,
+    // or its receiver, woken too early, sleeps on.
+    ring((*it)->dest);
+    it = pendingSends_.erase(it);
   }
+  pendingCount_ = pendingSends_.size();
   return pendingSends_.size();
 }
 
@@ -145,13 +207,26 @@ std::optional<IncomingMessage> MpiSession::waitForMessage(double timeoutSeconds)
   const auto start = Clock::now();
   for (;;) {
     if (auto message = poll()) return message;
-    if (secondsSince(start) >= timeoutSeconds) return std::nullopt;
-    // Each probe runs MPI's progress engine; a millisecond between probes keeps a waiting
-    // coordinator from taking measurable time from the render threads on its core, and is
-    // short against a tile's render time. (3 ms gained a 2-rank job about 1 % of efficiency
-    // but raised the message latency `prism speedup` measures from 2.2 to 4.7 ms: not kept.)
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const double left = timeoutSeconds - secondsSince(start);
+    if (left <= 0.0) return std::nullopt;
+    const bool sleepUntilRung = eventDriven_ && pendingCount_ == 0;
+    if (doorbell_->wait(sleepUntilRung ? left : std::min(left, kProbeIntervalSeconds)) ==
+        Doorbell::Heard::Self) {
+      return poll();  // woken: whatever came meanwhile, or nothing
+    }
   }
+}
+
+void MpiSession::awaitActivity(double timeoutSeconds) {
+  // A send still in flight may need this rank's progress (a rendezvous), so it is looked at
+  // again within a probe interval even where peers ring.
+  const bool sleepUntilRung = eventDriven_ && pendingCount_ == 0;
+  doorbell_->wait(sleepUntilRung ? timeoutSeconds
+                                 : std::min(timeoutSeconds, kProbeIntervalSeconds));
+}
+
+void MpiSession::wake() {
+  doorbell_->ringSelf();
 }
 
 void MpiSession::abortJob(int exitCode) {

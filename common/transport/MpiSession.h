@@ -3,9 +3,13 @@
 // loads only when an MPI launcher started it (transport/MpiModule.h).
 #pragma once
 
+#include <atomic>
 #include <list>
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "transport/Doorbell.h"
 #include "transport/Transport.h"
 
 namespace prism {
@@ -35,18 +39,30 @@ class MpiSession final : public Transport {
 
   // A message from any rank, if one has arrived.
   std::optional<IncomingMessage> poll() override;
-  // Waits up to timeoutSeconds for a message from any rank.
+  // Waits up to timeoutSeconds for a message from any rank, or until wake().
   std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) override;
+  // Sleeps until a peer rings this rank's doorbell when every rank it talks to is on this
+  // machine; otherwise (or while a send of its own is in flight) looks again within 1 ms.
+  void awaitActivity(double timeoutSeconds) override;
+  void wake() override;
+  bool wakesOnMessage() const override { return eventDriven_; }
 
   // Ends every process of the job (MPI_Abort) after the caller has printed why.
   [[noreturn]] void abortJob(int exitCode) override;
 
  private:
   struct PendingSend;
+  void setUpDoorbells();
+  void ring(int dest) const;
+
   int rank_ = 0;
   int size_ = 1;
   double initSeconds_ = 0.0;  // MPI_Init_thread
   std::list<std::unique_ptr<PendingSend>> pendingSends_;
+  std::atomic<size_t> pendingCount_{0};  // pendingSends_.size(), read by awaitActivity()
+  std::unique_ptr<Doorbell> doorbell_;
+  std::vector<std::string> peerDoorbells_;  // by rank; empty for ranks on other machines
+  bool eventDriven_ = false;
 };
 
 }  // namespace prism

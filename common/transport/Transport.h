@@ -44,8 +44,20 @@ class Transport {
 
   // A message from any rank, if one has arrived.
   virtual std::optional<IncomingMessage> poll() = 0;
-  // Waits up to timeoutSeconds for a message from any rank.
+  // Waits up to timeoutSeconds for a message from any rank; returns early, with none, after
+  // wake().
   virtual std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) = 0;
+
+  // Sleeps until a message may have arrived (poll() tells), wake() is called, or timeoutSeconds
+  // pass. Calls nothing that must be serialised, so another thread may use the transport
+  // meanwhile (a slave's heartbeat). Waits are driven by the senders where the transport can
+  // be (MpiSession on one machine); elsewhere they poll.
+  virtual void awaitActivity(double timeoutSeconds) = 0;
+  // Ends a waitForMessage() or awaitActivity() in progress, or the next one, at once. Safe from
+  // any thread: how local events (a finished tile, a stop) reach a thread waiting for messages.
+  virtual void wake() = 0;
+  // Whether this rank's waits sleep until a sender wakes them (rather than poll).
+  virtual bool wakesOnMessage() const = 0;
 
   // Ends every process of the job after the caller has printed why.
   [[noreturn]] virtual void abortJob(int exitCode) = 0;

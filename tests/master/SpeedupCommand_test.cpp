@@ -68,6 +68,8 @@ TEST_F(SpeedupCommand, ThreeRanksWriteEveryPointChartsAndProjection) {
   const size_t init = run.output.find("of which MPI_Init ", start);
   ASSERT_NE(init, std::string::npos) << run.output;
   EXPECT_GT(std::stod(run.output.substr(init + std::string("of which MPI_Init ").size())), 0.0);
+  // Every rank is on this machine: waits sleep until a sender rings (MpiSession's doorbells).
+  EXPECT_NE(run.output.find("; waits woken by the sender\n"), std::string::npos) << run.output;
 
   const SpeedupOutputs files = speedupOutputs(prefix);
   const auto rows = csvRows(files.csv);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <thread>
 
 namespace prism {
@@ -41,6 +42,44 @@ TEST(LoopbackTransport, WaitingEndsWithAMessageOrTheTimeout) {
   sender.join();
   ASSERT_TRUE(m.has_value());
   EXPECT_EQ(m->bytes, bytes({9}));
+}
+
+TEST(LoopbackTransport, WakeEndsTheNextWaitEarlyButNotAPoll) {
+  LoopbackNetwork network(2);
+  Transport& rank0 = network.endpoint(0);
+  rank0.wake();
+  EXPECT_FALSE(rank0.poll().has_value());  // a poll does not use the wake-up up
+  auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(rank0.waitForMessage(10.0).has_value());
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(rank0.waitForMessage(0.03).has_value());  // heard once: this one times out
+  EXPECT_GE(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(25));
+  // From another thread, during the wait.
+  std::thread waker([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    rank0.wake();
+  });
+  start = std::chrono::steady_clock::now();
+  rank0.awaitActivity(10.0);
+  waker.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_TRUE(rank0.wakesOnMessage());
+}
+
+TEST(LoopbackTransport, AwaitingActivityEndsWithAMessageAndLeavesItQueued) {
+  LoopbackNetwork network(2);
+  std::thread sender([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    network.endpoint(1).send(0, bytes({7}));
+  });
+  const auto start = std::chrono::steady_clock::now();
+  network.endpoint(0).awaitActivity(10.0);
+  sender.join();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  const auto m = network.endpoint(0).poll();
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->bytes, bytes({7}));
 }
 
 TEST(LoopbackTransport, BroadcastReachesEveryRankAndTimesOutWithoutOne) {

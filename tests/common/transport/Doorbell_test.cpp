@@ -1,0 +1,95 @@
+#include "transport/Doorbell.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+namespace prism {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Unique on the machine: tests of several processes may run at once.
+std::string bellName(const char* what) {
+  return std::string("prism-test-") + std::to_string(::getpid()) + "-" + what;
+}
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+TEST(Doorbell, APeersRingEndsTheWaitAtOnce) {
+  Doorbell sender(bellName("sender"));
+  Doorbell receiver(bellName("receiver"));
+  ASSERT_TRUE(sender.reachable());
+  ASSERT_TRUE(receiver.reachable());
+  std::thread ring([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    EXPECT_TRUE(sender.ring(bellName("receiver")));
+  });
+  const auto start = Clock::now();
+  EXPECT_EQ(receiver.wait(10.0), Doorbell::Heard::Peer);
+  const double waited = secondsSince(start);
+  ring.join();
+  EXPECT_GE(waited, 0.025);
+  EXPECT_LT(waited, 5.0);  // woken, not timed out
+}
+
+TEST(Doorbell, WithoutARingTheWaitLastsItsTime) {
+  Doorbell bell(bellName("quiet"));
+  const auto start = Clock::now();
+  EXPECT_EQ(bell.wait(0.04), Doorbell::Heard::Nothing);
+  EXPECT_GE(secondsSince(start), 0.035);
+}
+
+TEST(Doorbell, RingsBeforeTheWaitAreHeardOnceAndNotLost) {
+  Doorbell sender(bellName("early-sender"));
+  Doorbell receiver(bellName("early-receiver"));
+  for (int i = 0; i < 1000; ++i) EXPECT_TRUE(sender.ring(bellName("early-receiver")));
+  const auto start = Clock::now();
+  EXPECT_EQ(receiver.wait(10.0), Doorbell::Heard::Peer);
+  EXPECT_LT(secondsSince(start), 5.0);
+  EXPECT_EQ(receiver.wait(0.01), Doorbell::Heard::Nothing);  // every ring heard at once
+}
+
+TEST(Doorbell, ItsOwnRingIsToldApartFromAPeers) {
+  Doorbell peer(bellName("peer"));
+  Doorbell bell(bellName("self"));
+  ASSERT_TRUE(peer.ring(bellName("self")));
+  bell.ringSelf();
+  EXPECT_EQ(bell.wait(10.0), Doorbell::Heard::Self);
+  EXPECT_EQ(bell.wait(0.01), Doorbell::Heard::Nothing);
+  ASSERT_TRUE(peer.ring(bellName("self")));
+  EXPECT_EQ(bell.wait(10.0), Doorbell::Heard::Peer);
+}
+
+TEST(Doorbell, RingingANameNobodyHoldsFails) {
+  const Doorbell bell(bellName("lonely"));
+  EXPECT_FALSE(bell.ring(bellName("nobody")));
+}
+
+TEST(Doorbell, ANameTakenAlreadyGivesABellOnlyItsProcessRings) {
+  Doorbell first(bellName("taken"));
+  Doorbell second(bellName("taken"));
+  EXPECT_TRUE(first.reachable());
+  EXPECT_FALSE(second.reachable());
+  const Doorbell unnamed;
+  EXPECT_FALSE(unnamed.reachable());
+  second.ringSelf();
+  EXPECT_EQ(second.wait(10.0), Doorbell::Heard::Self);
+  // A ring for the name reaches the bell that holds it.
+  ASSERT_TRUE(unnamed.ring(bellName("taken")));
+  EXPECT_EQ(first.wait(10.0), Doorbell::Heard::Peer);
+}
+
+TEST(Doorbell, ANameIsFreeAgainOnceItsBellIsGone) {
+  { const Doorbell gone(bellName("reused")); }
+  const Doorbell again(bellName("reused"));
+  EXPECT_TRUE(again.reachable());
+}
+
+}  // namespace
+}  // namespace prism
