@@ -61,6 +61,8 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
       RankStats& r = ranks_[static_cast<size_t>(source)];
       r.threads = ready.threads;
       r.buildSeconds = ready.buildSeconds;
+      r.startSeconds = ready.startSeconds;
+      r.mpiInitSeconds = ready.mpiInitSeconds;
       ready_[static_cast<size_t>(source)] = true;
       return std::nullopt;
     }

@@ -31,9 +31,12 @@ struct RankStats {
   RayCounters rays;           // of those tiles
   double busySeconds = 0.0;   // thread-seconds spent rendering them
   double buildSeconds = 0.0;  // building its Scene from the description
-  size_t staleTiles = 0;      // results dropped: duplicates, or tiles of frames already ended
-  size_t lostTiles = 0;       // tiles it received but lost (named by its heartbeat), re-issued
-  bool retired = false;       // stopped answering, or known gone; its tiles were re-issued
+  // A slave's own start (from its Ready): process start to command (-1: not known), MPI_Init.
+  double startSeconds = -1.0;
+  double mpiInitSeconds = 0.0;
+  size_t staleTiles = 0;  // results dropped: duplicates, or tiles of frames already ended
+  size_t lostTiles = 0;   // tiles it received but lost (named by its heartbeat), re-issued
+  bool retired = false;   // stopped answering, or known gone; its tiles were re-issued
 };
 
 // A message from a slave that is not only status (TileResult, Progress, PhotonShare, Echo,

@@ -70,8 +70,9 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
   return prepared;
 }
 
-// Waits for every slave's Ready (its scene is built); returns the slowest build time.
-double waitForSlaves(SlaveLink& link) {
+// Waits for every slave's Ready (its scene is built); the roster then holds their start and
+// build times.
+void waitForSlaves(SlaveLink& link) {
   const auto start = SteadyClock::now();
   auto missing = [&] {
     int count = 0;
@@ -85,9 +86,6 @@ double waitForSlaves(SlaveLink& link) {
     }
     link.receive(0.1);  // a Ready goes into the roster; nothing else is expected yet
   }
-  double slowest = 0.0;
-  for (int r = 1; r < link.ranks(); ++r) slowest = std::max(slowest, link.rank(r).buildSeconds);
-  return slowest;
 }
 
 class Measurement {
@@ -222,7 +220,14 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     report.samplesPerPixel = settings.samplesPerPixel;
 
     SlaveLink link(session, options.render.distribution);
-    report.setup.slaveBuildSeconds = waitForSlaves(link);
+    waitForSlaves(link);
+    for (int r = 1; r < link.ranks(); ++r) {  // the slowest slave's of each
+      const RankStats& slave = link.rank(r);
+      report.setup.slaveBuildSeconds = std::max(report.setup.slaveBuildSeconds, slave.buildSeconds);
+      report.setup.slaveStartSeconds = std::max(report.setup.slaveStartSeconds, slave.startSeconds);
+      report.setup.slaveMpiInitSeconds =
+          std::max(report.setup.slaveMpiInitSeconds, slave.mpiInitSeconds);
+    }
     const PreparedPass prepared = prepareCaustics(scene, link);
     report.setup.causticStage = prepared.stage;
     report.setup.causticSeconds = prepared.seconds;

@@ -109,7 +109,9 @@ void writeSpeedupCsv(const SpeedupReport& r, std::ostream& out) {
       << formatNumber("%.3f", s.parseSeconds) << ", broadcast "
       << formatNumber("%.3f", s.broadcastSeconds) << ", build "
       << formatNumber("%.3f", s.buildSeconds) << ", slowest slave build "
-      << formatNumber("%.3f", s.slaveBuildSeconds) << " (-1: not known)\n";
+      << formatNumber("%.3f", s.slaveBuildSeconds) << ", slowest slave start "
+      << formatNumber("%.3f", s.slaveStartSeconds) << ", slowest slave mpi_init "
+      << formatNumber("%.3f", s.slaveMpiInitSeconds) << " (-1: not known)\n";
   out << "# link: latency " << formatNumber("%.3g", r.link.model.latencySeconds * 1e3)
       << " ms one way, bandwidth " << formatNumber("%.3g", r.link.model.bytesPerSecond / 1e6)
       << " MB/s, " << linkWaits(r.link) << "\n";
@@ -160,6 +162,11 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
     }
     out << "process start to command " << formatNumber("%.3f", s.startSeconds)
         << " s, of which MPI_Init " << formatNumber("%.3f", s.mpiInitSeconds) << " s\n";
+  }
+  if (s.slaveStartSeconds >= 0.0) {
+    out << "  start (slowest slave, before its command): process start to command "
+        << formatNumber("%.3f", s.slaveStartSeconds) << " s, MPI_Init "
+        << formatNumber("%.3f", s.slaveMpiInitSeconds) << " s\n";
   }
   std::snprintf(line, sizeof line,
                 "  set-up (not in the frame times): parse %.3f s, broadcast %.3f s (%zu bytes), "

@@ -60,7 +60,11 @@ struct SpeedupSetup {
   size_t broadcastBytes = 0;
   double buildSeconds = 0.0;       // rank 0's Scene (BVH)
   double slaveBuildSeconds = 0.0;  // the slowest slave's
-  std::string causticStage;        // "photon pass", "caustic map", or empty
+  // The slaves' own starts, the slowest of each: process start to command (-1: not known), and
+  // MPI_Init.
+  double slaveStartSeconds = -1.0;
+  double slaveMpiInitSeconds = 0.0;
+  std::string causticStage;  // "photon pass", "caustic map", or empty
   double causticSeconds = 0.0;
 };
 

@@ -22,6 +22,7 @@
 #include "transport/Transport.h"
 #include "util/InterruptSignal.h"
 #include "util/Parallel.h"
+#include "util/ProcessStart.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
 #include "wire/TileJobWire.h"
@@ -182,6 +183,7 @@ void awaitShutdown(Transport& session, double timeoutSeconds) {
 }  // namespace
 
 int runSlave(Transport& session, const DistributionOptions& options) {
+  const double startSeconds = secondsSinceProcessStart().value_or(-1.0);  // before any work
   installInterruptHandlers();
   std::vector<uint8_t> bytes;
   try {
@@ -199,7 +201,8 @@ int runSlave(Transport& session, const DistributionOptions& options) {
     const auto buildStart = Clock::now();
     scene = std::make_unique<Scene>(wire::decodeScene(message));
     const int threads = options.threads > 0 ? options.threads : availableCores();
-    session.send(0, wire::encodeReady({secondsSince(buildStart), threads}));
+    session.send(0, wire::encodeReady(
+                        {secondsSince(buildStart), threads, startSeconds, session.setUpSeconds()}));
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({std::string("cannot build the scene: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);

@@ -22,6 +22,9 @@ constexpr int kMessageTag = 7;
 // MPI's progress engine; a millisecond keeps a waiting rank from taking measurable time from the
 // render threads on its core, and is short against a tile's render time.
 constexpr double kProbeIntervalSeconds = 0.001;
+// How long a rank keeps probing after a ring that brought no message (a sender probes at least
+// every probe interval while its send is in flight, so its message is out well within this).
+constexpr auto kRingGrace = std::chrono::milliseconds(20);
 
 using Clock = SteadyClock;
 
@@ -162,7 +165,11 @@ bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   const int error = MPI_Isend(pending->bytes.data(), static_cast<int>(pending->bytes.size()),
                               MPI_BYTE, dest, kMessageTag, MPI_COMM_WORLD, &pending->request);
   if (error != MPI_SUCCESS) return false;
-  pendingSends_.push_back(std::move(pending));
+  // One test pushes out what MPI can send at once (a small message), so the ring below rarely
+  // comes before the message; what is left completes in progressSends(), which rings again.
+  int done = 0;
+  MPI_Test(&pending->request, &done, MPI_STATUS_IGNORE);
+  if (!done) pendingSends_.push_back(std::move(pending));
   pendingCount_ = pendingSends_.size();
   ring(dest);
   return true;
@@ -190,7 +197,18 @@ std::optional<IncomingMessage> MpiSession::poll() {
   int arrived = 0;
   MPI_Status status;
   MPI_Iprobe(MPI_ANY_SOURCE, kMessageTag, MPI_COMM_WORLD, &arrived, &status);
-  if (!arrived) return std::nullopt;
+  // Open MPI's probe matches first and runs the progress engine after: a message that reached
+  // this rank's queue only now is seen by a second probe. (Probing every millisecond hid this;
+  // a rank woken by a ring must see the message the ring announced.)
+  if (!arrived) MPI_Iprobe(MPI_ANY_SOURCE, kMessageTag, MPI_COMM_WORLD, &arrived, &status);
+  if (!arrived) {
+    // Rung, yet nothing here: the sender's MPI has not put the message out yet (a large one
+    // goes out as its sender makes progress). Look again every probe interval for a while.
+    if (ringUnanswered_) lookAgainUntil_ = Clock::now() + kRingGrace;
+    ringUnanswered_ = false;
+    return std::nullopt;
+  }
+  ringUnanswered_ = false;
   int count = 0;
   MPI_Get_count(&status, MPI_BYTE, &count);
   IncomingMessage message;
@@ -209,20 +227,23 @@ std::optional<IncomingMessage> MpiSession::waitForMessage(double timeoutSeconds)
     if (auto message = poll()) return message;
     const double left = timeoutSeconds - secondsSince(start);
     if (left <= 0.0) return std::nullopt;
-    const bool sleepUntilRung = eventDriven_ && pendingCount_ == 0;
-    if (doorbell_->wait(sleepUntilRung ? left : std::min(left, kProbeIntervalSeconds)) ==
-        Doorbell::Heard::Self) {
-      return poll();  // woken: whatever came meanwhile, or nothing
-    }
+    if (sleepFor(left) == Doorbell::Heard::Self) return poll();  // woken: what came, or nothing
   }
 }
 
 void MpiSession::awaitActivity(double timeoutSeconds) {
-  // A send still in flight may need this rank's progress (a rendezvous), so it is looked at
-  // again within a probe interval even where peers ring.
-  const bool sleepUntilRung = eventDriven_ && pendingCount_ == 0;
-  doorbell_->wait(sleepUntilRung ? timeoutSeconds
-                                 : std::min(timeoutSeconds, kProbeIntervalSeconds));
+  sleepFor(timeoutSeconds);
+}
+
+Doorbell::Heard MpiSession::sleepFor(double seconds) {
+  // Until rung where peers ring; in probe intervals where they cannot, while a send of this
+  // rank's is in flight (it may need this rank's progress), or just after a ring that brought
+  // nothing yet.
+  const bool untilRung = eventDriven_ && pendingCount_ == 0 && Clock::now() >= lookAgainUntil_;
+  const Doorbell::Heard heard =
+      doorbell_->wait(untilRung ? seconds : std::min(seconds, kProbeIntervalSeconds));
+  if (heard == Doorbell::Heard::Peer) ringUnanswered_ = true;
+  return heard;
 }
 
 void MpiSession::wake() {

@@ -11,6 +11,7 @@
 
 #include "transport/Doorbell.h"
 #include "transport/Transport.h"
+#include "util/Stopwatch.h"
 
 namespace prism {
 
@@ -54,6 +55,7 @@ class MpiSession final : public Transport {
   struct PendingSend;
   void setUpDoorbells();
   void ring(int dest) const;
+  Doorbell::Heard sleepFor(double seconds);
 
   int rank_ = 0;
   int size_ = 1;
@@ -63,6 +65,10 @@ class MpiSession final : public Transport {
   std::unique_ptr<Doorbell> doorbell_;
   std::vector<std::string> peerDoorbells_;  // by rank; empty for ranks on other machines
   bool eventDriven_ = false;
+  // The waiting thread's own: a peer rang since the last poll, and until when to keep probing
+  // after a ring that brought nothing.
+  bool ringUnanswered_ = false;
+  SteadyClock::time_point lookAgainUntil_{};
 };
 
 }  // namespace prism

@@ -245,19 +245,25 @@ TileResultMessage decodeTileResult(const Message& message) {
 
 std::vector<uint8_t> encodeReady(const ReadyMessage& ready) {
   return encodeWith(MessageType::Ready, [&](ByteWriter& w) {
-    const auto& [buildSeconds, threads] = ready;
+    const auto& [buildSeconds, threads, startSeconds, mpiInitSeconds] = ready;
     w.writeF64(buildSeconds);
     w.writeI32(threads);
+    w.writeF64(startSeconds);
+    w.writeF64(mpiInitSeconds);
   });
 }
 
 ReadyMessage decodeReady(const Message& message) {
   return decodePayload(message, MessageType::Ready, [](ByteReader& r) {
     ReadyMessage ready;
-    auto& [buildSeconds, threads] = ready;
+    auto& [buildSeconds, threads, startSeconds, mpiInitSeconds] = ready;
     buildSeconds = r.readF64();
     threads = r.readI32();
+    startSeconds = r.readF64();
+    mpiInitSeconds = r.readF64();
     checkSeconds(buildSeconds, "scene build time");
+    if (startSeconds != -1.0) checkSeconds(startSeconds, "start time");
+    checkSeconds(mpiInitSeconds, "MPI_Init time");
     if (threads < 0) throw WireError("invalid thread count " + std::to_string(threads));
     return ready;
   });

@@ -113,6 +113,10 @@ struct TileResultMessage {
 struct ReadyMessage {
   double buildSeconds = 0;  // time the slave took to build its Scene
   int32_t threads = 0;      // threads it renders with
+  // Its own start: from process start to its command (libraries, MPI; -1: not known), and
+  // MPI_Init within that.
+  double startSeconds = -1;
+  double mpiInitSeconds = 0;
 };
 
 struct ErrorMessage {

@@ -68,6 +68,13 @@ TEST_F(SpeedupCommand, ThreeRanksWriteEveryPointChartsAndProjection) {
   const size_t init = run.output.find("of which MPI_Init ", start);
   ASSERT_NE(init, std::string::npos) << run.output;
   EXPECT_GT(std::stod(run.output.substr(init + std::string("of which MPI_Init ").size())), 0.0);
+  // The slaves' own starts come with their Ready.
+  const size_t slaveStart =
+      run.output.find("start (slowest slave, before its command): process start to command ");
+  ASSERT_NE(slaveStart, std::string::npos) << run.output;
+  const size_t slaveInit = run.output.find(" s, MPI_Init ", slaveStart);
+  ASSERT_NE(slaveInit, std::string::npos) << run.output;
+  EXPECT_GT(std::stod(run.output.substr(slaveInit + std::string(" s, MPI_Init ").size())), 0.0);
   // Every rank is on this machine: waits sleep until a sender rings (MpiSession's doorbells).
   EXPECT_NE(run.output.find("; waits woken by the sender\n"), std::string::npos) << run.output;
 

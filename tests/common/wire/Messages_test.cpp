@@ -120,9 +120,12 @@ TEST(Messages, TileResultRoundTripsBitExact) {
 }
 
 TEST(Messages, ReadyErrorAndShutdownRoundTrip) {
-  const ReadyMessage ready = decodeReady(decodeMessage(encodeReady({1.25, 16})));
+  const ReadyMessage ready = decodeReady(decodeMessage(encodeReady({1.25, 16, 0.5, 0.125})));
   EXPECT_EQ(ready.buildSeconds, 1.25);
   EXPECT_EQ(ready.threads, 16);
+  EXPECT_EQ(ready.startSeconds, 0.5);
+  EXPECT_EQ(ready.mpiInitSeconds, 0.125);
+  EXPECT_EQ(decodeReady(decodeMessage(encodeReady({1.25, 16}))).startSeconds, -1.0);  // unknown
 
   const std::string text = "scene.yaml:3:7: unknown material 'glas'\n\ttab and \xC3\xA9";
   EXPECT_EQ(decodeError(decodeMessage(encodeError({text}))).text, text);
@@ -254,6 +257,11 @@ TEST(Messages, ReadyValuesAreChecked) {
       "invalid thread count -1");
   for (double seconds : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     EXPECT_THROW(decodeReady(decodeMessage(encodeReady({seconds, 1}))), WireError) << seconds;
+    EXPECT_THROW(decodeReady(decodeMessage(encodeReady({1.0, 1, 1.0, seconds}))), WireError)
+        << seconds;
+  }
+  for (double start : {-0.5, -2.0, std::nan("")}) {  // -1 alone means "not known"
+    EXPECT_THROW(decodeReady(decodeMessage(encodeReady({1.0, 1, start}))), WireError) << start;
   }
 }
 
@@ -556,7 +564,7 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
   EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 96u) << update;
-  EXPECT_EQ(sizeof(ReadyMessage), 16u) << update;
+  EXPECT_EQ(sizeof(ReadyMessage), 32u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
   EXPECT_EQ(sizeof(ProgressMessage), 40u) << update;
   EXPECT_EQ(sizeof(RenderView), 128u) << update;
