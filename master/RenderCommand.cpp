@@ -4,6 +4,7 @@
 #include <fstream>
 #include <memory>
 #include <ostream>
+#include <utility>
 
 #include "caustics/CausticMapImages.h"
 #include "caustics/PhotonImage.h"
@@ -148,7 +149,8 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       summary.broadcastBytes = bytes.size();
     }
     const auto buildStart = SteadyClock::now();
-    const Scene scene(description);
+    // The description's cube-map faces move into the scene: nothing below reads them.
+    const Scene scene(description, std::exchange(description.environment, std::nullopt));
     summary.buildSeconds = secondsSince(buildStart);
 
     FrameOptions frameOptions;

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <utility>
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
@@ -212,7 +213,8 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     report.setup.broadcastSeconds = secondsSince(broadcastStart);
     report.setup.broadcastBytes = bytes.size();
     const auto buildStart = SteadyClock::now();
-    const Scene scene(description);
+    // The description's cube-map faces move into the scene: nothing below reads them.
+    const Scene scene(description, std::exchange(description.environment, std::nullopt));
     report.setup.buildSeconds = secondsSince(buildStart);
     const RenderSettings& settings = scene.settings();
     report.width = settings.width;

@@ -199,7 +199,9 @@ int runSlave(Transport& session, const DistributionOptions& options) {
     // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
     if (message.type == wire::MessageType::Error) return 1;
     const auto buildStart = Clock::now();
-    scene = std::make_unique<Scene>(wire::decodeScene(message));
+    SceneDescription description = wire::decodeScene(message);
+    scene =
+        std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
     const int threads = options.threads > 0 ? options.threads : availableCores();
     session.send(0, wire::encodeReady(
                         {secondsSince(buildStart), threads, startSeconds, session.setUpSeconds()}));

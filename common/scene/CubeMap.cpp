@@ -1,10 +1,11 @@
 #include "scene/CubeMap.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace prism {
 
-CubeMap::CubeMap(const CubeMapDesc& desc) : faces_(desc.faces), scale_(desc.scale) {}
+CubeMap::CubeMap(CubeMapDesc desc) : faces_(std::move(desc.faces)), scale_(desc.scale) {}
 
 Color CubeMap::texel(int face, int x, int y) const {
   const ImageRgb& image = faces_[face];

@@ -9,7 +9,8 @@ namespace prism {
 
 class CubeMap {
  public:
-  explicit CubeMap(const CubeMapDesc& desc);
+  // By value: a description the caller no longer needs moves in (six faces, megabytes).
+  explicit CubeMap(CubeMapDesc desc);
 
   // Bilinearly filtered radiance seen along direction (need not be unit length).
   Color lookup(const Vec3& direction) const;

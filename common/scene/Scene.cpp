@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include <utility>
+
 #include "accel/WideBvhPacket.h"
 
 #include "geometry/TriangleMollerTrumbore.h"
@@ -41,7 +43,9 @@ uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
   return 0;
 }
 
-Scene::Scene(const SceneDescription& d, Traversal traversal)
+Scene::Scene(const SceneDescription& d, Traversal traversal) : Scene(d, d.environment, traversal) {}
+
+Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, Traversal traversal)
     : settings_(d.render),
       caustics_(d.caustics),
       camera_(d.camera, d.render.width, d.render.height),
@@ -50,7 +54,7 @@ Scene::Scene(const SceneDescription& d, Traversal traversal)
       materials_(d.materials),
       lights_(d.lights),
       traversal_(traversal) {
-  if (d.environment) environment_.emplace(*d.environment);
+  if (environment) environment_.emplace(std::move(*environment));
   if (materials_.empty()) materials_.emplace_back();  // primitives default to material 0
 
   // Gather every bounded primitive in description order, then reorder by BVH leaf order so a
