@@ -204,9 +204,15 @@ int runSlave(Transport& session, const DistributionOptions& options) {
   JobQueue jobs;
   Outbox outbox;
   TileWorkerPool pool(*scene, options.threads);
-  pool.start(
-      [&] { return jobs.pop(); },
-      [&](const TileJob& job, TileResult&& tile) { outbox.add(job.frame, std::move(tile)); });
+  const bool slow =
+      options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Slow;
+  pool.start([&] { return jobs.pop(); },
+             [&](const TileJob& job, TileResult&& tile) {
+               if (slow) {  // the render thread stays taken, as on a slower machine
+                 std::this_thread::sleep_for(std::chrono::duration<double>(kSlowTileDelaySeconds));
+               }
+               outbox.add(job.frame, std::move(tile));
+             });
   PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores());
 
   const bool hang =

@@ -5,6 +5,7 @@
 // a slave has even built its scene).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <tuple>
 
@@ -112,6 +113,87 @@ TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTh
   EXPECT_TRUE(samePixels(readImage(path("crash.exr")), reference));
   EXPECT_TRUE(tcpTransportWasUsed(run.output)) << run.output;
   EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+}
+
+// ---- uneven nodes: ranks with different thread counts and speeds ---------------------------
+
+struct RankLine {
+  int threads = -1;
+  int tiles = -1;
+};
+
+// "  rank 2: 3 threads, 80 tiles, ..." from the run summary.
+RankLine rankLine(const std::string& output, int rank) {
+  RankLine line;
+  const std::string key = "  rank " + std::to_string(rank) + ": ";
+  const size_t at = output.find(key);
+  if (at != std::string::npos) {
+    std::sscanf(output.c_str() + at + key.size(), "%d threads, %d tiles", &line.threads,
+                &line.tiles);
+  }
+  return line;
+}
+
+class UnevenRanks : public DistributedRender {
+ protected:
+  ImageRgb reference(const std::string& scene) {
+    const test::ProcessRun run =
+        test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    return readImage(path("reference.exr"));
+  }
+  // One MPI job of three ranks, each with the common arguments and then its own (MPMD).
+  test::ProcessRun render(const std::string& common, const std::string& rank0,
+                          const std::string& rank1, const std::string& rank2) {
+    const std::string all = "render " + common + " --overwrite -o " + path("uneven.exr") + " ";
+    return test::runPrismMpmd({all + rank0, all + rank1, all + rank2}, "--bind-to none");
+  }
+};
+
+// Every rank reads its own command line: each renders with the threads it was given, and rank 0
+// does not need the slaves' command lines to match its own.
+TEST_F(UnevenRanks, EachRankUsesItsOwnThreadCountAndThePixelsAreBitIdentical) {
+  const ImageRgb expected = reference(kScene);
+  for (const char* schedule : {"dynamic", "static"}) {
+    const test::ProcessRun run = render(kScene + " --tile-size 8 --schedule " + schedule,
+                                        "--threads 1", "--threads 3", "--threads 2 -q");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+    EXPECT_EQ(rankLine(run.output, 0).threads, 1) << run.output;
+    EXPECT_EQ(rankLine(run.output, 1).threads, 3) << run.output;
+    EXPECT_EQ(rankLine(run.output, 2).threads, 2) << run.output;
+  }
+}
+
+// Rank 2 is a slow node: every tile holds its thread 0.2 s longer (--inject-fault slow:2), many
+// times a tile's render time even with the 2 cores shared, so its pace is known whatever else
+// runs. The frame (240 tiles, about 2 s) is long enough that both slaves join while rank 0 still
+// renders. The pull queue must give the slow rank under half the tiles of the other slave.
+TEST_F(UnevenRanks, TheDynamicQueueGivesASlowRankFewerTiles) {
+  const std::string scene =
+      std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 320 -H 180 --spp 48 --tile-size 16";
+  const ImageRgb expected = reference(scene);
+  const std::string options = "--threads 1 --inject-fault slow:2";
+  const test::ProcessRun run = render(scene + " --schedule dynamic", options, options, options);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+  const RankLine normal = rankLine(run.output, 1);
+  const RankLine slow = rankLine(run.output, 2);
+  EXPECT_GT(normal.tiles, 2 * slow.tiles) << run.output;
+  EXPECT_GT(slow.tiles, 0) << run.output;  // it took part, only less
+}
+
+// The static interleave gives every worker its share whatever its pace: 15 tiles of 64 px, 5
+// each, the slow rank's included, and the frame waits for them.
+TEST_F(UnevenRanks, TheStaticScheduleGivesASlowRankItsFullShare) {
+  const std::string scene =
+      std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 320 -H 180 --tile-size 64";
+  const ImageRgb expected = reference(scene);
+  const std::string options = "--threads 1 --inject-fault slow:2";
+  const test::ProcessRun run = render(scene + " --schedule static", options, options, options);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+  for (int rank = 0; rank < 3; ++rank) EXPECT_EQ(rankLine(run.output, rank).tiles, 5) << run.output;
 }
 
 TEST_F(DistributedRender, HungSlaveIsRetiredAndTheFrameCompletesWithTheSamePixels) {
