@@ -424,22 +424,26 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
 
   if (app.get_subcommand("render")->parsed()) {
     parsed.distribution = renderOptions->distribution;
+    parsed.memoryLimit = renderOptions->memoryLimit;
     parsed.runMaster = [renderOptions](Transport* session) {
       return runRender(*renderOptions, std::cout, std::cerr, session);
     };
   } else if (app.get_subcommand("view")->parsed()) {
     parsed.distribution = viewOptions->render.distribution;
+    parsed.memoryLimit = viewOptions->render.memoryLimit;
     parsed.runMaster = [viewOptions, viewer](Transport* session) {
       return runView(*viewOptions, std::cout, std::cerr, session, viewer);
     };
   } else if (app.get_subcommand("speedup")->parsed()) {
     parsed.distribution = speedupOptions->render.distribution;
+    parsed.memoryLimit = speedupOptions->render.memoryLimit;
     parsed.distribution.threads = speedupOptions->threadsPerRank;  // what p counts
     parsed.runMaster = [speedupOptions, chartWriter](Transport* session) {
       return runSpeedup(*speedupOptions, std::cout, std::cerr, session, chartWriter);
     };
   } else if (app.get_subcommand("sweep")->parsed()) {
     parsed.distribution = sweepOptions->render.distribution;
+    parsed.memoryLimit = sweepOptions->render.memoryLimit;
     parsed.runMaster = [sweepOptions, chartWriter](Transport* session) {
       return runSweep(*sweepOptions, std::cout, std::cerr, session, chartWriter);
     };

@@ -17,6 +17,7 @@
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/TileWorkerPool.h"
+#include "scene/GeometryMemory.h"
 #include "scene/Scene.h"
 #include "slave/JobQueue.h"
 #include "transport/Transport.h"
@@ -176,7 +177,8 @@ void awaitShutdown(Transport& session, double timeoutSeconds) {
 
 }  // namespace
 
-int runSlave(Transport& session, const DistributionOptions& options) {
+int runSlave(Transport& session, const DistributionOptions& options,
+             const MemoryLimit& memoryLimit) {
   installInterruptHandlers();
   std::vector<uint8_t> bytes;
   try {
@@ -192,7 +194,10 @@ int runSlave(Transport& session, const DistributionOptions& options) {
     // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
     if (message.type == wire::MessageType::Error) return 1;
     const auto buildStart = Clock::now();
-    scene = std::make_unique<Scene>(wire::decodeScene(message));
+    const SceneDescription description = wire::decodeScene(message);
+    // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
+    checkGeometryFits(description, memoryLimit);
+    scene = std::make_unique<Scene>(description);
     const int threads = options.threads > 0 ? options.threads : availableCores();
     session.send(0, wire::encodeReady({secondsSince(buildStart), threads}));
   } catch (const std::exception& e) {

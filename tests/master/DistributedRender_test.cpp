@@ -196,6 +196,21 @@ TEST_F(UnevenRanks, TheStaticScheduleGivesASlowRankItsFullShare) {
   for (int rank = 0; rank < 3; ++rank) EXPECT_EQ(rankLine(run.output, rank).tiles, 5) << run.output;
 }
 
+// Rank 0 checks the scene against its own memory before the broadcast; a slave on a smaller
+// machine checks it again against its own limit before it builds anything, and the job ends
+// with its refusal, once, and no image.
+TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
+  const test::ProcessRun run = render(kScene, "", "--memory-limit 16M", "");
+  EXPECT_NE(run.exitCode, 0) << run.output;
+  const std::string refusal =
+      "rank 1: cannot build the scene: the scene's geometry (9600 triangles) needs 23.6 MiB "
+      "(24730624 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
+  const size_t first = run.output.find(refusal);
+  ASSERT_NE(first, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(refusal, first + 1), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(path("uneven.exr")));
+}
+
 TEST_F(DistributedRender, HungSlaveIsRetiredAndTheFrameCompletesWithTheSamePixels) {
   const ImageRgb reference = singleProcessReference();
   const test::ProcessRun run = test::runPrismMpi(
