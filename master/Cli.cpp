@@ -93,7 +93,9 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
                    "Seconds of silence after which a slave is taken for dead and its tiles "
                    "re-issued; slaves heartbeat twice a second (default 2)")
       ->check(CLI::Range(0.6, 86400.0));
-  render->add_option("--prefetch", o.distribution.prefetch, "Tiles in flight per slave (default 2)")
+  render
+      ->add_option("--prefetch", o.distribution.prefetch,
+                   "Tiles in flight per slave render thread (default 2)")
       ->check(CLI::Range(1, 64));
   addMemoryLimitOption(render, o);
   render->add_flag(
@@ -277,7 +279,7 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
       ->check(CLI::Range(1, 1000));
   speedup
       ->add_option("--prefetch", o.render.distribution.prefetch,
-                   "Tiles in flight per slave (default 2)")
+                   "Tiles in flight per slave render thread (default 2)")
       ->check(CLI::Range(1, 64));
   speedup
       ->add_option("--project-workers", o.projectWorkers,
