@@ -93,7 +93,9 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
                    "Seconds of silence after which a slave is taken for dead and its tiles "
                    "re-issued; slaves heartbeat twice a second (default 2)")
       ->check(CLI::Range(0.6, 86400.0));
-  render->add_option("--prefetch", o.distribution.prefetch, "Tiles in flight per slave (default 2)")
+  render
+      ->add_option("--prefetch", o.distribution.prefetch,
+                   "Tiles in flight per slave render thread (default 2)")
       ->check(CLI::Range(1, 64));
   addMemoryLimitOption(render, o);
   render->add_flag(
@@ -277,7 +279,7 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
       ->check(CLI::Range(1, 1000));
   speedup
       ->add_option("--prefetch", o.render.distribution.prefetch,
-                   "Tiles in flight per slave (default 2)")
+                   "Tiles in flight per slave render thread (default 2)")
       ->check(CLI::Range(1, 64));
   speedup
       ->add_option("--project-workers", o.projectWorkers,
@@ -424,22 +426,26 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
 
   if (app.get_subcommand("render")->parsed()) {
     parsed.distribution = renderOptions->distribution;
+    parsed.memoryLimit = renderOptions->memoryLimit;
     parsed.runMaster = [renderOptions](Transport* session) {
       return runRender(*renderOptions, std::cout, std::cerr, session);
     };
   } else if (app.get_subcommand("view")->parsed()) {
     parsed.distribution = viewOptions->render.distribution;
+    parsed.memoryLimit = viewOptions->render.memoryLimit;
     parsed.runMaster = [viewOptions, viewer](Transport* session) {
       return runView(*viewOptions, std::cout, std::cerr, session, viewer);
     };
   } else if (app.get_subcommand("speedup")->parsed()) {
     parsed.distribution = speedupOptions->render.distribution;
+    parsed.memoryLimit = speedupOptions->render.memoryLimit;
     parsed.distribution.threads = speedupOptions->threadsPerRank;  // what p counts
     parsed.runMaster = [speedupOptions, chartWriter](Transport* session) {
       return runSpeedup(*speedupOptions, std::cout, std::cerr, session, chartWriter);
     };
   } else if (app.get_subcommand("sweep")->parsed()) {
     parsed.distribution = sweepOptions->render.distribution;
+    parsed.memoryLimit = sweepOptions->render.memoryLimit;
     parsed.runMaster = [sweepOptions, chartWriter](Transport* session) {
       return runSweep(*sweepOptions, std::cout, std::cerr, session, chartWriter);
     };

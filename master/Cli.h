@@ -2,7 +2,9 @@
 // parses the same arguments; main (the composition root) then decides the rank's role.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "cluster/DistributionOptions.h"
 #include "master/SpeedupChart.h"
@@ -15,8 +17,10 @@ class Transport;
 struct ParsedCommand {
   bool exitNow = false;  // help, version, the command list or a usage error: nothing to run
   int exitCode = 0;
-  // What a slave needs of the command line: its threads and, in tests, its fault.
+  // What a slave needs of the command line: its threads, its memory limit (each rank its own:
+  // nodes differ) and, in tests, its fault.
   DistributionOptions distribution;
+  std::optional<uint64_t> memoryLimit;
   // Runs the command on rank 0 or the only process (session null); returns the exit code.
   std::function<int(Transport* session)> runMaster;
 };

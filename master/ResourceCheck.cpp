@@ -1,10 +1,6 @@
 #include "master/ResourceCheck.h"
 
-#include <unistd.h>
-
 #include <string>
-
-#include "scene/MeshBudget.h"
 
 namespace prism {
 namespace {
@@ -24,18 +20,6 @@ uint64_t frameMemoryBytes(const RenderSettings& s) {
   const uint64_t pixels = saturatingMultiply(static_cast<uint64_t>(std::max(s.width, 0)),
                                              static_cast<uint64_t>(std::max(s.height, 0)));
   return saturatingMultiply(pixels, 2 * sizeof(Color));  // frame buffer + tiles in flight
-}
-
-uint64_t physicalMemoryBytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES);
-  const long pageSize = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || pageSize <= 0) return UINT64_MAX;
-  return static_cast<uint64_t>(pages) * static_cast<uint64_t>(pageSize);
-}
-
-MemoryLimit memoryLimitOrPhysical(const std::optional<uint64_t>& givenBytes) {
-  if (givenBytes) return {*givenBytes, "--memory-limit"};
-  return {physicalMemoryBytes(), "this machine's memory; --memory-limit SIZE changes it"};
 }
 
 void checkRenderFits(const RenderSettings& s, const MemoryLimit& limit) {
@@ -79,27 +63,9 @@ void checkCausticsFit(const CausticSettings& c, const MemoryLimit& limit) {
           "reduce --photons, or use more --passes of fewer");
 }
 
-uint64_t geometryMemoryBytes(const SceneDescription& d) {
-  uint64_t bytes = 0;
-  for (const MeshDesc& m : d.meshes) {
-    bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
-  }
-  const uint64_t primitives = d.spheres.size() + d.planes.size() + d.cones.size();
-  bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
-  if (d.environment) {
-    for (const ImageRgb& face : d.environment->faces) {
-      // The description's copy, its wire copy and the scene's.
-      bytes = saturatingAdd(bytes, 3 * face.pixels.size() * sizeof(Color));
-    }
-  }
-  return bytes;
-}
-
 void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& limit) {
+  checkGeometryFits(d, limit);
   const uint64_t geometry = geometryMemoryBytes(d);
-  require(geometry, limit,
-          "the scene's geometry (" + std::to_string(d.triangleCount()) + " triangles)",
-          "simplify the meshes");
   const uint64_t frame = frameMemoryBytes(d.render);
   const uint64_t tiles = tileMemoryBytes(tileCount(d.render, tileSize));
   const uint64_t photons = photonMemoryBytes(d.caustics);

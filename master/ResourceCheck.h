@@ -9,8 +9,10 @@
 #include <cstdint>
 #include <string>
 
+#include "scene/GeometryMemory.h"
 #include "scene/SceneDescription.h"
 #include "util/MemorySize.h"
+#include "util/PhysicalMemory.h"
 
 namespace prism {
 
@@ -19,12 +21,6 @@ inline constexpr uint64_t kMaxTileCount = 1u << 24;  // tile indices and job cou
 // Bytes a render of these settings needs at least: the frame buffer and, at worst, every tile
 // result in flight at once: 2 · width · height · 12.
 uint64_t frameMemoryBytes(const RenderSettings& settings);
-
-// Physical memory of this machine in bytes.
-uint64_t physicalMemoryBytes();
-
-// The limit a run was given, or this machine's physical memory.
-MemoryLimit memoryLimitOrPhysical(const std::optional<uint64_t>& givenBytes);
 
 // Throws when the frame buffer cannot fit.
 void checkRenderFits(const RenderSettings& settings, const MemoryLimit& limit);
@@ -42,10 +38,6 @@ uint64_t photonMemoryBytes(const CausticSettings& caustics);
 
 // Throws when the photon map cannot fit, naming the bytes and the limit.
 void checkCausticsFit(const CausticSettings& caustics, const MemoryLimit& limit);
-
-// Bytes a rank needs to hold and build this scene's geometry (meshes with their BVH, the other
-// primitives, cube-map faces), counting the description and its wire copy (MeshBudget.h).
-uint64_t geometryMemoryBytes(const SceneDescription& description);
 
 // Throws when the geometry cannot fit, and then when everything together cannot.
 void checkSceneFits(const SceneDescription& description, int tileSize, const MemoryLimit& limit);

@@ -1,5 +1,6 @@
 #include "master/TileDispatcher.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -173,7 +174,11 @@ void TileDispatcher::feedSlaves() {
       Frame* frame = frame_.get();
       if (!frame || frame->complete() || frame->scheduler.retired(rank)) continue;
       const FramePlan& plan = frame->plan;
-      while (frame->scheduler.outstanding(rank) < static_cast<size_t>(options_.prefetch)) {
+      // prefetch tiles per render thread: a slave of T threads renders T tiles at once, and
+      // with a fixed count per slave most of a many-threaded rank's threads would idle.
+      const size_t inFlight = static_cast<size_t>(options_.prefetch) *
+                              static_cast<size_t>(std::max(1, link_.rank(rank).threads));
+      while (frame->scheduler.outstanding(rank) < inFlight) {
         const auto tile = frame->scheduler.next(rank, now());
         if (!tile) break;
         if (plan.view && !frame->viewSent[rank]) {

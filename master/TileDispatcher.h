@@ -3,12 +3,12 @@
 // it at a time (master/FrameRenderer.h); the viewer a stream of frames (master/LiveRenderer.h).
 //
 // It owns the frame's TileScheduler (dynamic or static, leases), keeps every live slave
-// supplied with `prefetch` tiles (a View message first when the frame has a view of its own),
-// routes the slaves' messages (through SlaveLink, so status means the same everywhere): a
-// TileResult is checked against the plan and accepted once; a late or duplicate one, or one of
-// a frame already ended, is counted stale and dropped; a heartbeat naming the frame re-issues
-// the tiles its slave lost; a late PhotonShare or Echo (of a phase completed without it) is
-// ignored. Silent slaves (SlaveLink::retireSilent) and slaves past their lease are retired and
+// supplied with `prefetch` tiles per render thread (a View message first when the frame has a view
+// of its own), routes the slaves' messages (through SlaveLink, so status means the same
+// everywhere): a TileResult is checked against the plan and accepted once; a late or duplicate one,
+// or one of a frame already ended, is counted stale and dropped; a heartbeat naming the frame
+// re-issues the tiles its slave lost; a late PhotonShare or Echo (of a phase completed without it)
+// is ignored. Silent slaves (SlaveLink::retireSilent) and slaves past their lease are retired and
 // their tiles re-issued at once.
 //
 // Threads: service() is called by one coordinating thread, the only one that talks to the

@@ -10,6 +10,7 @@
 #include "master/Cli.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiModule.h"
+#include "util/PhysicalMemory.h"
 #ifdef PRISM_HAVE_VIEWER
 #include "gui/ViewerModule.h"
 #endif
@@ -38,6 +39,9 @@ int main(int argc, char** argv) {
   const prism::ParsedCommand command = prism::parseCommandLine(argc, argv, slave);
 #endif
   if (command.exitNow) return command.exitCode;
-  if (slave) return prism::runSlave(*session, command.distribution);
+  if (slave) {
+    return prism::runSlave(*session, command.distribution,
+                           prism::memoryLimitOrPhysical(command.memoryLimit));
+  }
   return command.runMaster(session.get());
 }

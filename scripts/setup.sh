@@ -1,10 +1,19 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Prism needs (only those missing), then configures and builds
 # Prism in Release mode into ./build. Safe to run again: it only does what is left to do.
-# Usage: setup.sh [TARGET...]   (default: everything, tests included; demo.sh asks for `prism`,
-# which brings the modules it loads)
+# Usage: setup.sh [--with-slurm] [TARGET...]   (default: everything, tests included; demo.sh
+# asks for `prism`, which brings the modules it loads)
+#   --with-slurm  also install Slurm and munge for the Slurm test (test.sh passes it), as root
+#                 only (the test needs root). Not on the demo path: on a machine with systemd,
+#                 Debian enables and starts these packages' daemons.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+with_slurm=0
+if [[ ${1:-} == --with-slurm ]]; then
+  with_slurm=1
+  shift
+fi
 
 packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
@@ -19,6 +28,13 @@ packages=(
   libembree-dev                                   # ray-throughput yardstick (benchmark only)
   clang-14 libclang-rt-14-dev                     # fuzzers: libFuzzer, sanitizers (test.sh)
 )
+if ((with_slurm)) && [[ $(id -u) -eq 0 ]]; then
+  # The Slurm test's private cluster (tests/slurm/slurm_render.sh): controller, node daemon,
+  # srun/sbatch and munge; Slurm's pmix plugin dlopens the unversioned libpmix.so of libpmix-dev.
+  packages+=(slurm-wlm munge libpmix-dev)
+elif ((with_slurm)); then
+  echo "setup: not root, so the Slurm test will be skipped: Slurm and munge not installed"
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -17,6 +17,7 @@
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/TileWorkerPool.h"
+#include "scene/GeometryMemory.h"
 #include "scene/Scene.h"
 #include "slave/JobQueue.h"
 #include "transport/Transport.h"
@@ -182,7 +183,8 @@ void awaitShutdown(Transport& session, double timeoutSeconds) {
 
 }  // namespace
 
-int runSlave(Transport& session, const DistributionOptions& options) {
+int runSlave(Transport& session, const DistributionOptions& options,
+             const MemoryLimit& memoryLimit) {
   const double startSeconds = secondsSinceProcessStart().value_or(-1.0);  // before any work
   installInterruptHandlers();
   std::vector<uint8_t> bytes;
@@ -200,6 +202,8 @@ int runSlave(Transport& session, const DistributionOptions& options) {
     if (message.type == wire::MessageType::Error) return 1;
     const auto buildStart = Clock::now();
     SceneDescription description = wire::decodeScene(message);
+    // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
+    checkGeometryFits(description, memoryLimit);
     scene =
         std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
     const int threads = options.threads > 0 ? options.threads : availableCores();
@@ -214,9 +218,15 @@ int runSlave(Transport& session, const DistributionOptions& options) {
   JobQueue jobs;
   Outbox outbox(session);
   TileWorkerPool pool(*scene, options.threads);
-  pool.start(
-      [&] { return jobs.pop(); },
-      [&](const TileJob& job, TileResult&& tile) { outbox.add(job.frame, std::move(tile)); });
+  const bool slow =
+      options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Slow;
+  pool.start([&] { return jobs.pop(); },
+             [&](const TileJob& job, TileResult&& tile) {
+               if (slow) {  // the render thread stays taken, as on a slower machine
+                 std::this_thread::sleep_for(std::chrono::duration<double>(kSlowTileDelaySeconds));
+               }
+               outbox.add(job.frame, std::move(tile));
+             });
   PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores(), session);
 
   const bool hang =

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "cluster/DistributionOptions.h"
+#include "util/MemorySize.h"
 
 namespace prism {
 
@@ -10,7 +11,9 @@ class Transport;
 
 // Returns the process exit code. Errors are sent to the master, which reports them; a slave
 // prints only when it cannot reach the master.
-// Reads options.threads, masterTimeoutSeconds and fault.
-int runSlave(Transport& session, const DistributionOptions& options);
+// Reads options.threads, masterTimeoutSeconds and fault. A scene whose geometry exceeds
+// memoryLimit (this rank's --memory-limit, or its machine's memory) is refused before it is built.
+int runSlave(Transport& session, const DistributionOptions& options,
+             const MemoryLimit& memoryLimit = {});
 
 }  // namespace prism

@@ -14,7 +14,7 @@ struct DistributionOptions {
   int threads = 0;   // render threads on each rank; 0: every core available to the rank
   int tileSize = 0;  // tile edge in pixels; 0: automatic
   Schedule schedule = Schedule::Dynamic;
-  int prefetch = 2;  // tiles in flight per slave, so none waits for its next job
+  int prefetch = 2;  // tiles in flight per slave render thread, so none waits for its next job
   // A slave that has said Ready and is then silent this long (it heartbeats every
   // kHeartbeatSeconds) is retired and its tiles re-issued: a dead or frozen slave costs seconds.
   double heartbeatTimeoutSeconds = 2.0;

@@ -14,6 +14,8 @@ FaultInjection parseFaultInjection(const std::string& text) {
     fault.kind = FaultInjection::Kind::DropTiles;
   } else if (kind == "crash") {
     fault.kind = FaultInjection::Kind::Crash;
+  } else if (kind == "slow") {
+    fault.kind = FaultInjection::Kind::Slow;
   }
   size_t used = 0;
   int rank = -1;
@@ -28,7 +30,7 @@ FaultInjection parseFaultInjection(const std::string& text) {
       used != text.size() - colon - 1) {
     throw std::invalid_argument(
         "fault injection '" + text +
-        "' must be hang:RANK, drop:RANK or crash:RANK with a slave rank >= 1");
+        "' must be hang:RANK, drop:RANK, crash:RANK or slow:RANK with a slave rank >= 1");
   }
   fault.rank = rank;
   return fault;

@@ -5,6 +5,7 @@
 // a slave has even built its scene).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <tuple>
 
@@ -60,6 +61,155 @@ INSTANTIATE_TEST_SUITE_P(RanksSchedulesTiles, DistributedRenderMatrix,
                                   std::get<1>(info.param) + "_tile" +
                                   std::to_string(std::get<2>(info.param));
                          });
+
+// ---- between nodes: Open MPI over TCP -------------------------------------------------------
+
+// Between nodes Prism's messages cross a network. Forcing Open MPI's TCP transport on one node
+// (btl tcp and self only, so no shared memory; pml ob1, or UCX would carry the messages instead)
+// sends them through sockets as between machines (the tcp btl skips loopback and uses the real
+// interface). The verbose btl output shows TCP was really initialised.
+const std::string kOverTcp = "--mca pml ob1 --mca btl tcp,self --mca btl_base_verbose 30";
+
+bool tcpTransportWasUsed(const std::string& output) {
+  return output.find("select: init of component tcp returned success") != std::string::npos &&
+         output.find("component vader") == std::string::npos;
+}
+
+class DistributedRenderOverTcp
+    : public DistributedRender,
+      public ::testing::WithParamInterface<std::tuple<int, const char*>> {};
+
+TEST_P(DistributedRenderOverTcp, PixelsAreBitIdenticalToTheSingleProcessRender) {
+  const auto [ranks, schedule] = GetParam();
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run = test::runPrismMpi(
+      ranks,
+      "render " + kScene + " -o " + path("tcp.exr") + " --tile-size 8 --schedule " + schedule,
+      kOverTcp);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("tcp.exr")), reference)) << run.output;
+  EXPECT_TRUE(tcpTransportWasUsed(run.output)) << run.output;
+  EXPECT_NE(run.output.find("ranks     " + std::to_string(ranks)), std::string::npos) << run.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(RanksSchedules, DistributedRenderOverTcp,
+                         ::testing::Combine(::testing::Values(2, 3),
+                                            ::testing::Values("dynamic", "static")),
+                         [](const auto& info) {
+                           return "ranks" + std::to_string(std::get<0>(info.param)) + "_" +
+                                  std::get<1>(info.param);
+                         });
+
+// A slave that dies breaks its TCP connections (the other ranks see a reset, not a silent
+// shared-memory segment): under --enable-recovery the master must still retire it and finish.
+TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTheSamePixels) {
+  const ImageRgb reference = singleProcessReference();
+  const test::ProcessRun run = test::runPrismMpi(
+      3,
+      "render " + kScene + " -o " + path("crash.exr") +
+          " --tile-size 8 --schedule static --lease-timeout 1 --inject-fault crash:2",
+      kOverTcp + " --enable-recovery");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("crash.exr")), reference));
+  EXPECT_TRUE(tcpTransportWasUsed(run.output)) << run.output;
+  EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+}
+
+// ---- uneven nodes: ranks with different thread counts and speeds ---------------------------
+
+struct RankLine {
+  int threads = -1;
+  int tiles = -1;
+};
+
+// "  rank 2: 3 threads, 80 tiles, ..." from the run summary.
+RankLine rankLine(const std::string& output, int rank) {
+  RankLine line;
+  const std::string key = "  rank " + std::to_string(rank) + ": ";
+  const size_t at = output.find(key);
+  if (at != std::string::npos) {
+    std::sscanf(output.c_str() + at + key.size(), "%d threads, %d tiles", &line.threads,
+                &line.tiles);
+  }
+  return line;
+}
+
+class UnevenRanks : public DistributedRender {
+ protected:
+  ImageRgb reference(const std::string& scene) {
+    const test::ProcessRun run =
+        test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    return readImage(path("reference.exr"));
+  }
+  // One MPI job of three ranks, each with the common arguments and then its own (MPMD).
+  test::ProcessRun render(const std::string& common, const std::string& rank0,
+                          const std::string& rank1, const std::string& rank2) {
+    const std::string all = "render " + common + " --overwrite -o " + path("uneven.exr") + " ";
+    return test::runPrismMpmd({all + rank0, all + rank1, all + rank2}, "--bind-to none");
+  }
+};
+
+// Every rank reads its own command line: each renders with the threads it was given, and rank 0
+// does not need the slaves' command lines to match its own.
+TEST_F(UnevenRanks, EachRankUsesItsOwnThreadCountAndThePixelsAreBitIdentical) {
+  const ImageRgb expected = reference(kScene);
+  for (const char* schedule : {"dynamic", "static"}) {
+    const test::ProcessRun run = render(kScene + " --tile-size 8 --schedule " + schedule,
+                                        "--threads 1", "--threads 3", "--threads 2 -q");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+    EXPECT_EQ(rankLine(run.output, 0).threads, 1) << run.output;
+    EXPECT_EQ(rankLine(run.output, 1).threads, 3) << run.output;
+    EXPECT_EQ(rankLine(run.output, 2).threads, 2) << run.output;
+  }
+}
+
+// Rank 2 is a slow node: every tile holds its thread 0.2 s longer (--inject-fault slow:2), many
+// times a tile's render time even with the 2 cores shared, so its pace is known whatever else
+// runs. The frame (240 tiles, about 2 s) is long enough that both slaves join while rank 0 still
+// renders. The pull queue must give the slow rank under half the tiles of the other slave.
+TEST_F(UnevenRanks, TheDynamicQueueGivesASlowRankFewerTiles) {
+  const std::string scene =
+      std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 320 -H 180 --spp 48 --tile-size 16";
+  const ImageRgb expected = reference(scene);
+  const std::string options = "--threads 1 --inject-fault slow:2";
+  const test::ProcessRun run = render(scene + " --schedule dynamic", options, options, options);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+  const RankLine normal = rankLine(run.output, 1);
+  const RankLine slow = rankLine(run.output, 2);
+  EXPECT_GT(normal.tiles, 2 * slow.tiles) << run.output;
+  EXPECT_GT(slow.tiles, 0) << run.output;  // it took part, only less
+}
+
+// The static interleave gives every worker its share whatever its pace: 15 tiles of 64 px, 5
+// each, the slow rank's included, and the frame waits for them.
+TEST_F(UnevenRanks, TheStaticScheduleGivesASlowRankItsFullShare) {
+  const std::string scene =
+      std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 320 -H 180 --tile-size 64";
+  const ImageRgb expected = reference(scene);
+  const std::string options = "--threads 1 --inject-fault slow:2";
+  const test::ProcessRun run = render(scene + " --schedule static", options, options, options);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("uneven.exr")), expected)) << run.output;
+  for (int rank = 0; rank < 3; ++rank) EXPECT_EQ(rankLine(run.output, rank).tiles, 5) << run.output;
+}
+
+// Rank 0 checks the scene against its own memory before the broadcast; a slave on a smaller
+// machine checks it again against its own limit before it builds anything, and the job ends
+// with its refusal, once, and no image.
+TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
+  const test::ProcessRun run = render(kScene, "", "--memory-limit 16M", "");
+  EXPECT_NE(run.exitCode, 0) << run.output;
+  const std::string refusal =
+      "rank 1: cannot build the scene: the scene's geometry (9600 triangles) needs 23.6 MiB "
+      "(24730624 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
+  const size_t first = run.output.find(refusal);
+  ASSERT_NE(first, std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(refusal, first + 1), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(path("uneven.exr")));
+}
 
 TEST_F(DistributedRender, HungSlaveIsRetiredAndTheFrameCompletesWithTheSamePixels) {
   const ImageRgb reference = singleProcessReference();
@@ -196,6 +346,22 @@ TEST_F(DistributedRender, CausticMapPixelsAreBitIdenticalForOneAndTwoRanks) {
   EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
       << run.output;
   EXPECT_NE(run.output.find("caustics  caustic map: 128x128"), std::string::npos) << run.output;
+}
+
+// Photon shares are gathered and the map sent on to every slave: the largest messages of a
+// caustic render, here over TCP.
+TEST_F(DistributedRender, OverTcpProgressivePhotonMapPixelsAreBitIdentical) {
+  const std::string scene = kCausticScene + " --progressive --passes 3";
+  const test::ProcessRun single =
+      test::runPrism("render " + scene + " -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const test::ProcessRun run = test::runPrismMpi(
+      3, "render " + scene + " -o " + path("tcp.exr") + " --tile-size 8", kOverTcp);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("tcp.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_TRUE(tcpTransportWasUsed(run.output)) << run.output;
+  EXPECT_NE(run.output.find("photons traced by rank"), std::string::npos) << run.output;
 }
 
 INSTANTIATE_TEST_SUITE_P(RanksModes, DistributedCaustics,

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace prism::test {
 
@@ -46,6 +47,20 @@ inline ProcessRun runPrismMpi(int ranks, const std::string& arguments,
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   return runCommand("timeout 120 mpiexec -n " + std::to_string(ranks) + " --oversubscribe " +
                     mpiexecOptions + " " + std::string(PRISM_EXECUTABLE) + " " + arguments);
+}
+
+// Runs prism as one MPI job of several programs (MPMD: `mpiexec -n 1 prism A : -n 1 prism B`),
+// one rank per entry, each with its own arguments: ranks that differ as uneven nodes do.
+inline ProcessRun runPrismMpmd(const std::vector<std::string>& argumentsPerRank,
+                               const std::string& mpiexecOptions = "") {
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  std::string command = "timeout 120 mpiexec --oversubscribe " + mpiexecOptions;
+  for (size_t i = 0; i < argumentsPerRank.size(); ++i) {
+    command += (i == 0 ? " -n 1 " : " : -n 1 ") + std::string(PRISM_EXECUTABLE) + " " +
+               argumentsPerRank[i];
+  }
+  return runCommand(command);
 }
 
 class ScratchFolderTest : public ::testing::Test {

@@ -1,0 +1,34 @@
+#include "scene/GeometryMemory.h"
+
+#include <string>
+
+#include "scene/MeshBudget.h"
+
+namespace prism {
+
+uint64_t geometryMemoryBytes(const SceneDescription& d) {
+  uint64_t bytes = 0;
+  for (const MeshDesc& m : d.meshes) {
+    bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
+  }
+  const uint64_t primitives = d.spheres.size() + d.planes.size() + d.cones.size();
+  bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
+  if (d.environment) {
+    for (const ImageRgb& face : d.environment->faces) {
+      // The description's copy, its wire copy and the scene's.
+      bytes = saturatingAdd(bytes, 3 * face.pixels.size() * sizeof(Color));
+    }
+  }
+  return bytes;
+}
+
+void checkGeometryFits(const SceneDescription& d, const MemoryLimit& limit) {
+  const uint64_t needed = geometryMemoryBytes(d);
+  if (needed > limit.bytes) {
+    throw ResourceLimitError(
+        memoryRefusal("the scene's geometry (" + std::to_string(d.triangleCount()) + " triangles)",
+                      needed, limit, "simplify the meshes"));
+  }
+}
+
+}  // namespace prism

@@ -1,0 +1,37 @@
+#include "scene/GeometryMemory.h"
+
+#include <gtest/gtest.h>
+
+namespace prism {
+namespace {
+
+SceneDescription thousandTrianglesAndTwoSpheres() {
+  SceneDescription d;
+  MeshDesc mesh;
+  mesh.positions.resize(600);
+  mesh.indices.resize(3 * 1000);
+  d.meshes.push_back(mesh);
+  d.spheres.resize(2);
+  return d;
+}
+
+TEST(GeometryMemory, CountsTrianglesVerticesAndPrimitives) {
+  // 1000 x 240 + 600 x 64 + 2 x 256
+  EXPECT_EQ(geometryMemoryBytes(thousandTrianglesAndTwoSpheres()), 278912u);
+}
+
+TEST(GeometryMemory, RefusesOneByteShortWithTheBytesAndTheLimit) {
+  const SceneDescription d = thousandTrianglesAndTwoSpheres();
+  EXPECT_NO_THROW(checkGeometryFits(d, {278912, "test"}));
+  try {
+    checkGeometryFits(d, {278911, "--memory-limit"});
+    FAIL() << "not refused";
+  } catch (const ResourceLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "the scene's geometry (1000 triangles) needs 272.4 KiB (278912 bytes); the "
+                 "memory limit is 272.4 KiB (278911 bytes, --memory-limit): simplify the meshes");
+  }
+}
+
+}  // namespace
+}  // namespace prism
