@@ -89,6 +89,7 @@ void TileDispatcher::startLocalWorkers() {
 }
 
 void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
+  std::vector<std::vector<std::vector<uint8_t>>> slaveJobs(static_cast<size_t>(link_.ranks()));
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (frame_) reissuedBefore_ += frame_->scheduler.reissuedCount();
@@ -100,7 +101,12 @@ void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
       if (link_.rank(r).threads > 0) s.threads = link_.rank(r).threads;
       if (s.retired) frame_->scheduler.retire(r);
     }
+    // The slaves' first jobs are taken before rank 0's render threads can see the frame: their
+    // round trip overlaps rank 0's first tiles, and even a frame rank 0 could finish alone
+    // in a moment reaches every slave.
+    for (int r = 1; r < link_.ranks(); ++r) slaveJobs[static_cast<size_t>(r)] = jobsForLocked(r);
   }
+  for (int r = 1; r < link_.ranks(); ++r) sendJobs(r, slaveJobs[static_cast<size_t>(r)]);
   changed_.notify_all();
 }
 
@@ -166,36 +172,46 @@ void TileDispatcher::wake() {
   link_.wake();
 }
 
+std::vector<std::vector<uint8_t>> TileDispatcher::jobsForLocked(int rank) {
+  std::vector<std::vector<uint8_t>> outgoing;
+  Frame* frame = frame_.get();
+  if (!frame || frame->complete() || frame->scheduler.retired(rank)) return outgoing;
+  const FramePlan& plan = frame->plan;
+  // prefetch tiles per render thread: a slave of T threads renders T tiles at once, and
+  // with a fixed count per slave most of a many-threaded rank's threads would idle.
+  const size_t inFlight = static_cast<size_t>(options_.prefetch) *
+                          static_cast<size_t>(std::max(1, link_.rank(rank).threads));
+  while (frame->scheduler.outstanding(rank) < inFlight) {
+    const auto tile = frame->scheduler.next(rank, now());
+    if (!tile) break;
+    if (plan.view && !frame->viewSent[rank]) {
+      outgoing.push_back(wire::encodeView({plan.frame, *plan.view}));
+      frame->viewSent[rank] = true;
+    }
+    outgoing.push_back(wire::encodeTileJob(
+        tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
+    if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
+  }
+  return outgoing;
+}
+
+void TileDispatcher::sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs) {
+  for (std::vector<uint8_t>& bytes : jobs) {
+    if (!link_.send(rank, std::move(bytes))) {
+      retireRank(rank);  // the transport knows it is gone: its tiles go back at once
+      return;
+    }
+  }
+}
+
 void TileDispatcher::feedSlaves() {
   for (int rank = 1; rank < link_.ranks(); ++rank) {
-    std::vector<std::vector<uint8_t>> outgoing;
+    std::vector<std::vector<uint8_t>> jobs;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      Frame* frame = frame_.get();
-      if (!frame || frame->complete() || frame->scheduler.retired(rank)) continue;
-      const FramePlan& plan = frame->plan;
-      // prefetch tiles per render thread: a slave of T threads renders T tiles at once, and
-      // with a fixed count per slave most of a many-threaded rank's threads would idle.
-      const size_t inFlight = static_cast<size_t>(options_.prefetch) *
-                              static_cast<size_t>(std::max(1, link_.rank(rank).threads));
-      while (frame->scheduler.outstanding(rank) < inFlight) {
-        const auto tile = frame->scheduler.next(rank, now());
-        if (!tile) break;
-        if (plan.view && !frame->viewSent[rank]) {
-          outgoing.push_back(wire::encodeView({plan.frame, *plan.view}));
-          frame->viewSent[rank] = true;
-        }
-        outgoing.push_back(wire::encodeTileJob(
-            tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
-        if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
-      }
+      jobs = jobsForLocked(rank);
     }
-    for (std::vector<uint8_t>& bytes : outgoing) {
-      if (!link_.send(rank, std::move(bytes))) {
-        retireRank(rank);  // the transport knows it is gone: its tiles go back at once
-        break;
-      }
-    }
+    sendJobs(rank, jobs);
   }
 }
 

@@ -74,7 +74,8 @@ class TileDispatcher {
   // Starts rank 0's render threads; they take tiles of whatever frame is current.
   void startLocalWorkers();
   // Makes plan the current frame; the one before is ended (its tiles left are dropped, its late
-  // results are stale).
+  // results are stale). Called by the coordinating thread: it sends the slaves their first jobs
+  // before rank 0's render threads take any tile.
   void beginFrame(FramePlan plan, FrameListener* listener);
   // Ends `frame` now if it is still the current one: no more of its tiles are handed out. A frame
   // begun since is left alone, so a caller on another thread cannot end a newer frame by mistake.
@@ -109,6 +110,10 @@ class TileDispatcher {
   std::optional<TileJob> nextLocalJob();
   void accept(uint32_t frame, TileResult&& tile, int rank);
   void feedSlaves();
+  // Up to its prefetch, the current frame's next jobs for a slave, encoded (mutex_ held).
+  std::vector<std::vector<uint8_t>> jobsForLocked(int rank);
+  // Sends them; a refused send retires the slave.
+  void sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs);
   void route(const SlaveMessage& message);
   void retireRank(int rank);
   double now() const { return secondsSince(start_); }
