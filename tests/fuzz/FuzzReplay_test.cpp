@@ -90,8 +90,10 @@ INSTANTIATE_TEST_SUITE_P(Harnesses, FuzzReplay, testing::ValuesIn(harnesses()),
 // The wire harness must reach the payload decoders, not only the envelope check.
 TEST(WireHarness, TypeBytePlusValidPayloadIsAccepted) {
   wire::ByteWriter payload;
-  payload.writeF64(0.5);  // Ready: build seconds, threads
+  payload.writeF64(0.5);  // Ready: build seconds, threads, start seconds, MPI_Init seconds
   payload.writeI32(4);
+  payload.writeF64(0.25);
+  payload.writeF64(0.125);
   std::vector<uint8_t> input = {static_cast<uint8_t>(wire::MessageType::Ready)};
   input.insert(input.end(), payload.bytes().begin(), payload.bytes().end());
   EXPECT_EQ(fuzzWire(input.data(), input.size()), Outcome::Accepted);
