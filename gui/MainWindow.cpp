@@ -13,6 +13,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QRadioButton>
+#include <QScreen>
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QSplitter>
@@ -295,6 +296,20 @@ void MainWindow::buildMenus() {
   connect(tilesAction_, &QAction::toggled, view_, &FrameView::setShowTiles);
   QAction* help = viewMenu->addAction("&Keys (h, F1)");
   connect(help, &QAction::triggered, this, [this] { view_->setShowHelp(!view_->showHelp()); });
+}
+
+void MainWindow::fitToScreen(const QSize& preferred) {
+  const QScreen* screen = this->screen() ? this->screen() : QGuiApplication::primaryScreen();
+  if (!screen) {
+    resize(preferred);
+    return;
+  }
+  const QRect area = screen->availableGeometry();
+  // The title bar and borders are not known before the window is shown: leave them room.
+  const QSize room(area.width() * 96 / 100, area.height() * 90 / 100);
+  const QSize size = preferred.boundedTo(room).expandedTo(minimumSizeHint());
+  resize(size);
+  move(area.center() - QPoint(size.width() / 2, size.height() / 2));
 }
 
 void MainWindow::startRendering() {

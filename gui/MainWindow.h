@@ -43,6 +43,11 @@ class MainWindow : public QMainWindow {
   // Asks for the first view (the scene's camera); call once the renderer runs.
   void startRendering();
 
+  // Sizes the window to `preferred` where the screen it opens on has room, else to the room
+  // there is (on a 1280x800 screen the side panel stays on screen), and centres it there.
+  // The frame keeps its aspect ratio inside whatever the view gets (FrameView::imageRect).
+  void fitToScreen(const QSize& preferred);
+
   // Saves the current image (PNG tone-mapped, EXR linear); throws std::runtime_error.
   void saveImage(const QString& path) const;
   // Loads a speedup CSV into the chart; returns an error message, empty on success.

@@ -210,7 +210,7 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
       QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
     }
   });
-  window.resize(1600, 900);
+  window.fitToScreen(QSize(1600, 900));
   window.show();
   window.startRendering();
   app.exec();

@@ -8,6 +8,7 @@
 #include <QCheckBox>
 #include <QElapsedTimer>
 #include <QRadioButton>
+#include <QScreen>
 #include <QSpinBox>
 #include <QTableWidget>
 #include <QTest>
@@ -182,6 +183,28 @@ TEST(MainWindow, NormalsViewShowsTheNormalAndBack) {
   for (const Color& c : w.frame().image().pixels) ASSERT_EQ(c, Color(0.5f, 1.0f, 0.5f));
   QTest::keyClicks(w.frameView(), "n");
   EXPECT_EQ(w.viewSettings().debugView, DebugView::Image);
+}
+
+TEST(MainWindow, OpensWithinTheScreenAndAtThePreferredSizeWhereItFits) {
+  const SceneDescription d = loadScene(kPlaneScene);
+  MainWindow window(d, "test", [](const ViewSettings&) {});
+  const QScreen* screen = window.screen();
+  ASSERT_NE(screen, nullptr);
+  const QRect area = screen->availableGeometry();
+  // Wider and taller than the screen (the offscreen platform's is 800x600): fitted, centred.
+  window.fitToScreen(area.size() * 2);
+  window.show();
+  QApplication::processEvents();
+  EXPECT_LE(window.width(), area.width());
+  EXPECT_LE(window.height(), area.height());
+  EXPECT_TRUE(area.contains(window.geometry()))
+      << window.geometry().x() << "," << window.geometry().y();
+  // What fits is taken as asked.
+  const QSize small = window.minimumSizeHint().expandedTo(QSize(720, 480));
+  ASSERT_LE(small.width(), area.width());
+  window.fitToScreen(small);
+  QApplication::processEvents();
+  EXPECT_EQ(window.size(), small);
 }
 
 TEST(MainWindow, StaleTilesAreIgnored) {
