@@ -115,6 +115,25 @@ TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTh
   EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
 }
 
+// On one machine with no layer chosen, MpiSession names ob1 before MPI_Init, so Open MPI
+// neither opens nor probes UCX (docs/distributed.md: about 0.2 s of every job's start).
+TEST_F(DistributedRender, OnOneMachineOb1IsChosenWithoutProbingOtherLayers) {
+  const test::ProcessRun run = test::runPrismMpi(2, "render " + kScene + " -o " + path("ob1.exr"),
+                                                 "--mca pml_base_verbose 10");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("select: component ob1 selected"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("pml component ucx"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("pml component cm"), std::string::npos) << run.output;
+}
+
+// A layer the user names wins over that choice (here UCX, whether or not it can start).
+TEST_F(DistributedRender, ALayerTheUserNamesIsNotOverridden) {
+  const test::ProcessRun run = test::runPrismMpi(2, "render " + kScene + " -o " + path("ucx.exr"),
+                                                 "--mca pml_base_verbose 10 --mca pml ucx");
+  EXPECT_NE(run.output.find("initializing pml component ucx"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("initializing pml component ob1"), std::string::npos) << run.output;
+}
+
 // ---- uneven nodes: ranks with different thread counts and speeds ---------------------------
 
 struct RankLine {
