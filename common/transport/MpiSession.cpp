@@ -18,13 +18,13 @@ namespace prism {
 namespace {
 
 constexpr int kMessageTag = 7;
-// Where a wait cannot sleep until a sender rings, MPI is probed this often. Each probe runs
-// MPI's progress engine; a millisecond keeps a waiting rank from taking measurable time from the
-// render threads on its core, and is short against a tile's render time.
+// A waiting rank probes MPI at least this often, rung or not. Each probe runs MPI's progress
+// engine (a large message needs both sides' progress). A millisecond keeps a waiting rank from
+// taking measurable time from the render threads on its core. Sleeping until rung alone was
+// measured and not kept: under other load on the machine the ranks then got a smaller share
+// of the cores (a 2-rank render 3.6-4.2 s instead of 2.8-3.0 s beside two busy loops;
+// docs/distributed.md, "Waiting for messages").
 constexpr double kProbeIntervalSeconds = 0.001;
-// How long a rank keeps probing after a ring that brought no message (a sender probes at least
-// every probe interval while its send is in flight, so its message is out well within this).
-constexpr auto kRingGrace = std::chrono::milliseconds(20);
 
 using Clock = SteadyClock;
 
@@ -81,8 +81,8 @@ MpiSession::MpiSession(int* argc, char*** argv) {
 }
 
 // Each rank binds a doorbell named after the job and its rank; the ranks on one machine learn
-// each other's names. Waits sleep until rung only where every rank this one exchanges messages
-// with (rank 0: all; a slave: rank 0) can ring it, and only if every bell on the machine bound.
+// each other's names and ring them, provided every bell on the machine bound. Ranks on other
+// machines cannot ring: their messages are found by the probe every millisecond.
 void MpiSession::setUpDoorbells() {
   peerDoorbells_.assign(static_cast<size_t>(size_), std::string());
   MPI_Comm node = MPI_COMM_NULL;
@@ -114,7 +114,7 @@ void MpiSession::setUpDoorbells() {
   for (int r : ranksHere) {
     if (r != rank_) peerDoorbells_[static_cast<size_t>(r)] = bellName(r);
   }
-  eventDriven_ = rank_ == 0 ? nodeSize == size_ : !peerDoorbells_[0].empty();
+  rungByPeers_ = rank_ == 0 ? nodeSize == size_ : !peerDoorbells_[0].empty();
 }
 
 void MpiSession::ring(int dest) const {
@@ -170,7 +170,6 @@ bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   int done = 0;
   MPI_Test(&pending->request, &done, MPI_STATUS_IGNORE);
   if (!done) pendingSends_.push_back(std::move(pending));
-  pendingCount_ = pendingSends_.size();
   ring(dest);
   return true;
 }
@@ -188,7 +187,6 @@ size_t MpiSession::progressSends() {
     ring((*it)->dest);
     it = pendingSends_.erase(it);
   }
-  pendingCount_ = pendingSends_.size();
   return pendingSends_.size();
 }
 
@@ -201,14 +199,7 @@ std::optional<IncomingMessage> MpiSession::poll() {
   // this rank's queue only now is seen by a second probe. (Probing every millisecond hid this;
   // a rank woken by a ring must see the message the ring announced.)
   if (!arrived) MPI_Iprobe(MPI_ANY_SOURCE, kMessageTag, MPI_COMM_WORLD, &arrived, &status);
-  if (!arrived) {
-    // Rung, yet nothing here: the sender's MPI has not put the message out yet (a large one
-    // goes out as its sender makes progress). Look again every probe interval for a while.
-    if (ringUnanswered_) lookAgainUntil_ = Clock::now() + kRingGrace;
-    ringUnanswered_ = false;
-    return std::nullopt;
-  }
-  ringUnanswered_ = false;
+  if (!arrived) return std::nullopt;
   int count = 0;
   MPI_Get_count(&status, MPI_BYTE, &count);
   IncomingMessage message;
@@ -236,14 +227,9 @@ void MpiSession::awaitActivity(double timeoutSeconds) {
 }
 
 Doorbell::Heard MpiSession::sleepFor(double seconds) {
-  // Until rung where peers ring; in probe intervals where they cannot, while a send of this
-  // rank's is in flight (it may need this rank's progress), or just after a ring that brought
-  // nothing yet.
-  const bool untilRung = eventDriven_ && pendingCount_ == 0 && Clock::now() >= lookAgainUntil_;
-  const Doorbell::Heard heard =
-      doorbell_->wait(untilRung ? seconds : std::min(seconds, kProbeIntervalSeconds));
-  if (heard == Doorbell::Heard::Peer) ringUnanswered_ = true;
-  return heard;
+  // A ring (a peer's message, or wake()) ends the sleep at once: no message waits for the
+  // probe interval where peers can ring.
+  return doorbell_->wait(std::min(seconds, kProbeIntervalSeconds));
 }
 
 void MpiSession::wake() {

@@ -3,7 +3,6 @@
 // loads only when an MPI launcher started it (transport/MpiModule.h).
 #pragma once
 
-#include <atomic>
 #include <list>
 #include <memory>
 #include <string>
@@ -11,7 +10,6 @@
 
 #include "transport/Doorbell.h"
 #include "transport/Transport.h"
-#include "util/Stopwatch.h"
 
 namespace prism {
 
@@ -42,11 +40,10 @@ class MpiSession final : public Transport {
   std::optional<IncomingMessage> poll() override;
   // Waits up to timeoutSeconds for a message from any rank, or until wake().
   std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) override;
-  // Sleeps until a peer rings this rank's doorbell when every rank it talks to is on this
-  // machine; otherwise (or while a send of its own is in flight) looks again within 1 ms.
+  // Sleeps until a peer rings this rank's doorbell or 1 ms passes (then the caller probes).
   void awaitActivity(double timeoutSeconds) override;
   void wake() override;
-  bool wakesOnMessage() const override { return eventDriven_; }
+  bool wakesOnMessage() const override { return rungByPeers_; }
 
   // Ends every process of the job (MPI_Abort) after the caller has printed why.
   [[noreturn]] void abortJob(int exitCode) override;
@@ -61,14 +58,9 @@ class MpiSession final : public Transport {
   int size_ = 1;
   double initSeconds_ = 0.0;  // MPI_Init_thread
   std::list<std::unique_ptr<PendingSend>> pendingSends_;
-  std::atomic<size_t> pendingCount_{0};  // pendingSends_.size(), read by awaitActivity()
   std::unique_ptr<Doorbell> doorbell_;
   std::vector<std::string> peerDoorbells_;  // by rank; empty for ranks on other machines
-  bool eventDriven_ = false;
-  // The waiting thread's own: a peer rang since the last poll, and until when to keep probing
-  // after a ring that brought nothing.
-  bool ringUnanswered_ = false;
-  SteadyClock::time_point lookAgainUntil_{};
+  bool rungByPeers_ = false;                // every rank this one waits for can ring it
 };
 
 }  // namespace prism
