@@ -14,7 +14,8 @@ namespace {
 
 // How rank 0 waits for messages (docs/distributed.md, "Waiting for messages").
 const char* linkWaits(const LinkMeasurement& link) {
-  return link.wakesOnMessage ? "waits woken by the sender" : "waits probe every 1 ms";
+  return link.wakesOnMessage ? "waits woken by the sender (and a probe every 1 ms)"
+                             : "waits probe every 1 ms";
 }
 
 std::string joinBusy(const std::vector<double>& busy, const char* separator, double scale,

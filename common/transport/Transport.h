@@ -49,14 +49,14 @@ class Transport {
   virtual std::optional<IncomingMessage> waitForMessage(double timeoutSeconds) = 0;
 
   // Sleeps until a message may have arrived (poll() tells), wake() is called, or timeoutSeconds
-  // pass. Calls nothing that must be serialised, so another thread may use the transport
-  // meanwhile (a slave's heartbeat). Waits are driven by the senders where the transport can
-  // be (MpiSession on one machine); elsewhere they poll.
+  // pass; it may return early (MpiSession: after at most 1 ms, for a probe). Calls nothing that
+  // must be serialised, so another thread may use the transport meanwhile (a slave's
+  // heartbeat).
   virtual void awaitActivity(double timeoutSeconds) = 0;
   // Ends a waitForMessage() or awaitActivity() in progress, or the next one, at once. Safe from
   // any thread: how local events (a finished tile, a stop) reach a thread waiting for messages.
   virtual void wake() = 0;
-  // Whether this rank's waits sleep until a sender wakes them (rather than poll).
+  // Whether a sender's message ends this rank's wait at once (rather than at the next probe).
   virtual bool wakesOnMessage() const = 0;
 
   // Ends every process of the job after the caller has printed why.
