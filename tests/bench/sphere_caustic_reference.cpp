@@ -22,7 +22,8 @@
 // light's height above the plane) — the relative RMSE ‖x − r‖₂/‖r‖₂ of the channel mean, the
 // same over the regular part (the region without the pixels within 2 of a pixel whose
 // reference differs from a 4-neighbour's by more than 25 %: the focus, folds and edges), and the
-// flux ratio Σx/Σr over the region.
+// flux ratio Σx/Σr over the region; and the RMSE and flux ratio over the part of the region the
+// camera sees directly, not through the ball (there pixel sums are proportional to flux).
 //
 // usage: prism_sphere_caustic_reference SCENE --out REF.exr [--rays N] [--samples S]
 //                                        [--bins-per-pixel B] [--threads T]
@@ -456,11 +457,27 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
           if (X >= 0 && Y >= 0 && X < W && Y < H && steep[static_cast<size_t>(Y) * W + X])
             singular[static_cast<size_t>(y) * W + xx] = 1;
         }
-  double e2 = 0, r2 = 0, re2 = 0, rr2 = 0, sx = 0, sr = 0;
+  // Pixels that see the plane directly (not through the ball), where pixel sums are flux.
+  const Eye eye(w);
+  std::vector<char> seenDirectly(r.size(), 0);
+  for (int y = 0; y < H; ++y)
+    for (int xx = 0; xx < W; ++xx) {
+      D3 o, d;
+      eye.ray(w, xx + 0.5, y + 0.5, o, d);
+      const double ts = hitSphere(w, o, d, 1e-9), tp = hitPlane(w, o, d);
+      seenDirectly[static_cast<size_t>(y) * W + xx] = tp > 0.0 && !(ts > 0.0 && ts < tp);
+    }
+  double e2 = 0, r2 = 0, re2 = 0, rr2 = 0, sx = 0, sr = 0, de2 = 0, dr2 = 0, dsx = 0, dsr = 0;
   long region = 0, regular = 0;
   for (size_t i = 0; i < r.size(); ++i) {
     if (!(r[i] > threshold)) continue;
     ++region;
+    if (seenDirectly[i]) {
+      de2 += (x[i] - r[i]) * (x[i] - r[i]);
+      dr2 += r[i] * r[i];
+      dsx += x[i];
+      dsr += r[i];
+    }
     e2 += (x[i] - r[i]) * (x[i] - r[i]);
     r2 += r[i] * r[i];
     sx += x[i];
@@ -480,8 +497,11 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
       }
     prism::writeImage(both, pngPrefix + ".png", exposure);
   }
-  std::printf("region_px %ld regular_px %ld rel_rmse %.5f rel_rmse_regular %.5f flux_ratio %.5f\n",
-              region, regular, std::sqrt(e2 / r2), std::sqrt(re2 / rr2), sx / sr);
+  std::printf(
+      "region_px %ld regular_px %ld rel_rmse %.5f rel_rmse_regular %.5f flux_ratio %.5f "
+      "direct_rel_rmse %.5f direct_flux_ratio %.5f\n",
+      region, regular, std::sqrt(e2 / r2), std::sqrt(re2 / rr2), sx / sr, std::sqrt(de2 / dr2),
+      dsx / dsr);
   return 0;
 }
 

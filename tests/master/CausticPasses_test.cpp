@@ -182,9 +182,13 @@ SceneDescription mixedCausticScene(bool progressive) {
   return d;
 }
 
+// Classic, progressive with per-photon radii (found on each rank's threads), and progressive
+// with the scene's one fixed radius.
 TEST(CausticPasses, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
-  for (bool progressive : {false, true}) {
-    const SceneDescription d = mixedCausticScene(progressive);
+  for (const auto& [progressive, fixedRadius] :
+       {std::pair{false, 0.0f}, std::pair{true, 0.0f}, std::pair{true, 0.08f}}) {
+    SceneDescription d = mixedCausticScene(progressive);
+    d.caustics.radius = fixedRadius;
     const CausticFrame reference = render(d, 1, 8);
     EXPECT_GT(reference.caustics.trace.stored, 1000u);
     for (const auto& [threads, tile] : {std::pair{2, 5}, std::pair{3, 16}, std::pair{4, 64}}) {
