@@ -497,11 +497,22 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
       }
     prism::writeImage(both, pngPrefix + ".png", exposure);
   }
+  // The focus: the reference's brightest pixel, and the 9 × 9 pixels around it.
+  const size_t peak = static_cast<size_t>(std::max_element(r.begin(), r.end()) - r.begin());
+  double fx = 0, fr = 0;
+  for (int dy = -4; dy <= 4; ++dy)
+    for (int dx = -4; dx <= 4; ++dx) {
+      const int X = static_cast<int>(peak % W) + dx, Y = static_cast<int>(peak / W) + dy;
+      if (X < 0 || Y < 0 || X >= W || Y >= H) continue;
+      fx += x[static_cast<size_t>(Y) * W + X];
+      fr += r[static_cast<size_t>(Y) * W + X];
+    }
   std::printf(
       "region_px %ld regular_px %ld rel_rmse %.5f rel_rmse_regular %.5f flux_ratio %.5f "
-      "direct_rel_rmse %.5f direct_flux_ratio %.5f\n",
+      "direct_rel_rmse %.5f direct_flux_ratio %.5f peak_ref %.5g peak_ratio %.4f "
+      "focus9_ratio %.4f\n",
       region, regular, std::sqrt(e2 / r2), std::sqrt(re2 / rr2), sx / sr, std::sqrt(de2 / dr2),
-      dsx / dsr);
+      dsx / dsr, r[peak], x[peak] / r[peak], fx / fr);
   return 0;
 }
 
