@@ -299,6 +299,61 @@ std::vector<PlaneGrid> makeGrids(const World& w, const Eye& eye, int binsPerPixe
     }
     grids.push_back(gridOver(w, lo[level], hi[level], footprint / binsPerPixel));
   }
+  // The caustic's core: where the light through the ball lands (a coarse grid of light rays in
+  // and out of the ball), within the direct view, binned at the finest footprint seen there, so
+  // a focus is resolved however wide the view.
+  std::vector<double> us, vs;
+  const D3 axis = normalize(w.centre - w.light), toCentre = w.centre - w.light;
+  const double cosMax = std::sqrt(1.0 - w.radius * w.radius / dot(toCentre, toCentre));
+  const D3 a =
+      normalize(std::abs(axis[0]) < 0.9 ? cross(axis, D3{1, 0, 0}) : cross(axis, D3{0, 1, 0}));
+  const D3 b = cross(axis, a);
+  for (int i = 0; i < 256; ++i) {
+    for (int j = 0; j < 512; ++j) {
+      const double cosT = 1.0 - (i + 0.5) / 256 * (1.0 - cosMax),
+                   phi = 2.0 * M_PI * (j + 0.5) / 512;
+      const double sinT = std::sqrt(1.0 - cosT * cosT);
+      const D3 d = cosT * axis + (sinT * std::cos(phi)) * a + (sinT * std::sin(phi)) * b;
+      const double ts = hitSphere(w, w.light, d, 1e-9);
+      if (!(ts > 0.0)) continue;
+      const D3 p = w.light + ts * d;
+      const Split sp = split(w, d, p);
+      if (!(sp.transmit > 0.0)) continue;
+      const D3 q = p + hitSphere(w, p, sp.refracted, 1e-9) * sp.refracted;
+      const Split out = split(w, sp.refracted, q);
+      if (!(out.transmit > 0.0)) continue;
+      const double tp = hitPlane(w, q, out.refracted);
+      if (!(tp > 0.0)) continue;
+      const D3 x = q + tp * out.refracted;
+      us.push_back(dot(x - w.planePoint, axes.u));
+      vs.push_back(dot(x - w.planePoint, axes.v));
+    }
+  }
+  // Two nested grids: the 1st..99th percentiles of where it lands, at the finest footprint seen
+  // there; and the central half, where a focus lies, twice as fine.
+  if (us.size() > 100) {
+    std::sort(us.begin(), us.end());
+    std::sort(vs.begin(), vs.end());
+    for (const auto& [tail, fineness] : {std::pair{100, 1}, std::pair{4, 2}}) {
+      const size_t q0 = us.size() / tail, q1 = us.size() - 1 - us.size() / tail;
+      const double pad = 0.05 * std::max(us[q1] - us[q0], vs[q1] - vs[q0]);
+      double clo[2] = {std::max(lo[0][0], us[q0] - pad), std::max(lo[0][1], vs[q0] - pad)};
+      double chi[2] = {std::min(hi[0][0], us[q1] + pad), std::min(hi[0][1], vs[q1] + pad)};
+      std::vector<double> f;
+      for (const Sample& s : samples[0]) {
+        const double pu = dot(s.p - w.planePoint, axes.u), pv = dot(s.p - w.planePoint, axes.v);
+        if (pu >= clo[0] && pu <= chi[0] && pv >= clo[1] && pv <= chi[1]) f.push_back(s.footprint);
+      }
+      if (clo[0] < chi[0] && clo[1] < chi[1] && !f.empty()) {
+        std::nth_element(f.begin(), f.begin() + f.size() / 20, f.end());
+        grids.push_back(gridOver(w, clo, chi, f[f.size() / 20] / (binsPerPixel * fineness)));
+      }
+    }
+  }
+  // Coarsest first: the first grid counts the flux that lands outside every grid, lookups take
+  // the finest grid that holds the point.
+  std::stable_sort(grids.begin(), grids.end(),
+                   [](const PlaneGrid& x, const PlaneGrid& y) { return x.bin > y.bin; });
   for (const PlaneGrid& g : grids)
     std::fprintf(stderr, "plane grid %d x %d bins of %.5g\n", g.nu, g.nv, g.bin);
   return grids;
@@ -507,6 +562,16 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
       fx += x[static_cast<size_t>(Y) * W + X];
       fr += r[static_cast<size_t>(Y) * W + X];
     }
+  if (std::getenv("PRINT_FOCUS")) {  // the 7 × 7 pixels around the reference's peak
+    for (int dy = -3; dy <= 3; ++dy) {
+      for (int dx = -3; dx <= 3; ++dx) {
+        const size_t i = static_cast<size_t>(static_cast<int>(peak / W) + dy) * W +
+                         static_cast<size_t>(static_cast<int>(peak % W) + dx);
+        std::printf("%6.0f/%-6.0f ", r[i], x[i]);
+      }
+      std::printf("\n");
+    }
+  }
   std::printf(
       "region_px %ld regular_px %ld rel_rmse %.5f rel_rmse_regular %.5f flux_ratio %.5f "
       "direct_rel_rmse %.5f direct_flux_ratio %.5f peak_ref %.5g peak_ratio %.4f "
