@@ -30,6 +30,8 @@
 //        prism_sphere_caustic_reference --reference REF.exr --score IMAGE.exr --direct D.exr
 //                                        [--scene SCENE] [--region F] [--png PREFIX]
 // --png writes PREFIX.png: the reference (left) and the render's caustic (right), exposure 0.3.
+//        prism_sphere_caustic_reference --reference REF.exr --direct D.exr --compose FULL.exr
+// writes D + REF: a whole reference image for `prism sweep --reference FULL.exr`.
 // The scene must hold one sphere (the caster), one plane (the receiver), one point light.
 #include <algorithm>
 #include <array>
@@ -584,7 +586,7 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene, out, reference, image, direct, png;
+  std::string scene, out, reference, image, direct, png, compose;
   long rays = 200000000;
   int samples = 8, binsPerPixel = 2;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -617,6 +619,8 @@ int main(int argc, char** argv) {
       region = std::stod(next());
     else if (a == "--png")
       png = next();
+    else if (a == "--compose")
+      compose = next();
     else if (scene.empty() && a[0] != '-')
       scene = a;
     else {
@@ -625,6 +629,15 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    if (!compose.empty()) {  // direct light plus the exact caustic: a whole reference image
+      prism::ImageRgb full = prism::readImage(reference);
+      const prism::ImageRgb d = prism::readImage(direct);
+      if (d.width != full.width || d.height != full.height)
+        throw std::runtime_error("image sizes differ from the reference");
+      for (size_t i = 0; i < full.pixels.size(); ++i) full.pixels[i] += d.pixels[i];
+      prism::writeImage(full, compose);
+      return 0;
+    }
     if (!image.empty())
       return score(reference, image, direct, scene, region, png,
                    static_cast<float>(
