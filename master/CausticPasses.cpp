@@ -139,7 +139,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
     addPhotonStats(stats, sent);
     stats.firstRadius = stats.lastRadius = maxRadius;
     auto pass = std::make_shared<const RenderPass>(
-        RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
+        RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather, threads)});
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
     out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
@@ -158,7 +158,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
   }
   ImageRgb causticSum(direct.image.width, direct.image.height);
   const auto causticStart = SteadyClock::now();
-  float radius = settings.radius;
+  PhotonGatherSettings gather;
   int done = 0;
   for (int i = 1; i <= settings.passes; ++i) {
     if (i > 1 && settings.timeBudgetSeconds > 0.0 &&
@@ -172,19 +172,16 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
     }
     const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
     const auto map = photonPass(static_cast<uint32_t>(i), label);
-    if (i == 1) {
-      if (!(radius > 0.0f)) radius = automaticProgressiveRadius(*map, settings.gather, maxRadius);
-      stats.firstRadius = radius;
-    } else {
-      radius = nextProgressiveRadius(radius, i, settings.alpha);
-    }
-    stats.lastRadius = radius;
-    const PhotonGatherSettings gather{true, settings.gather, radius, settings.filter};
+    gather = progressiveGather(settings, maxRadius, i, gather);
+    // Per-photon radii: the cap, scaled as the radii are.
+    if (i == 1) stats.firstRadius = gather.radius * gather.radiusScale;
+    stats.lastRadius = gather.radius * gather.radiusScale;
     PhotonPassStats sent;
     sendPhotonMap(*map, static_cast<uint32_t>(i), gather, link, sent);
     addPhotonStats(stats, sent);
-    auto pass = std::make_shared<const RenderPass>(RenderPass{
-        static_cast<uint32_t>(i), false, std::make_shared<const PhotonGather>(map, gather)});
+    auto pass = std::make_shared<const RenderPass>(
+        RenderPass{static_cast<uint32_t>(i), false,
+                   std::make_shared<const PhotonGather>(map, gather, threads)});
     FrameResult f = frame(pass, label);
     if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
       out.frames.interrupted = true;

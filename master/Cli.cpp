@@ -345,8 +345,7 @@ void addSweepCommand(CLI::App& app, SweepOptions& o) {
       ->check(CLI::Range(limits::kPhotons.min, limits::kPhotons.max));
   sweep
       ->add_option("--reference-k", o.reference.k,
-                   "Progressive reference: photons whose mean distance sets the first radius "
-                   "(default 5)")
+                   "Progressive reference: the k of its per-photon k-NN radii (default 5)")
       ->check(CLI::Range(limits::kGather.min, limits::kGather.max));
   sweep->add_flag("--refresh-reference", o.reference.refresh,
                   "Render the progressive reference again even when the cached one matches");

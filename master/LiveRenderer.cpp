@@ -188,12 +188,9 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
   }
   PhotonPassStats p;
   auto map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p);
-  const float radius =
-      plan.index == 1
-          ? (c.radius > 0.0f ? c.radius : automaticProgressiveRadius(*map, c.gather, maxRadius_))
-          : nextProgressiveRadius(radius_, plan.index, c.alpha);
-  radius_ = radius;
-  const PhotonGatherSettings gather{true, c.gather, radius, c.filter};
+  const PhotonGatherSettings gather =
+      progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
+  gather_ = gather;
   sendPhotonMap(*map, plan.frame, gather, link_, p);
 
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -207,10 +204,11 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     s.buildSeconds = p.buildSeconds;
     s.distributeSeconds = p.distributeSeconds;
     s.photonsPerSecond = static_cast<double>(p.trace.emitted) / std::max(p.traceSeconds, 1e-6);
-    s.radius = radius;
+    s.radius = gather.radius * gather.radiusScale;  // per-photon radii: their cap
   }
-  return std::make_shared<const RenderPass>(
-      RenderPass{plan.frame, true, std::make_shared<const PhotonGather>(std::move(map), gather)});
+  return std::make_shared<const RenderPass>(RenderPass{
+      plan.frame, true,
+      std::make_shared<const PhotonGather>(std::move(map), gather, dispatcher_.localThreads())});
 }
 
 void LiveRenderer::tileAssigned(uint32_t frame, uint32_t tile, int rank) {

@@ -14,12 +14,11 @@
 // depend on the camera.
 //
 // With photon-mapped caustics on, every full-resolution pass i first traces a photon pass of
-// its own (master/PhotonPass.h, across the ranks) and gathers from it with the progressive
-// fixed radius r_i: r_1 from the scene's caustics.radius or, when that is 0,
-// automaticProgressiveRadius of pass 1's map; r²(i+1) = r²(i)·(i + α)/(i + 1). So the average
-// of passes 1..N that the window shows is progressive photon mapping with N passes (Knaus &
-// Zwicker 2011). Pass 1 with caustics is therefore not `prism render`'s k-NN image: it is a
-// single progressive pass, direct light plus the fixed-radius estimate of one photon map. The
+// its own (master/PhotonPass.h, across the ranks) and gathers from it as progressiveGather
+// (caustics/GatherRadius.h) says: per-photon k-NN radii shrunk by r²(i+1) = r²(i)·(i + α)/(i + 1),
+// or the scene's fixed caustics.radius shrunk the same way. So the average of passes 1..N that
+// the window shows is progressive photon mapping with N passes, as `prism render --progressive`
+// computes it; with per-photon radii pass 1 is `prism render`'s classic estimate. The
 // photon pass number (which keys the photon streams and names the map on the wire) is the
 // pass's frame id, so it is unique per pass. The preview pass renders no photon caustics.
 //
@@ -45,6 +44,7 @@
 #include <vector>
 
 #include "caustics/CausticMapEstimator.h"
+#include "caustics/PhotonGatherSettings.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/DistributionOptions.h"
 #include "master/SlaveLink.h"
@@ -200,7 +200,7 @@ class LiveRenderer final : private FrameListener {
   std::unique_ptr<PhotonTracer> tracer_;  // planned for tracerBudget_ photons per pass
   uint64_t tracerBudget_ = 0;
   float maxRadius_;
-  float radius_ = 0.0f;  // the last photon pass's gather radius, for the next one's
+  PhotonGatherSettings gather_;  // the last photon pass's gather, for the next one's
 
   std::mutex mapsMutex_;  // guards the two below; mutex_ is never taken while holding it
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;

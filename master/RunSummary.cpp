@@ -95,10 +95,13 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
       << " %), " << sizeof(Photon) << " B per photon, map "
       << formatBytes(static_cast<double>(c.mapBytes)) << "\n"
       << "          ";
-  if (c.progressive) {
+  if (c.progressive && c.settings.radius > 0.0f) {
     out << "gather radius " << fixed(c.firstRadius, 4) << " -> " << fixed(c.lastRadius, 4);
+  } else if (c.progressive) {
+    out << "each photon over its " << c.k << "-NN radius within " << fixed(c.firstRadius, 4)
+        << ", shrunk to " << fixed(c.lastRadius, 4);
   } else {
-    out << "gather " << c.k << " nearest within " << fixed(c.firstRadius, 4);
+    out << "each photon over its " << c.k << "-NN radius within " << fixed(c.firstRadius, 4);
   }
   out << "; trace " << milliseconds(c.traceSeconds) << ", kd-tree " << milliseconds(c.buildSeconds);
   if (c.sentBytes > 0) {

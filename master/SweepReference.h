@@ -28,8 +28,9 @@ struct ReferenceRequest {
   std::string spec = "auto";   // auto | analytic | progressive | an image file
   int passes = 64;             // progressive
   uint64_t photons = 1000000;  // progressive, per pass
-  // progressive: photons whose mean distance sets the first radius. Far fewer than a render's
-  // 100: many passes average the noise of a small radius away, but not the blur of a large one
+  // progressive: the k of the per-photon radii (each photon's distance to its k-th nearest).
+  // Far fewer than a render's 100: many passes average the noise of small radii away, but not
+  // the blur of large ones
   // (docs/accuracy.md, "The reference").
   int k = 5;
   std::string cacheStem;  // progressive: <stem>.exr and <stem>.csv

@@ -108,7 +108,7 @@ class PhotonWork {
   void acceptMap(wire::PhotonMapMessage&& message) {
     auto map = std::make_shared<const PhotonMap>(std::move(message.photons));
     mapPass_ = message.pass;
-    caustics_ = std::make_shared<const PhotonGather>(std::move(map), message.gather);
+    caustics_ = std::make_shared<const PhotonGather>(std::move(map), message.gather, threads_);
     passes_.clear();
   }
 

@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
-
-#include "math/Random.h"
 
 namespace prism {
 
@@ -24,21 +21,15 @@ float nextProgressiveRadius(float previous, int pass, float alpha) {
   return previous * std::sqrt((static_cast<float>(pass - 1) + alpha) / static_cast<float>(pass));
 }
 
-float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius) {
-  constexpr size_t kProbes = 256;
-  const size_t n = map.size();
-  if (n == 0) return maxRadius;
-  std::vector<PhotonNeighbour> neighbours;
-  double sum = 0.0;
-  size_t probes = 0;
-  for (size_t i = 0; i < std::min(n, kProbes); ++i) {
-    // Hashed, not evenly strided, indices: photon order follows the Halton emission sequence,
-    // and a regular stride through it would probe a structured, unrepresentative subset.
-    const Photon& p = map.photons()[mix64(i + 1) % n];
-    sum += std::sqrt(map.nearest(p.position, k, maxRadius * maxRadius, neighbours));
-    ++probes;
+PhotonGatherSettings progressiveGather(const CausticSettings& c, float maxRadius, int pass,
+                                       const PhotonGatherSettings& previous) {
+  if (c.radius > 0.0f) {
+    const float radius =
+        pass == 1 ? c.radius : nextProgressiveRadius(previous.radius, pass, c.alpha);
+    return {true, c.gather, radius, c.filter, 1.0f};
   }
-  return static_cast<float>(sum / static_cast<double>(probes));
+  const float scale = pass == 1 ? 1.0f : nextProgressiveRadius(previous.radiusScale, pass, c.alpha);
+  return {false, c.gather, maxRadius, c.filter, scale};
 }
 
 }  // namespace prism

@@ -1,9 +1,9 @@
-// The photon gather radius: the k-NN cap a scene gets when it leaves it at 0, and the fixed
-// radius of each progressive pass (Knaus & Zwicker 2011). Pure functions of the scene and the
-// photon map, shared by the frame renderer, the viewer and the tests.
+// The photon gather radius: the k-NN cap a scene gets when it leaves it at 0, and the gather of
+// each progressive pass. Pure functions of the scene's settings and the pass number, shared by
+// the frame renderer, the viewer and the tests.
 #pragma once
 
-#include "caustics/PhotonMap.h"
+#include "caustics/PhotonGatherSettings.h"
 #include "scene/Scene.h"
 
 namespace prism {
@@ -12,12 +12,17 @@ namespace prism {
 // caster's bounding radius, or a hundredth of the scene's size when only planes cast.
 float automaticMaxRadius(const Scene& scene);
 
-// The first progressive radius when the scene leaves it at 0: the mean distance from a spread
-// of stored photons to their k-th nearest neighbour, capped at maxRadius.
-float automaticProgressiveRadius(const PhotonMap& map, int k, float maxRadius);
-
 // The progressive gather radius of pass `pass` ≥ 2, given pass − 1's:
 // r²(pass) = r²(pass − 1)·(pass − 1 + α)/pass.
 float nextProgressiveRadius(float previous, int pass, float alpha);
+
+// The gather of progressive pass `pass` ≥ 1 (`previous` is pass − 1's, unused for pass 1).
+// With the scene's `radius` set: that one fixed radius for every photon, shrunk by the rule
+// above from pass to pass (Knaus & Zwicker 2011). Left at 0 (the default): per-photon radii,
+// each photon's distance to its k-th nearest photon of its own pass (capped at maxRadius) —
+// the local density, so narrow at a focus or a fold and wide in the dim halo — all shrunk by
+// the same rule as the pass count grows. Pass 1 is then the classic estimate exactly.
+PhotonGatherSettings progressiveGather(const CausticSettings& c, float maxRadius, int pass,
+                                       const PhotonGatherSettings& previous);
 
 }  // namespace prism

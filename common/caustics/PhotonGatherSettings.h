@@ -7,10 +7,14 @@
 namespace prism {
 
 struct PhotonGatherSettings {
-  bool fixedRadius = false;  // true: every photon within radius; false: k nearest within it
+  // true: every photon within radius (a fixed-radius pass); false: each photon spread over its
+  // own radius, the distance to its k-th nearest photon capped at radius, times radiusScale.
+  bool fixedRadius = false;
   int k = 100;
   float radius = 0.1f;
   PhotonFilter filter = PhotonFilter::Cone;
+  // Progressive passes with per-photon radii shrink them all by this factor (1: classic).
+  float radiusScale = 1.0f;
 };
 
 }  // namespace prism

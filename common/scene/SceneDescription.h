@@ -145,15 +145,15 @@ enum class PhotonFilter { Box, Cone, Epanechnikov };
 struct CausticSettings {
   CausticMethod method = CausticMethod::None;
   uint64_t photons = 200000;  // emitted per pass, over all lights
-  int gather = 100;           // k nearest photons per estimate (non-progressive mode)
-  float maxRadius = 0.0f;     // cap on the gather radius; 0: automatic from the casters' size
+  int gather = 100;           // k: each photon's radius is the distance to its k-th nearest
+  float maxRadius = 0.0f;     // cap on the photon radii; 0: automatic from the casters' size
   PhotonFilter filter = PhotonFilter::Cone;
   int maxBounces = 16;  // specular bounces a photon may take before it is dropped
-  // Progressive photon mapping (Knaus & Zwicker 2011): passes with a shrinking fixed radius.
+  // Progressive photon mapping: passes whose radii shrink by the rule of Knaus & Zwicker 2011.
   bool progressive = false;
   int passes = 16;
-  float alpha = 0.7f;            // radius shrink: r²(i+1) = r²(i)·(i + alpha)/(i + 1)
-  float radius = 0.0f;           // first pass's radius; 0: automatic (mean k-NN distance)
+  float alpha = 0.7f;   // radius shrink: r²(i+1) = r²(i)·(i + alpha)/(i + 1)
+  float radius = 0.0f;  // one fixed first-pass radius for every photon; 0: per-photon k-NN radii
   double timeBudgetSeconds = 0;  // stop starting passes after this long; 0: no limit
   // Caustic mapping (Shah et al. 2007): light-space maps of mapResolution² texels per view.
   int mapResolution = 512;

@@ -477,12 +477,13 @@ std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons) {
   return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
-    const auto& [fixedRadius, k, radius, filter] = gather;
+    const auto& [fixedRadius, k, radius, filter, radiusScale] = gather;
     w.writeU32(pass);
     w.writeBool(fixedRadius);
     w.writeI32(k);
     w.writeF32(radius);
     w.writeU32(static_cast<uint32_t>(filter));
+    w.writeF32(radiusScale);
     writePhotons(w, photons);
   });
 }
@@ -491,7 +492,7 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
   return decodePayload(message, MessageType::PhotonMap, [](ByteReader& r) {
     PhotonMapMessage map;
     auto& [pass, gather, photons] = map;
-    auto& [fixedRadius, k, radius, filter] = gather;
+    auto& [fixedRadius, k, radius, filter, radiusScale] = gather;
     pass = r.readU32();
     fixedRadius = r.readBool();
     k = r.readI32();
@@ -501,7 +502,9 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
       throw WireError("invalid photon filter " + std::to_string(rawFilter));
     }
     filter = static_cast<PhotonFilter>(rawFilter);
-    if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius)) {
+    radiusScale = r.readF32();
+    if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius) || !(radiusScale > 0.0f) ||
+        !std::isfinite(radiusScale)) {
       throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +
                       std::to_string(radius) + ")");
     }

@@ -71,7 +71,9 @@ TEST_F(Viewer, TwoRanksRenderPhotonMappedPassesLikeOne) {
   for (size_t i = 0; i < with.pixels.size(); ++i) {
     different += glm::length(with.pixels[i] - without.pixels[i]) > 0.05f;
   }
-  EXPECT_GT(different, with.pixels.size() / 50);
+  // 1 % of the pixels (measured 15 of 1200: each photon spreads over its own k-NN radius, narrow
+  // at the focus; the old single wide radius had smeared the caustic over more of them).
+  EXPECT_GT(different, with.pixels.size() / 100);
 }
 
 // Caustic mapping in the viewer: each rank builds the maps from the scene, so two ranks give the

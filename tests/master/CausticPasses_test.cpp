@@ -153,6 +153,55 @@ TEST(CausticPasses, ProgressiveErrorFallsWithPassesAtThePppmRate) {
   RecordProperty("log_log_slope", std::to_string(slope));
 }
 
+// The same with per-photon radii (the default when the scene sets no radius): each photon's
+// k-NN radius of its own pass, all scaled by s_i with s²_{i+1} = s²_i (i + α)/(i + 1). A pass is
+// then a k-NN-sized estimate with k·s²_i photons per kernel, so the same rate holds: variance
+// ∝ 1/(k s²_i) ∝ i^{1−α}, slope −α/2 = −0.35 for independent passes. Pass 1 is the classic
+// estimate. The passes are not independent, though: their photons continue one Halton sequence
+// per light, so together they cover the ball ever more evenly, and the error falls faster —
+// measured RMS 11.6 % after 1 pass, 2.0 % after 16 with 50 k photons a pass (slope −0.64), and
+// with 25 k over 1, 2, 4, 8 passes (the test, to keep it short) the slope printed below. The
+// bounds ask for a steady fall, at least the independent-pass rate's −0.2 bound above and no
+// faster than −1 (Monte Carlo over passes cannot beat 1/P); and no bias beyond the noise.
+TEST(CausticPasses, ProgressiveWithPerPhotonRadiiFallsAtLeastAtThePppmRate) {
+  SceneDescription d = indexOneView(24);
+  d.caustics.progressive = true;
+  d.caustics.photons = 25000;
+  d.caustics.gather = 25;
+  d.caustics.alpha = 0.7f;
+  const Camera camera(d.camera, 24, 24);
+  std::vector<double> logPasses, logError;
+  for (int passes : {1, 2, 4, 8, 16}) {
+    d.caustics.passes = passes;
+    const CausticFrame f = render(d);
+    const ImageError e = relativeError(f.image, camera);
+    double s2 = 1.0;  // the radius scale after `passes` passes, squared
+    for (int i = 1; i < passes; ++i) s2 *= (i + 0.7) / (i + 1.0);
+    EXPECT_NEAR(f.caustics.lastRadius / f.caustics.firstRadius, std::sqrt(s2), 1e-5) << passes;
+    EXPECT_LT(std::abs(e.mean), 0.03) << passes;
+    logPasses.push_back(std::log(passes));
+    logError.push_back(std::log(e.rms));
+  }
+  const double n = static_cast<double>(logPasses.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < logPasses.size(); ++i) {
+    mx += logPasses[i] / n;
+    my += logError[i] / n;
+  }
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < logPasses.size(); ++i) {
+    sxy += (logPasses[i] - mx) * (logError[i] - my);
+    sxx += (logPasses[i] - mx) * (logPasses[i] - mx);
+  }
+  const double slope = sxy / sxx;
+  std::printf("per-photon radii: RMS %.4f after 1 pass, %.4f after 8; slope %.3f\n",
+              std::exp(logError.front()), std::exp(logError.back()), slope);
+  EXPECT_LT(slope, -0.2);
+  EXPECT_GT(slope, -1.0);
+  EXPECT_LT(std::exp(logError.back()), 0.6 * std::exp(logError.front()));
+  RecordProperty("log_log_slope", std::to_string(slope));
+}
+
 bool bitIdentical(const ImageRgb& a, const ImageRgb& b) {
   return a.width == b.width && a.height == b.height &&
          std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
@@ -182,9 +231,13 @@ SceneDescription mixedCausticScene(bool progressive) {
   return d;
 }
 
+// Classic, progressive with per-photon radii (found on each rank's threads), and progressive
+// with the scene's one fixed radius.
 TEST(CausticPasses, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
-  for (bool progressive : {false, true}) {
-    const SceneDescription d = mixedCausticScene(progressive);
+  for (const auto& [progressive, fixedRadius] :
+       {std::pair{false, 0.0f}, std::pair{true, 0.0f}, std::pair{true, 0.08f}}) {
+    SceneDescription d = mixedCausticScene(progressive);
+    d.caustics.radius = fixedRadius;
     const CausticFrame reference = render(d, 1, 8);
     EXPECT_GT(reference.caustics.trace.stored, 1000u);
     for (const auto& [threads, tile] : {std::pair{2, 5}, std::pair{3, 16}, std::pair{4, 64}}) {
@@ -254,10 +307,14 @@ TEST(CausticPasses, CausticMapIsSeenInAMirrorLikeDirectly) {
       mapMirror, mapDirect, photonMirror, photonDirect);
   EXPECT_GT(mapMirror, 0.0);
   EXPECT_NEAR(mapMirror / (0.9 * mapDirect), 1.0, 0.01);
-  EXPECT_NEAR(photonMirror / (0.9 * photonDirect), 1.0, 0.02);
+  // Photons: 3 %, measured 0.980. The mirror's base cuts the lit floor (photons beyond it are
+  // absorbed); seen directly, with no mirror, photons land beyond that line too and their
+  // kernels reach back across it (each photon spreads over its own k-NN radius).
+  EXPECT_NEAR(photonMirror / (0.9 * photonDirect), 1.0, 0.03);
   // The methods differ by the same amount in the mirror as directly: the ball's weak reflected
   // light, outside the map's light-space view, which only photons carry (about a tenth here).
-  EXPECT_NEAR((mapMirror / photonMirror) / (mapDirect / photonDirect), 1.0, 0.02);
+  // 3 % for the photons' side of it, as above (measured 1.020).
+  EXPECT_NEAR((mapMirror / photonMirror) / (mapDirect / photonDirect), 1.0, 0.03);
 }
 
 }  // namespace

@@ -383,13 +383,19 @@ TEST_F(DistributedRender, OverTcpProgressivePhotonMapPixelsAreBitIdentical) {
   EXPECT_NE(run.output.find("photons traced by rank"), std::string::npos) << run.output;
 }
 
+// Progressive with per-photon radii (the default) and with the one fixed radius of a scene that
+// sets it.
 INSTANTIATE_TEST_SUITE_P(RanksModes, DistributedCaustics,
                          ::testing::Combine(::testing::Values(1, 2, 3),
-                                            ::testing::Values("", "--progressive --passes 3")),
+                                            ::testing::Values("", "--progressive --passes 3",
+                                                              "--progressive --passes 3 "
+                                                              "--gather-radius 0.05")),
                          [](const auto& info) {
+                           const std::string mode = std::get<1>(info.param);
                            return "ranks" + std::to_string(std::get<0>(info.param)) +
-                                  (std::string(std::get<1>(info.param)).empty() ? "_classic"
-                                                                                : "_progressive");
+                                  (mode.empty()                               ? "_classic"
+                                   : mode.find("radius") != std::string::npos ? "_fixed_radius"
+                                                                              : "_progressive");
                          });
 
 }  // namespace

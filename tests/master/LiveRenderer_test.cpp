@@ -246,7 +246,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   // Pass i: the photon pass numbered by its frame id, the radius schedule of the scene.
   const PhotonTracer tracer(scene, c.photons, c.maxBounces);
   SlaveLink alone(nullptr, {});
-  float radius = 0.0f;
+  PhotonGatherSettings settings;
   ImageRgb mean(d.render.width, d.render.height), expectedMean(d.render.width, d.render.height);
   ImageRgb causticMean(d.render.width, d.render.height);
   for (int i = 1; i <= kPasses; ++i) {
@@ -263,15 +263,13 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
     EXPECT_EQ(std::memcmp(gather.map().photons().data(), map->photons().data(),
                           map->size() * sizeof(Photon)),
               0);
-    radius =
-        i == 1 ? automaticProgressiveRadius(*map, c.gather, automaticMaxRadius(scene))
-               : radius * std::sqrt((static_cast<float>(i - 1) + c.alpha) / static_cast<float>(i));
-    EXPECT_TRUE(gather.settings().fixedRadius);
+    settings = progressiveGather(c, automaticMaxRadius(scene), i, settings);
+    EXPECT_FALSE(gather.settings().fixedRadius);  // per-photon radii, the scene sets no radius
     EXPECT_EQ(gather.settings().k, c.gather);
-    EXPECT_FLOAT_EQ(gather.settings().radius, radius) << "pass " << i;
+    EXPECT_FLOAT_EQ(gather.settings().radius, settings.radius) << "pass " << i;
+    EXPECT_FLOAT_EQ(gather.settings().radiusScale, settings.radiusScale) << "pass " << i;
 
-    // Its image: direct light with pass i's seed plus the fixed-radius estimate of map i.
-    const PhotonGatherSettings settings{true, c.gather, radius, c.filter};
+    // Its image: direct light with pass i's seed plus pass i's estimate from map i.
     const ImageRgb expected = renderPassFrame(
         d, i,
         std::make_shared<const RenderPass>(
@@ -316,7 +314,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   EXPECT_EQ(stats.photons.stored, gatherOf(passes.back()).map().size());
   EXPECT_GT(stats.photons.mapBytes, stats.photons.stored * sizeof(Photon) - 1);
   EXPECT_GT(stats.photons.photonsPerSecond, 0.0);
-  EXPECT_FLOAT_EQ(stats.photons.radius, radius);
+  EXPECT_FLOAT_EQ(stats.photons.radius, settings.radius * settings.radiusScale);
 }
 
 TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {

@@ -160,7 +160,8 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
   EXPECT_NE(run.output.find("caustics  photon map: 20.0 k photons x 1 pass"), std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("28 B per photon"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("gather 40 nearest within"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("each photon over its 40-NN radius within"), std::string::npos)
+      << run.output;
   EXPECT_NE(run.output.find("kd-tree"), std::string::npos) << run.output;
   ASSERT_TRUE(fs::exists(path("photons.png")));
   const ImageRgb photons = readImage(path("photons.png"));
@@ -176,7 +177,7 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
   EXPECT_NE(progressive.output.find("photon map (progressive): 20.0 k photons x 2 passes"),
             std::string::npos)
       << progressive.output;
-  EXPECT_NE(progressive.output.find("gather radius"), std::string::npos) << progressive.output;
+  EXPECT_NE(progressive.output.find(", shrunk to "), std::string::npos) << progressive.output;
 }
 
 // Caustics on a scene with no caster: a warning, no photon cost, and the very same pixels as

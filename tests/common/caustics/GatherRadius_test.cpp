@@ -1,4 +1,5 @@
 #include "caustics/GatherRadius.h"
+#include "caustics/PhotonGather.h"
 
 #include <gtest/gtest.h>
 
@@ -22,15 +23,45 @@ TEST(GatherRadius, Automatic) {
   planes.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
   planes.spheres.push_back({{0, 3, 0}, 1.0f, 1, {}});
   EXPECT_NEAR(automaticMaxRadius(Scene(planes)), 0.02f * std::sqrt(3.0f), 1e-6f);
+}
 
-  // The first progressive radius: the mean distance to the k-th neighbour. Photons on a line
-  // with unit spacing: the 2nd nearest of each interior photon (itself first) is 1 away.
+// Per-photon radii: the distance to the k-th nearest photon, itself counted first. Photons on a
+// line with unit spacing: the 3rd nearest of an interior photon is 1 away, of an end photon 2.
+TEST(GatherRadius, PhotonRadiiAreTheKthNeighbourDistanceCapped) {
   std::vector<Photon> line(300);
   for (size_t i = 0; i < line.size(); ++i) line[i].position = {static_cast<float>(i), 0, 0};
   const PhotonMap map(std::move(line));
-  EXPECT_NEAR(automaticProgressiveRadius(map, 2, 10.0f), 1.0f, 1e-6f);
-  EXPECT_NEAR(automaticProgressiveRadius(map, 2, 0.5f), 0.5f, 1e-6f);  // capped
-  EXPECT_EQ(automaticProgressiveRadius(PhotonMap({}), 2, 0.5f), 0.5f);
+  const std::vector<float> radii = photonRadii(map, 3, 10.0f, 2);
+  ASSERT_EQ(radii.size(), 300u);
+  EXPECT_FLOAT_EQ(radii[0], 2.0f);
+  EXPECT_FLOAT_EQ(radii[150], 1.0f);
+  EXPECT_FLOAT_EQ(radii[299], 2.0f);
+  EXPECT_FLOAT_EQ(photonRadii(map, 3, 1.5f, 2)[0], 1.5f);  // capped
+}
+
+// The progressive schedule: r²(i) = r²(i−1)·(i − 1 + α)/i, applied to the one fixed radius when
+// the scene sets it, else to the per-photon radii through their common scale (1 at pass 1).
+TEST(GatherRadius, ProgressiveScheduleShrinksByTheAlphaRule) {
+  CausticSettings c;
+  c.gather = 50;
+  c.alpha = 0.5f;
+  PhotonGatherSettings g = progressiveGather(c, 0.2f, 1, {});
+  EXPECT_FALSE(g.fixedRadius);
+  EXPECT_EQ(g.k, 50);
+  EXPECT_FLOAT_EQ(g.radius, 0.2f);
+  EXPECT_FLOAT_EQ(g.radiusScale, 1.0f);
+  g = progressiveGather(c, 0.2f, 2, g);
+  EXPECT_FLOAT_EQ(g.radiusScale * g.radiusScale, 1.5f / 2.0f);
+  g = progressiveGather(c, 0.2f, 3, g);
+  EXPECT_FLOAT_EQ(g.radiusScale * g.radiusScale, (1.5f / 2.0f) * (2.5f / 3.0f));
+  EXPECT_FLOAT_EQ(g.radius, 0.2f);  // the cap is scaled with the radii, not here
+
+  c.radius = 0.1f;
+  g = progressiveGather(c, 0.2f, 1, {});
+  EXPECT_TRUE(g.fixedRadius);
+  EXPECT_FLOAT_EQ(g.radius, 0.1f);
+  g = progressiveGather(c, 0.2f, 2, g);
+  EXPECT_FLOAT_EQ(g.radius * g.radius, 0.01f * 0.75f);
 }
 
 }  // namespace

@@ -462,7 +462,7 @@ TEST(Messages, PhotonShareMustCarryTheStoredCount) {
 TEST(Messages, PhotonMapRoundTripsBitExact) {
   PhotonMapMessage map;
   map.pass = 12;
-  map.gather = {true, 37, 0.015625f, PhotonFilter::Epanechnikov};
+  map.gather = {true, 37, 0.015625f, PhotonFilter::Epanechnikov, 0.375f};
   map.photons = samplePhotons();
   const std::vector<uint8_t> bytes = encodePhotonMap(map);
   const PhotonMapMessage back = decodePhotonMap(decodeMessage(bytes));
@@ -471,6 +471,7 @@ TEST(Messages, PhotonMapRoundTripsBitExact) {
   EXPECT_EQ(back.gather.k, 37);
   EXPECT_EQ(std::bit_cast<uint32_t>(back.gather.radius), std::bit_cast<uint32_t>(0.015625f));
   EXPECT_EQ(back.gather.filter, PhotonFilter::Epanechnikov);
+  EXPECT_EQ(back.gather.radiusScale, 0.375f);
   expectSamePhotons(back.photons, map.photons);
   EXPECT_EQ(encodePhotonMap(back), bytes);
 
@@ -517,6 +518,11 @@ TEST(Messages, PhotonMapGatherSettingsAreChecked) {
     const Message m = decodeMessage(encodePhotonMap(map));
     expectWireError([&] { decodePhotonMap(m); }, "invalid gather settings");
   }
+  for (float scale : {0.0f, -0.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    map.gather = {false, 5, 0.5f, PhotonFilter::Cone, scale};
+    const Message m = decodeMessage(encodePhotonMap(map));
+    expectWireError([&] { decodePhotonMap(m); }, "invalid gather settings");
+  }
   for (uint32_t filter : {3u, 0xFFFFFFFFu}) {
     map.gather = {false, 5, 0.5f, static_cast<PhotonFilter>(filter)};
     const Message m = decodeMessage(encodePhotonMap(map));
@@ -547,6 +553,7 @@ TEST(Messages, PhotonMapWithAHugePhotonCountThrowsWithoutAllocating) {
     w.writeI32(10);
     w.writeF32(0.5f);
     w.writeU32(1);
+    w.writeF32(1.0f);  // radius scale
     w.writeU64(uint64_t{1} << 60);
   });
   expectWireError([&] { decodePhotonMap(m); }, "corrupt element count 1152921504606846976");

@@ -1,0 +1,81 @@
+#include "caustics/PhotonDiscs.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace prism {
+namespace {
+constexpr uint32_t kLeafSize = 8;
+}
+
+PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii) {
+  const uint32_t n = static_cast<uint32_t>(photons.size());
+  if (n == 0) return;
+  index_.resize(n);
+  std::iota(index_.begin(), index_.end(), 0u);
+  centre_.resize(n);
+  radius2_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    centre_[i] = photons[i].position;
+    radius2_[i] = radii[i] * radii[i];
+  }
+  nodes_.reserve(2 * (n / kLeafSize + 1));
+  build(0, n, 0);
+}
+
+uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
+  const uint32_t self = static_cast<uint32_t>(nodes_.size());
+  nodes_.push_back({});
+  Vec3 lo(1e30f), hi(-1e30f), clo(1e30f), chi(-1e30f);
+  for (uint32_t s = begin; s < end; ++s) {
+    const float r = std::sqrt(radius2_[s]);
+    lo = glm::min(lo, centre_[s] - Vec3(r));
+    hi = glm::max(hi, centre_[s] + Vec3(r));
+    clo = glm::min(clo, centre_[s]);
+    chi = glm::max(chi, centre_[s]);
+  }
+  nodes_[self].lo = lo;
+  nodes_[self].hi = hi;
+  // A leaf when small, or at the depth the query stack allows (64 holds 2 per level).
+  if (end - begin <= kLeafSize || depth >= 30) {
+    nodes_[self].first = begin;
+    nodes_[self].count = end - begin;
+    return self;
+  }
+  // Split at the median slot along the centres' widest axis; ties broken by photon index so the
+  // tree is the same on every rank.
+  const Vec3 extent = chi - clo;
+  const int axis =
+      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const uint32_t mid = begin + (end - begin) / 2;
+  std::vector<uint32_t> slots(end - begin);
+  std::iota(slots.begin(), slots.end(), begin);
+  std::nth_element(slots.begin(), slots.begin() + (mid - begin), slots.end(),
+                   [&](uint32_t a, uint32_t b) {
+                     const float ca = centre_[a][axis], cb = centre_[b][axis];
+                     return ca < cb || (ca == cb && index_[a] < index_[b]);
+                   });
+  std::vector<uint32_t> index(slots.size());
+  std::vector<Vec3> centre(slots.size());
+  std::vector<float> radius2(slots.size());
+  for (size_t i = 0; i < slots.size(); ++i) {
+    index[i] = index_[slots[i]];
+    centre[i] = centre_[slots[i]];
+    radius2[i] = radius2_[slots[i]];
+  }
+  std::copy(index.begin(), index.end(), index_.begin() + begin);
+  std::copy(centre.begin(), centre.end(), centre_.begin() + begin);
+  std::copy(radius2.begin(), radius2.end(), radius2_.begin() + begin);
+  build(begin, mid, depth + 1);
+  const uint32_t second = build(mid, end, depth + 1);
+  nodes_[self].first = second;
+  nodes_[self].count = 0;
+  return self;
+}
+
+size_t PhotonDiscs::bytes() const {
+  return nodes_.capacity() * sizeof(Node) + index_.capacity() * sizeof(uint32_t) +
+         centre_.capacity() * sizeof(Vec3) + radius2_.capacity() * sizeof(float);
+}
+
+}  // namespace prism

@@ -1,0 +1,66 @@
+// Photons as discs of their own radius, for the sample-point density estimate (Breiman, Meisel &
+// Purcell 1977; in photon mapping, "photon splatting"): each photon spreads its power over a
+// kernel of its own radius, so the estimate integrates to exactly the photons' power, whatever
+// the radii. A bounding-volume tree over the discs' boxes answers "which discs cover x".
+// Built the same from the same photons and radii on every rank, and visited in the same order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "caustics/Photon.h"
+
+namespace prism {
+
+class PhotonDiscs {
+ public:
+  // radii[i] is photon i's radius (> 0).
+  PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii);
+
+  // Calls visit(photon index, squared distance, squared radius) for every photon whose disc
+  // covers x (distance < radius), in tree order.
+  template <class Visit>
+  void covering(const Vec3& x, Visit&& visit) const;
+
+  size_t bytes() const;
+
+ private:
+  struct Node {
+    Vec3 lo, hi;     // bounds of the discs' boxes below
+    uint32_t first;  // leaf: first slot; interior: index of the second child (the first follows)
+    uint32_t count;  // leaf: slots; interior: 0
+  };
+  uint32_t build(uint32_t begin, uint32_t end, int depth);
+
+  std::vector<Node> nodes_;
+  std::vector<uint32_t> index_;  // photon index per slot
+  std::vector<Vec3> centre_;     // per slot
+  std::vector<float> radius2_;   // per slot
+};
+
+template <class Visit>
+void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
+  if (nodes_.empty()) return;
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (x.x < n.lo.x || x.y < n.lo.y || x.z < n.lo.z || x.x > n.hi.x || x.y > n.hi.y ||
+        x.z > n.hi.z)
+      continue;
+    if (n.count > 0) {
+      for (uint32_t s = n.first; s < n.first + n.count; ++s) {
+        const Vec3 d = x - centre_[s];
+        const float d2 = glm::dot(d, d);
+        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
+      }
+    } else {
+      const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());
+      stack[top++] = n.first;
+      stack[top++] = self + 1;
+    }
+  }
+}
+
+}  // namespace prism
