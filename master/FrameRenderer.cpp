@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
+#include <thread>
 
 #include "master/Framebuffer.h"
 #include "master/TileDispatcher.h"
@@ -29,6 +31,19 @@ class FrameAssembly final : public FrameListener {
   Framebuffer framebuffer_;
   std::vector<double> tileSeconds_;
 };
+
+// Whether a stop is requested within a moment (kStopGraceSeconds): a slave's failure that
+// comes with a stop of this rank (every rank signalled together) belongs to the stop.
+constexpr double kStopGraceSeconds = 0.5;
+bool stopFollows(const FrameOptions& options) {
+  if (!options.stopRequested) return false;
+  const auto start = SteadyClock::now();
+  while (!options.stopRequested()) {
+    if (secondsSince(start) > kStopGraceSeconds) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -63,7 +78,16 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLi
       }
       // Every tile that finishes, here or on a slave, wakes this wait; the bound is for the
       // progress bar, a stop request and the slaves' silence.
-      dispatcher.service(0.1);
+      try {
+        dispatcher.service(0.1);
+      } catch (const std::runtime_error&) {
+        // mpiexec signals every rank at once: a slave's "stopped by SIGTERM" may arrive before
+        // this rank's own signal is seen. Then it is part of the stop, not a failure.
+        if (!stopFollows(options)) throw;
+        result.interrupted = true;
+        dispatcher.cancel();
+        break;
+      }
       if (options.progress && secondsSince(lastProgress) > 0.1) {
         options.progress(dispatcher.tilesDone(), rects.size());
         lastProgress = SteadyClock::now();
