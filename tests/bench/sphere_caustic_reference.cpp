@@ -76,6 +76,8 @@ double mean(const prism::Color& c) {
   return (c.x + c.y + c.z) / 3.0;
 }
 
+// Written again in double rather than calling common/shading/Optics.h (float): the reference
+// must not share the renderer's arithmetic, or a mistake there would pass unseen.
 double fresnel(double cosI, double eta) {  // eta = n1/n2, cosI > 0
   const double s2 = eta * eta * (1.0 - cosI * cosI);
   if (s2 >= 1.0) return 1.0;

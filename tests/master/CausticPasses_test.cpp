@@ -16,6 +16,22 @@
 namespace prism {
 namespace {
 
+// Least-squares slope of y against x (log error against log passes).
+double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    mx += x[i] / n;
+    my += y[i] / n;
+  }
+  double sxy = 0, sxx = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) * (x[i] - mx);
+  }
+  return sxy / sxx;
+}
+
 constexpr float kAlbedo = test::kBallFloorAlbedo;
 
 // The scene of PhotonTracerEnergy (tests/common/caustics/PhotonTracer_test.cpp), seen from
@@ -134,19 +150,7 @@ TEST(CausticPasses, ProgressiveErrorFallsWithPassesAtThePppmRate) {
     logPasses.push_back(std::log(passes));
     logError.push_back(std::log(e.rms));
   }
-  // Least-squares slope of log error against log passes.
-  const double n = static_cast<double>(logPasses.size());
-  double mx = 0, my = 0;
-  for (size_t i = 0; i < logPasses.size(); ++i) {
-    mx += logPasses[i] / n;
-    my += logError[i] / n;
-  }
-  double sxy = 0, sxx = 0;
-  for (size_t i = 0; i < logPasses.size(); ++i) {
-    sxy += (logPasses[i] - mx) * (logError[i] - my);
-    sxx += (logPasses[i] - mx) * (logPasses[i] - mx);
-  }
-  const double slope = sxy / sxx;
+  const double slope = leastSquaresSlope(logPasses, logError);
   EXPECT_LT(slope, -0.2);
   EXPECT_GT(slope, -0.6);
   EXPECT_LT(std::exp(logError.back()), 0.6 * std::exp(logError.front()));  // theory: 0.38
@@ -182,18 +186,7 @@ TEST(CausticPasses, ProgressiveWithPerPhotonRadiiFallsAtLeastAtThePppmRate) {
     logPasses.push_back(std::log(passes));
     logError.push_back(std::log(e.rms));
   }
-  const double n = static_cast<double>(logPasses.size());
-  double mx = 0, my = 0;
-  for (size_t i = 0; i < logPasses.size(); ++i) {
-    mx += logPasses[i] / n;
-    my += logError[i] / n;
-  }
-  double sxy = 0, sxx = 0;
-  for (size_t i = 0; i < logPasses.size(); ++i) {
-    sxy += (logPasses[i] - mx) * (logError[i] - my);
-    sxx += (logPasses[i] - mx) * (logPasses[i] - mx);
-  }
-  const double slope = sxy / sxx;
+  const double slope = leastSquaresSlope(logPasses, logError);
   std::printf("per-photon radii: RMS %.4f after 1 pass, %.4f after 8; slope %.3f\n",
               std::exp(logError.front()), std::exp(logError.back()), slope);
   EXPECT_LT(slope, -0.2);
