@@ -35,47 +35,63 @@ TileRect FrameAccumulator::toDisplay(const TileRect& r) const {
   return {x0, y0, x1 - x0, y1 - y0};
 }
 
+void FrameAccumulator::write(ImageRgb& target, const TileResult& tile) const {
+  const TileRect& r = tile.rect;
+  const int w = pass_.view->width;
+  const int h = pass_.view->height;
+  if (pass_.scale != 1 || w != target.width || h != target.height) {
+    // A reduced frame: each of its pixels covers a block of display pixels.
+    for (int ty = 0; ty < r.height; ++ty) {
+      const int py = r.y + ty;
+      const int y0 = static_cast<int>(int64_t{py} * target.height / h);
+      const int y1 = static_cast<int>(int64_t{py + 1} * target.height / h);
+      for (int tx = 0; tx < r.width; ++tx) {
+        const int px = r.x + tx;
+        const int x0 = static_cast<int>(int64_t{px} * target.width / w);
+        const int x1 = static_cast<int>(int64_t{px + 1} * target.width / w);
+        const Color& c = tile.pixels[static_cast<size_t>(ty) * r.width + tx];
+        for (int y = y0; y < y1; ++y) {
+          std::fill(&target.at(x0, y), &target.at(x0, y) + (x1 - x0), c);
+        }
+      }
+    }
+    return;
+  }
+  // Full-resolution pass p averages with the p - 1 before it; pass 1 replaces what was there
+  // (copied, so it is exactly the image `prism render` makes).
+  const bool first = pass_.pass <= 1;
+  const float weight = 1.0f / static_cast<float>(std::max(pass_.pass, 1));
+  for (int ty = 0; ty < r.height; ++ty) {
+    for (int tx = 0; tx < r.width; ++tx) {
+      Color& mean = target.at(r.x + tx, r.y + ty);
+      const Color& sample = tile.pixels[static_cast<size_t>(ty) * r.width + tx];
+      mean = first ? sample : mean + (sample - mean) * weight;
+    }
+  }
+}
+
 bool FrameAccumulator::addTile(uint32_t frame, const TileResult& tile) {
   if (!started_ || frame != pass_.frame || tile.tileIndex >= owner_.size() ||
       owner_[tile.tileIndex] == kDone) {
     ++staleTiles_;
     return false;
   }
-  const TileRect& r = tile.rect;
-  const int w = pass_.view->width;
-  const int h = pass_.view->height;
-  if (pass_.scale != 1 || w != image_.width || h != image_.height) {
-    // A preview: each of its pixels covers a block of display pixels.
-    for (int ty = 0; ty < r.height; ++ty) {
-      const int py = r.y + ty;
-      const int y0 = static_cast<int>(int64_t{py} * image_.height / h);
-      const int y1 = static_cast<int>(int64_t{py + 1} * image_.height / h);
-      for (int tx = 0; tx < r.width; ++tx) {
-        const int px = r.x + tx;
-        const int x0 = static_cast<int>(int64_t{px} * image_.width / w);
-        const int x1 = static_cast<int>(int64_t{px + 1} * image_.width / w);
-        const Color& c = tile.pixels[static_cast<size_t>(ty) * r.width + tx];
-        for (int y = y0; y < y1; ++y) {
-          std::fill(&image_.at(x0, y), &image_.at(x0, y) + (x1 - x0), c);
-        }
-      }
-    }
-  } else {
-    // Full-resolution pass p averages with the p - 1 before it; pass 1 replaces the preview
-    // (copied, so it is exactly the image `prism render` makes).
-    const bool first = pass_.pass <= 1;
-    const float weight = 1.0f / static_cast<float>(std::max(pass_.pass, 1));
-    for (int ty = 0; ty < r.height; ++ty) {
-      for (int tx = 0; tx < r.width; ++tx) {
-        Color& mean = image_.at(r.x + tx, r.y + ty);
-        const Color& sample = tile.pixels[static_cast<size_t>(ty) * r.width + tx];
-        mean = first ? sample : mean + (sample - mean) * weight;
-      }
+  // A view's first frame is only a pass 0 or 1, which replace every pixel: the back buffer
+  // needs no earlier content.
+  const bool whole = pass_.firstOfView;
+  if (whole && (back_.width != image_.width || back_.height != image_.height)) {
+    back_ = ImageRgb(image_.width, image_.height);
+  }
+  write(whole ? back_ : image_, tile);
+  owner_[tile.tileIndex] = kDone;
+  if (++tilesDone_ == owner_.size()) {
+    completedPass_ = pass_.pass;
+    if (whole) {
+      std::swap(image_, back_);
+      markDirty({0, 0, image_.width, image_.height});
     }
   }
-  owner_[tile.tileIndex] = kDone;
-  if (++tilesDone_ == owner_.size()) completedPass_ = pass_.pass;
-  markDirty(toDisplay(r));
+  if (!whole) markDirty(toDisplay(tile.rect));
   return true;
 }
 

@@ -1,7 +1,9 @@
-// The image the viewer shows, assembled from the tiles of successive passes: a preview pass
+// The image the viewer shows, assembled from the tiles of successive passes: a reduced frame
 // fills blocks of display pixels, full-resolution passes are averaged (pass p contributes 1/p),
-// so a still camera converges to more samples per pixel. Knows which tiles are in flight and
-// on which rank, and ignores tiles of frames it is no longer showing. Plain C++, no Qt.
+// so a still camera converges to more samples per pixel. The first frame of a view is
+// assembled aside and shown whole once complete, so the screen never mixes two views; later
+// passes show their tiles as they arrive. Knows which tiles are in flight and on which rank, and
+// ignores tiles of frames it is no longer showing. Plain C++, no Qt.
 #pragma once
 
 #include <cstdint>
@@ -45,8 +47,10 @@ class FrameAccumulator {
 
  private:
   void markDirty(const TileRect& r);
+  void write(ImageRgb& target, const TileResult& tile) const;
 
   ImageRgb image_;
+  ImageRgb back_;  // the first frame of a view, until it is complete
   PassInfo pass_;
   bool started_ = false;
   int completedPass_ = -1;

@@ -433,6 +433,7 @@ void MainWindow::onTileFinished(uint32_t frame, std::shared_ptr<const TileResult
 void MainWindow::onPassFinished(uint32_t frame, double) {
   if (frame != frame_.frame()) return;
   updateStatusBar();
+  emit passComplete(frame_.pass());
   if (frame_.pass().pass >= 1) emit fullPassDone(++fullPassesDone_);
 }
 
@@ -445,7 +446,7 @@ void MainWindow::updateStatusBar() {
   const PassInfo& p = frame_.pass();
   const QString what =
       p.pass == 0
-          ? QString("preview 1/%1").arg(p.scale)
+          ? QString("moving, 1/%1 resolution, 1 spp").arg(p.scale)
           : QString("pass %1 (%2 spp each)").arg(p.pass).arg(p.view ? p.view->samplesPerPixel : 0);
   status_->setText(QString("frame %1 · %2 · tiles %3/%4 · %5 spp averaged · h: keys")
                        .arg(p.frame)

@@ -86,6 +86,8 @@ class MainWindow : public QMainWindow {
  signals:
   // A full-resolution pass of the current view is complete (count since the view started).
   void fullPassDone(int passes);
+  // Every tile of this pass is in the frame shown (a view's first frame: now on screen whole).
+  void passComplete(const prism::PassInfo& pass);
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;

@@ -188,10 +188,20 @@ void StatsPanel::showStats(const LiveStats& s) {
           .arg(s.pass)
           .arg(s.passesDone) +
       QString("rays/s       %1rays/s\n").arg(siRate(s.raysPerSecond)) +
+      QString("frame time   %1 median, %2 p95 (target %3)\n")
+          .arg(milliseconds(s.frameTimes.medianSeconds))
+          .arg(milliseconds(s.frameTimes.p95Seconds))
+          .arg(milliseconds(s.frameTimeTargetSeconds)) +
+      QString("frames/s     %1 at %2x%3   (moving: %4 full, %5 reduced)\n")
+          .arg(s.frameTimes.framesPerSecond, 0, 'f', 1)
+          .arg(s.frameTimes.shownWidth)
+          .arg(s.frameTimes.shownHeight)
+          .arg(s.frameTimes.fullResolutionFrames)
+          .arg(s.frameTimes.reducedFrames) +
       QString("full pass    %1   (Σ busy %2 thread-s)\n")
           .arg(milliseconds(s.lastPassSeconds))
           .arg(s.lastPassBusySeconds, 0, 'f', 2) +
-      QString("preview in   %1 after the move\n").arg(milliseconds(s.previewLatencySeconds)) +
+      QString("first frame  %1 after the move\n").arg(milliseconds(s.previewLatencySeconds)) +
       QString("first full   %1 after the move\n").arg(milliseconds(s.firstFullSeconds)) +
       QString("speedup      %1 on %2 threads, efficiency %3")
           .arg(speedup, 0, 'f', 2)

@@ -6,6 +6,7 @@
 #include <QTimer>
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <optional>
@@ -32,75 +33,133 @@ bool haveDisplay() {
   return false;
 }
 
-double median(std::vector<double> values) {
+double percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  const double position = p * static_cast<double>(values.size() - 1);
+  const size_t below = static_cast<size_t>(position);
+  const size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
 }
 
-// --benchmark-moves: orbits the camera as soon as the previous move's preview has been
-// painted, and times each move from the request to that paint.
+bool sameCamera(const CameraDesc& a, const CameraDesc& b) {
+  return a.position == b.position && a.lookAt == b.lookAt && a.up == b.up &&
+         a.fovDegrees == b.fovDegrees;
+}
+
+// --benchmark-moves: once the first full image is on screen, orbits the camera N times, one
+// move every intervalMs (like a mouse drag: moves come faster than frames, and each frame
+// renders the newest), then waits for the last view's first full-resolution pass. Every pass
+// completed meanwhile is a frame the user saw; their times between completions are the frame
+// times.
 class MoveBenchmark : public QObject {
  public:
-  MoveBenchmark(MainWindow& window, int moves, std::ostream& out)
-      : window_(window), moves_(moves), out_(out) {
-    connect(window.frameView(), &FrameView::painted, this, &MoveBenchmark::onPainted);
+  MoveBenchmark(MainWindow& window, int moves, double intervalMs, std::ostream& out)
+      : window_(window), moves_(moves), intervalMs_(intervalMs), out_(out) {
+    connect(&window, &MainWindow::passComplete, this, &MoveBenchmark::onPassComplete);
+    connect(&timer_, &QTimer::timeout, this, &MoveBenchmark::move);
+    timer_.setTimerType(Qt::PreciseTimer);
   }
 
  private:
   void move() {
     window_.cameraController().orbit(2.0f, 0.0f);  // like a 5-pixel mouse drag
-    moveStart_ = SteadyClock::now();
+    requests_.push_back({window_.cameraController().camera(), SteadyClock::now()});
     window_.viewChanged();
-    waitingView_ = window_.viewId() + 1;
+    if (static_cast<int>(requests_.size()) == moves_) {
+      timer_.stop();
+      lastMove_ = SteadyClock::now();
+    }
   }
 
-  void onPainted(uint64_t viewId, int completedPass) {
+  void onPassComplete(const PassInfo& pass) {
+    const auto now = SteadyClock::now();
     if (!started_) {
-      if (completedPass >= 1) {  // the first full image is on screen: start moving
+      if (pass.pass >= 1) {  // the first full image is on screen: start moving
         started_ = true;
-        runStart_ = SteadyClock::now();
+        firstMove_ = now;
         move();
+        timer_.start(static_cast<int>(std::max(1.0, intervalMs_)));
       }
       return;
     }
-    if (done_ || viewId != waitingView_ || completedPass < 0) return;
-    if (latencies_.size() < static_cast<size_t>(moves_)) {
-      latencies_.push_back(secondsSince(moveStart_));
-      if (latencies_.size() < static_cast<size_t>(moves_)) {
-        move();
-        return;
-      }
-      movingSeconds_ = secondsSince(runStart_);
-      fullStart_ = moveStart_;
-      waitingFull_ = true;
+    if (done_ || !pass.view) return;
+    // Which move's camera this frame shows (the newest frame renders the newest view).
+    std::optional<SteadyClock::time_point> requested;
+    for (const Request& r : requests_) {
+      if (sameCamera(r.camera, pass.view->camera)) requested = r.at;
     }
-    if (waitingFull_ && completedPass >= 1) {
-      done_ = true;
-      const double full = secondsSince(fullStart_);
-      const double fps = static_cast<double>(latencies_.size()) / movingSeconds_;
-      out_ << "benchmark  " << latencies_.size() << " camera moves\n"
-           << "preview    median " << 1e3 * median(latencies_) << " ms, max "
-           << 1e3 * *std::max_element(latencies_.begin(), latencies_.end())
-           << " ms (move to preview painted)\n"
-           << "rate       " << fps << " previews/s while moving\n"
-           << "full res   " << 1e3 * full << " ms after the last move (first full pass painted)\n";
-      out_.flush();
-      QTimer::singleShot(0, &window_, &QWidget::close);
+    if (!requested) return;  // the view from before the first move
+    const bool moving = timer_.isActive();
+    const bool lastView = sameCamera(pass.view->camera, requests_.back().camera);
+    // Frames while moving: all until the last move, then the ones still showing moves.
+    if (moving || !lastView || pass.firstOfView) {
+      frames_.push_back({now, pass.scale, pass.pass});
+      latencies_.push_back(secondsSince(*requested));
     }
+    if (moving || !lastView || pass.pass < 1) return;
+    done_ = true;
+    report(secondsSince(lastMove_));
+    QTimer::singleShot(0, &window_, &QWidget::close);
   }
+
+  void report(double fullAfterLastMove) {
+    std::vector<double> frameTimes;
+    for (size_t i = 1; i < frames_.size(); ++i) {
+      frameTimes.push_back(
+          std::chrono::duration<double>(frames_[i].at - frames_[i - 1].at).count());
+    }
+    const double span =
+        frames_.size() > 1
+            ? std::chrono::duration<double>(frames_.back().at - frames_.front().at).count()
+            : 0.0;
+    const double fps = span > 0.0 ? static_cast<double>(frames_.size() - 1) / span : 0.0;
+    int full = 0;
+    int largestScale = 1;
+    for (const Frame& f : frames_) {
+      full += f.scale == 1;
+      largestScale = std::max(largestScale, f.scale);
+    }
+    const ImageRgb& image = window_.frame().image();
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "realtime  %.1f frames/s at %dx%d, frame time median %.1f ms, p95 %.1f ms, %d "
+                  "frames at full resolution\n",
+                  fps, image.width, image.height, 1e3 * percentile(frameTimes, 0.5),
+                  1e3 * percentile(frameTimes, 0.95), full);
+    out_ << "benchmark  " << moves_ << " camera moves, one every " << intervalMs_ << " ms, "
+         << std::chrono::duration<double>(lastMove_ - firstMove_).count() << " s\n"
+         << line << "frames     " << frames_.size() << " shown while moving: " << full
+         << " at full resolution, " << frames_.size() - static_cast<size_t>(full)
+         << " reduced (down to 1/" << largestScale << " of each side)\n"
+         << "latency    median " << 1e3 * percentile(latencies_, 0.5) << " ms, p95 "
+         << 1e3 * percentile(latencies_, 0.95) << " ms (a move to the frame showing it)\n"
+         << "full res   " << 1e3 * fullAfterLastMove
+         << " ms after the last move (its first full-resolution pass shown)\n";
+    out_.flush();
+  }
+
+  struct Request {
+    CameraDesc camera;
+    SteadyClock::time_point at;
+  };
+  struct Frame {
+    SteadyClock::time_point at;
+    int scale = 1;
+    int pass = 0;
+  };
 
   MainWindow& window_;
   int moves_;
+  double intervalMs_;
   std::ostream& out_;
+  QTimer timer_;
   bool started_ = false;
   bool done_ = false;
-  bool waitingFull_ = false;
-  uint64_t waitingView_ = 0;
-  SteadyClock::time_point moveStart_, runStart_, fullStart_;
+  std::vector<Request> requests_;
+  std::vector<Frame> frames_;
   std::vector<double> latencies_;
-  double movingSeconds_ = 0.0;
+  SteadyClock::time_point firstMove_, lastMove_;
 };
 
 void printSummary(const LiveStats& s, std::ostream& out) {
@@ -143,6 +202,8 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   live.distribution = options.render.distribution;
   live.previewScale = options.previewScale;
   live.maxPasses = options.maxPasses;
+  live.frameTimeSeconds = options.frameTimeMilliseconds / 1000.0;
+  live.pipeline = options.pipeline;
   LiveRenderer renderer(scene, live, session);
   RenderBridge bridge;
   MainWindow window(
@@ -198,7 +259,8 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   }
   std::unique_ptr<MoveBenchmark> benchmark;
   if (options.benchmarkMoves > 0) {
-    benchmark = std::make_unique<MoveBenchmark>(window, options.benchmarkMoves, out);
+    benchmark = std::make_unique<MoveBenchmark>(window, options.benchmarkMoves,
+                                                options.benchmarkMoveMilliseconds, out);
   }
 
   std::exception_ptr failure;

@@ -205,9 +205,18 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   addSceneOptions(view, o.render);
   addCausticMethodOptions(view, o.render);
   view->add_option("--preview-scale", o.previewScale,
-                   "After a camera change, first render 1/N of each side at 1 spp (default 4; "
-                   "1: no preview)")
+                   "While the camera moves, frames may drop to 1/N of each side to meet "
+                   "--frame-time (default 4; 1: always full resolution)")
       ->check(CLI::Range(1, 64));
+  view->add_option("--frame-time", o.frameTimeMilliseconds,
+                   "Target time of a frame while the camera moves, in ms (default 33.3: 30 "
+                   "frames/s); the resolution drops only when a frame would miss it. 0: no "
+                   "target, always full resolution")
+      ->check(CLI::Range(0.0, 60000.0));
+  view->add_flag_callback(
+      "--no-pipeline", [&o] { o.pipeline = false; },
+      "Hand out a frame's tiles only once the frame before is complete (to measure what "
+      "pipelining gains)");
   view->add_option("--max-passes", o.maxPasses,
                    "Full-resolution passes of --spp samples averaged while the camera is still "
                    "(default 64)")
@@ -237,9 +246,14 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
                    "Seconds after start for --screenshot (default 2)")
       ->check(CLI::Range(0.0, 3600.0));
   view->add_option("--benchmark-moves", o.benchmarkMoves,
-                   "Orbit the camera N times, each as soon as the last preview is shown; print "
-                   "the preview latencies and frame rate, then quit")
+                   "Once the first full image is shown, orbit the camera N times, one move every "
+                   "--benchmark-interval ms; print the frame rate and frame times while moving "
+                   "(a 'realtime' line for scripts) and the time to full resolution, then quit")
       ->check(CLI::Range(1, 100000));
+  view->add_option("--benchmark-interval", o.benchmarkMoveMilliseconds,
+                   "Milliseconds between --benchmark-moves moves (default 10, a mouse drag's "
+                   "event rate)")
+      ->check(CLI::Range(1.0, 10000.0));
 }
 
 void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {

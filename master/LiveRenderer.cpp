@@ -12,12 +12,13 @@
 namespace prism {
 
 struct LiveRenderer::Event {
-  enum class Kind { Assigned, Finished, PassFinished } kind;
+  enum class Kind { Started, Assigned, Finished, PassFinished } kind;
   uint32_t frame = 0;
   uint32_t tile = 0;
   int rank = 0;
   std::shared_ptr<const TileResult> result;
   double seconds = 0.0;
+  PassInfo info;  // Started
 };
 
 // The next pass to render, chosen under the lock; its frame id is taken already.
@@ -26,17 +27,42 @@ struct LiveRenderer::PassPlan {
   uint32_t frame = 0;
   uint64_t viewId = 0;
   ViewSettings view;
+  int scale = 1;
+  bool firstOfView = false;
 };
 
 struct LiveRenderer::Pass {
   PassInfo info;
+  std::vector<bool> assigned;  // per tile: handed out at least once
+  size_t assignedCount = 0;
   size_t done = 0;
   bool finished = false;
+  bool announced = false;  // the listener has heard of its start
   double started = 0.0;
+  double seconds = 0.0;  // start to end
   double busySeconds = 0.0;
+  std::deque<Event> events;  // for the listener, in order
 
-  Pass(PassInfo i, double now) : info(std::move(i)), started(now) {}
+  Pass(PassInfo i, double now)
+      : info(std::move(i)), assigned(info.tiles.size(), false), started(now) {}
+  bool allAssigned() const { return assignedCount == assigned.size(); }
 };
+
+namespace {
+
+constexpr size_t kFrameTimeWindow = 60;  // frames the frame-time statistics cover
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const double position = p * static_cast<double>(values.size() - 1);
+  const size_t below = static_cast<size_t>(position);
+  const size_t above = std::min(below + 1, values.size() - 1);
+  const double t = position - static_cast<double>(below);
+  return values[below] + t * (values[above] - values[below]);
+}
+
+}  // namespace
 
 uint64_t LiveRenderer::passSeed(uint64_t sceneSeed, int pass) {
   if (pass <= 1) return sceneSeed;
@@ -49,6 +75,7 @@ LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, Trans
       link_(cluster, options.distribution),
       dispatcher_(scene, link_, options.distribution),
       start_(SteadyClock::now()),
+      governor_(options.frameTimeSeconds, options.previewScale),
       lastStats_(start_),
       maxRadius_(scene.causticSettings().maxRadius > 0.0f ? scene.causticSettings().maxRadius
                                                           : automaticMaxRadius(scene)) {}
@@ -62,18 +89,28 @@ LiveRenderer::~LiveRenderer() {
 }
 
 void LiveRenderer::setView(const ViewSettings& view) {
-  std::optional<uint32_t> stale;
+  std::vector<uint32_t> stale;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     pendingView_ = view;
     pendingSince_ = SteadyClock::now();
-    if (pass_) stale = pass_->info.frame;
+    // Refinement passes of the view being left end now; a view's first frame is finished: it is
+    // what shows the move, within about one frame time.
+    for (auto it = passes_.begin(); it != passes_.end();) {
+      if ((*it)->info.firstOfView) {
+        ++it;
+        continue;
+      }
+      stale.push_back((*it)->info.frame);
+      it = passes_.erase(it);
+    }
+    cancelPhotons_ = true;  // a photon pass being traced for the old view is dropped
   }
-  // The old view's tiles are stale from now on. By frame id: the coordinator may have begun a
-  // pass of the new view since the lock was released, and that one must run.
-  if (stale) dispatcher_.endFrame(*stale);
+  // Their tiles are stale from now on. By frame id: the coordinator may have begun a pass of the
+  // new view since the lock was released, and that one must run.
+  for (uint32_t frame : stale) dispatcher_.endFrame(frame);
   changed_.notify_all();
-  dispatcher_.wake();  // the coordinator may be waiting for slaves' messages
+  dispatcher_.wake();  // the coordinator may be waiting for slaves' messages or photons
 }
 
 void LiveRenderer::stop() {
@@ -93,7 +130,8 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   info.frame = plan.frame;
   info.viewId = plan.viewId;
   info.pass = index;
-  info.scale = index == 0 ? std::max(options_.previewScale, 1) : 1;
+  info.scale = plan.scale;
+  info.firstOfView = plan.firstOfView;
   auto view = std::make_shared<RenderView>();
   view->camera = plan.view.camera;
   view->width = std::max(1, settings.width / info.scale);
@@ -101,6 +139,7 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   view->samplesPerPixel = index == 0 ? 1 : plan.view.samplesPerPixel;
   view->seed = passSeed(settings.seed, index);
   view->debugView = plan.view.debugView;
+  view->jitterSingleSample = index >= 2;  // else every 1-spp pass would repeat pass 1
   view->causticMapBlur = plan.view.causticMapBlur;
   info.view = view;
   info.light = std::move(light);
@@ -108,12 +147,32 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
                            ? std::max(8, options_.distribution.tileSize / info.scale)
                            : automaticTileSize(view->width, view->height, liveThreads);
   info.tiles = planTiles(view->width, view->height, tileSize);
-  pass_ = std::make_unique<Pass>(info, now());
+  passes_.push_back(std::make_unique<Pass>(info, now()));
+  live_.frame = info.frame;
+  live_.viewId = info.viewId;
+  live_.pass = info.pass;
   return info;
 }
 
+bool LiveRenderer::mayStartLocked() const {
+  size_t open = 0;
+  const Pass* newest = nullptr;
+  for (const std::unique_ptr<Pass>& p : passes_) {
+    if (p->finished) continue;
+    ++open;
+    newest = p.get();
+  }
+  if (open == 0) return true;
+  // Pipelined: the next frame's tiles are handed out once the current frame's all are.
+  return options_.pipeline && open == 1 && newest->allAssigned();
+}
+
+bool LiveRenderer::hasNextPassLocked() const {
+  return pendingView_ || (lastIndex_ >= 0 && lastIndex_ < options_.maxPasses);
+}
+
 std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
-  int index = 0;
+  if (!mayStartLocked()) return std::nullopt;
   if (pendingView_) {
     view_ = *pendingView_;
     pendingView_.reset();
@@ -124,14 +183,37 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
     live_.firstFullSeconds = 0.0;
     live_.photons = {};
     live_.photons.method = view_.caustics;
-    pass_.reset();  // the old view's tiles are stale from now on, even while photons trace
-    index = options_.previewScale > 1 ? 0 : 1;
-  } else if (pass_ && pass_->finished && pass_->info.pass < options_.maxPasses) {
-    index = pass_->info.pass + 1;
-  } else {
-    return std::nullopt;
+    // The first frame of a view, at the resolution that meets the frame-time target and 1 spp.
+    // At full resolution it is pass 1 when that is what pass 1 renders (the view's samples per
+    // pixel, and no photon pass, which a moving camera would wait for).
+    const RenderSettings& r = scene_.settings();
+    const int scale = governor_.scaleFor(r.width, r.height);
+    const bool isPassOne =
+        scale == 1 && view_.samplesPerPixel == 1 &&
+        !(view_.caustics == CausticMethod::PhotonMap && view_.debugView == DebugView::Image);
+    lastIndex_ = isPassOne ? 1 : 0;
+    return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, scale, true};
   }
-  return PassPlan{index, nextFrame_++, viewId_, view_};
+  if (!hasNextPassLocked()) return std::nullopt;
+  ++lastIndex_;  // the still camera's next full-resolution pass
+  cancelPhotons_ = false;
+  return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, 1, false};
+}
+
+void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
+  // Frames overlap when pipelined: a frame's time starts when the one before it ended.
+  const double seconds = end - std::max(pass.started, lastFrameEnd_);
+  lastFrameEnd_ = end;
+  const RenderView& v = *pass.info.view;
+  governor_.frameFinished(static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height) *
+                              static_cast<uint64_t>(v.samplesPerPixel),
+                          seconds);
+  frameSeconds_.push_back(seconds);
+  if (frameSeconds_.size() > kFrameTimeWindow) frameSeconds_.pop_front();
+  FrameTimeStats& f = live_.frameTimes;
+  f.shownWidth = v.width;
+  f.shownHeight = v.height;
+  if (pass.info.firstOfView) ++(pass.info.scale == 1 ? f.fullResolutionFrames : f.reducedFrames);
 }
 
 std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) {
@@ -149,7 +231,7 @@ std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) 
 std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& plan) {
   // Every rank builds the maps from the scene once per blur setting (a slave as soon as it has
   // a caustic-map scene, else when the first tile asks); they do not depend on the camera, so
-  // the preview shows them too.
+  // every frame, a reduced one too, looks them up.
   const bool blur = plan.view.causticMapBlur;
   const std::shared_ptr<const CausticMapEstimator> maps = causticMaps(blur);
   double buildSeconds = 0.0;
@@ -173,7 +255,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& 
 std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {
   if (plan.view.debugView != DebugView::Image) return nullptr;  // debug views: no caustics
   if (plan.view.caustics == CausticMethod::CausticMap) return causticMapLight(plan);
-  // The preview shows no photon-mapped caustics: a photon pass would delay it.
+  // Frames while moving show no photon-mapped caustics: a photon pass would delay them.
   if (plan.index == 0 || plan.view.caustics != CausticMethod::PhotonMap) return nullptr;
   const CausticSettings& c = scene_.causticSettings();
   const uint64_t budget = plan.view.photonsPerPass > 0 ? plan.view.photonsPerPass : c.photons;
@@ -187,7 +269,9 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     return nullptr;  // like `prism render`: nothing to trace, a plain pass
   }
   PhotonPassStats p;
-  auto map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p);
+  auto map =
+      tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p, &cancelPhotons_);
+  if (!map) return nullptr;  // the camera moved: the pass is dropped before it starts
   const PhotonGatherSettings gather =
       progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
   gather_ = gather;
@@ -211,49 +295,94 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
       std::make_shared<const PhotonGather>(std::move(map), gather, dispatcher_.localThreads())});
 }
 
+LiveRenderer::Pass* LiveRenderer::findLocked(uint32_t frame) {
+  for (const std::unique_ptr<Pass>& p : passes_) {
+    if (p->info.frame == frame) return p.get();
+  }
+  return nullptr;
+}
+
 void LiveRenderer::tileAssigned(uint32_t frame, uint32_t tile, int rank) {
+  bool allAssigned = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    events_.push_back({Event::Kind::Assigned, frame, tile, rank, nullptr, 0.0});
+    Pass* p = findLocked(frame);
+    if (!p) return;
+    p->events.push_back({Event::Kind::Assigned, frame, tile, rank, nullptr, 0.0, {}});
+    if (tile < p->assigned.size() && !p->assigned[tile]) {
+      p->assigned[tile] = true;
+      allAssigned = ++p->assignedCount == p->assigned.size();
+    }
   }
   changed_.notify_all();
+  // The coordinator queues the next frame now; it may be waiting for the slaves' messages.
+  if (allAssigned) link_.wake();
+}
+
+bool LiveRenderer::wantsTiles(uint32_t frame) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return findLocked(frame) != nullptr;
 }
 
 void LiveRenderer::tileFinished(uint32_t frame, TileResult&& tile, int rank) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  // The dispatcher accepts only tiles of its current frame, which is this pass's: a view
-  // change ends the frame before the pass is dropped.
-  if (!pass_ || frame != pass_->info.frame) return;
-  Pass& p = *pass_;
+  // The dispatcher accepts only tiles of frames it still runs, and a pass that setView() drops
+  // has its frame ended first; a pass may have been dropped in between, though.
+  Pass* pass = findLocked(frame);
+  if (!pass) return;
+  Pass& p = *pass;
   p.busySeconds += tile.seconds;
   const uint32_t index = tile.tileIndex;
-  events_.push_back({Event::Kind::Finished, frame, index, rank,
-                     std::make_shared<const TileResult>(std::move(tile)), 0.0});
+  p.events.push_back({Event::Kind::Finished,
+                      frame,
+                      index,
+                      rank,
+                      std::make_shared<const TileResult>(std::move(tile)),
+                      0.0,
+                      {}});
   if (++p.done == p.info.tiles.size()) {
     p.finished = true;
-    const double seconds = now() - p.started;
+    const double end = now();
+    p.seconds = end - p.started;
+    frameFinishedLocked(p, end);
     const double sinceView = secondsSince(viewSince_);
-    if (p.info.pass == 0) {
-      live_.previewLatencySeconds = sinceView;
-    } else {
+    if (p.info.firstOfView) live_.previewLatencySeconds = sinceView;
+    if (p.info.pass >= 1) {
       ++live_.passesDone;
-      live_.lastPassSeconds = seconds;
+      live_.lastPassSeconds = p.seconds;
       live_.lastPassBusySeconds = p.busySeconds;
       if (p.info.pass == 1) live_.firstFullSeconds = sinceView;
     }
-    events_.push_back({Event::Kind::PassFinished, frame, 0, rank, nullptr, seconds});
   }
   changed_.notify_all();
+}
+
+void LiveRenderer::takeDeliveriesLocked(std::vector<Event>& out) {
+  // In pass order: a later pass's news waits until the listener has heard the one before end.
+  while (!passes_.empty()) {
+    Pass& p = *passes_.front();
+    if (!p.announced) {
+      p.announced = true;
+      Event started{Event::Kind::Started, p.info.frame, 0, 0, nullptr, 0.0, p.info};
+      out.push_back(std::move(started));
+    }
+    for (Event& e : p.events) out.push_back(std::move(e));
+    p.events.clear();
+    if (!p.finished) return;
+    out.push_back({Event::Kind::PassFinished, p.info.frame, 0, 0, nullptr, p.seconds, {}});
+    passes_.pop_front();
+  }
+}
+
+bool LiveRenderer::deliverableLocked() const {
+  if (passes_.empty()) return false;
+  const Pass& p = *passes_.front();
+  return !p.announced || !p.events.empty() || p.finished;
 }
 
 LiveStats LiveRenderer::statsLocked(double elapsedSeconds, std::vector<RankStats> ranks) {
   LiveStats s = live_;
   s.ranks = std::move(ranks);
-  if (pass_) {
-    s.frame = pass_->info.frame;
-    s.viewId = pass_->info.viewId;
-    s.pass = pass_->info.pass;
-  }
   RayCounters total;
   s.totalThreads = 0;
   for (const RankStats& r : s.ranks) {
@@ -263,6 +392,15 @@ LiveStats LiveRenderer::statsLocked(double elapsedSeconds, std::vector<RankStats
   s.raysPerSecond = static_cast<double>(total.total() - raysAtLastStats_.total()) /
                     std::max(elapsedSeconds, 1e-3);
   raysAtLastStats_ = total;
+  FrameTimeStats& f = s.frameTimes;
+  const std::vector<double> times(frameSeconds_.begin(), frameSeconds_.end());
+  f.frames = static_cast<int>(times.size());
+  f.medianSeconds = percentile(times, 0.5);
+  f.p95Seconds = percentile(times, 0.95);
+  double sum = 0.0;
+  for (double t : times) sum += t;
+  f.framesPerSecond = sum > 0.0 ? static_cast<double>(times.size()) / sum : 0.0;
+  s.frameTimeTargetSeconds = options_.frameTimeSeconds;
   return s;
 }
 
@@ -280,18 +418,18 @@ void LiveRenderer::run(LiveListener& listener) {
   try {
     for (;;) {
       std::optional<PassInfo> started;
-      std::deque<Event> events;
+      std::vector<Event> events;
       std::optional<PassPlan> plan;
+      const int liveThreads = dispatcher_.liveThreads();  // the dispatcher's lock: before ours
       {
         const std::lock_guard<std::mutex> lock(mutex_);
         if (stopped_ || dispatcher_.localFailed()) break;
         plan = nextPassLocked();
-        events.swap(events_);
+        takeDeliveriesLocked(events);
       }
       if (plan) {
         // Photons are traced here, without the lock: the GUI thread can still ask for views.
         std::shared_ptr<const RenderPass> light = passLight(*plan);
-        const int liveThreads = dispatcher_.liveThreads();
         {
           const std::lock_guard<std::mutex> lock(mutex_);
           // A view asked for meanwhile wins; this pass is dropped before it starts.
@@ -300,13 +438,17 @@ void LiveRenderer::run(LiveListener& listener) {
           }
         }
         if (started) {
-          dispatcher_.beginFrame(
-              {started->frame, started->tiles, started->view, started->light, true, -1}, this);
+          const FramePlan frame{started->frame, started->tiles, started->view,
+                                started->light, true,           -1};
+          // Queued behind the frame still running, which the listener hears of first.
+          dispatcher_.queueFrame(frame, this);
         }
       }
-      // Events first: they belong to the pass before the one just started.
       for (Event& e : events) {
         switch (e.kind) {
+          case Event::Kind::Started:
+            listener.passStarted(e.info);
+            break;
           case Event::Kind::Assigned:
             listener.tileAssigned(e.frame, e.tile, e.rank);
             break;
@@ -318,15 +460,15 @@ void LiveRenderer::run(LiveListener& listener) {
             break;
         }
       }
-      if (started) listener.passStarted(*started);
+      if (started) continue;  // its first tiles may be news already; the next frame may be due
       if (link_.hasSlaves()) {
-        // A view, a stop or a finished tile wakes this wait; the bound is for the statistics.
+        // A view, a stop, a finished tile or a frame handed out wakes this wait; the bound is
+        // for the statistics.
         dispatcher_.service(0.05);
       } else {
         std::unique_lock<std::mutex> lock(mutex_);
-        changed_.wait_for(lock, std::chrono::milliseconds(2), [this] {
-          return stopped_ || !events_.empty() || pendingView_ ||
-                 (pass_ && pass_->finished && pass_->info.pass < options_.maxPasses);
+        changed_.wait_for(lock, std::chrono::milliseconds(50), [this] {
+          return stopped_ || deliverableLocked() || (mayStartLocked() && hasNextPassLocked());
         });
       }
       bool due = false;

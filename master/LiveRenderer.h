@@ -2,25 +2,40 @@
 // 0's threads and, in an MPI run, on the slaves. No Qt here; the viewer listens through
 // LiveListener.
 //
-// A view (camera, samples per pixel, debug view) is rendered in passes: pass 0 is a preview
-// at 1/previewScale of the resolution with 1 sample per pixel, passes 1..maxPasses are full
-// resolution with samplesPerPixel samples each, every one with its own seed so that their
-// average converges (pass 1 uses the scene's seed: it is exactly the image `prism render`
-// makes). Each pass is its own frame on the wire (a new frame id); a new view ends the
-// current frame at once, and slaves drop its queued tiles.
+// The frame loop is real time. While the camera moves, every frame renders the newest view at 1
+// sample per pixel, at full resolution unless a frame would miss the frame-time target: then each
+// side is divided by the smallest scale that fits (master/ResolutionGovernor.h, up to
+// previewScale), and the resolution comes back as soon as a frame fits again. Frames are
+// pipelined: once every tile of the current frame has been handed out, the next frame (the
+// newest view, or the next pass of a still one) is queued on the tile dispatcher, so render
+// threads and slaves go straight on to its tiles while the last ones of the frame before return.
+// The first frame of a view is always finished (a move shows within about one frame time); a
+// view that arrives meanwhile is rendered by the next frame. Refinement passes of a still view
+// are ended at once by a move.
 //
-// With caustic mapping on, every pass (the preview too) adds the caustic maps' caustics: each
-// rank builds the maps from the scene once per blur setting and keeps them, since they do not
-// depend on the camera.
+// A view's passes: its first frame is pass 1 when it is full resolution at the view's samples
+// per pixel, else pass 0 (a reduced or 1-spp frame, not averaged); passes 1..maxPasses follow at
+// full resolution with samplesPerPixel samples each while the camera is still, every one with
+// its own seed so that their average converges (pass 1 uses the scene's seed: it is exactly the
+// image `prism render` makes, and a full-resolution 1-spp frame while moving is exactly
+// `prism render --spp 1` of that view). Each pass is its own frame on the wire (a new frame id).
 //
-// With photon-mapped caustics on, every full-resolution pass i first traces a photon pass of
+// The listener hears of passes in order: a pass's start, its tiles, its end, then the next
+// pass's (whose early tiles were held meanwhile), so it never has two passes open at once.
+//
+// With caustic mapping on, every pass adds the caustic maps' caustics: each rank builds the maps
+// from the scene once per blur setting and keeps them, since they do not depend on the camera,
+// so every frame looks them up at its own resolution.
+//
+// With photon-mapped caustics on, every full-resolution pass i ≥ 1 first traces a photon pass of
 // its own (master/PhotonPass.h, across the ranks) and gathers from it as progressiveGather
 // (caustics/GatherRadius.h) says: per-photon k-NN radii shrunk by r²(i+1) = r²(i)·(i + α)/(i + 1),
 // or the scene's fixed caustics.radius shrunk the same way. So the average of passes 1..N that
 // the window shows is progressive photon mapping with N passes, as `prism render --progressive`
-// computes it; with per-photon radii pass 1 is `prism render`'s classic estimate. The
-// photon pass number (which keys the photon streams and names the map on the wire) is the
-// pass's frame id, so it is unique per pass. The preview pass renders no photon caustics.
+// computes it; with per-photon radii pass 1 is `prism render`'s classic estimate. The photon pass
+// number (which keys the photon streams and names the map on the wire) is the pass's frame id,
+// so it is unique per pass. Frames while moving (pass 0) render no photon caustics, and a move
+// cancels a photon pass being traced (its map is dropped), so it never waits for one.
 //
 // Every pass is a frame of the one tile dispatcher (master/TileDispatcher.h), which hands its
 // tiles to rank 0's threads and the slaves exactly as for `prism render`: the same leases,
@@ -28,8 +43,7 @@
 // and late or duplicate results dropped.
 //
 // run() is the coordinator: the only thread that talks to the slaves, the only thread that
-// calls the listener, and the one that traces photons (a new view asked for meanwhile waits for
-// that photon pass to finish; its map is then dropped). setView() and stop() may be called from
+// calls the listener, and the one that traces photons. setView() and stop() may be called from
 // any thread and never wait for photons.
 #pragma once
 
@@ -47,6 +61,7 @@
 #include "caustics/PhotonGatherSettings.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/DistributionOptions.h"
+#include "master/ResolutionGovernor.h"
 #include "master/SlaveLink.h"
 #include "master/TileDispatcher.h"
 #include "render/RayCounters.h"
@@ -61,9 +76,13 @@ namespace prism {
 struct LiveOptions {
   // Threads, tile size (0: automatic for each pass's resolution), schedule, leases.
   DistributionOptions distribution;
-  int previewScale = 4;  // pass 0 renders 1/previewScale of each side at 1 spp; 1: no preview
-  int maxPasses = 64;    // full-resolution passes per view; then the renderer idles
-  double statsInterval = 0.25;  // seconds between LiveListener::statsUpdated calls
+  // While moving, a frame may drop to 1/previewScale of each side to meet frameTimeSeconds;
+  // 1: always full resolution.
+  int previewScale = 4;
+  int maxPasses = 64;                  // full-resolution passes per view; then the renderer idles
+  double statsInterval = 0.25;         // seconds between LiveListener::statsUpdated calls
+  double frameTimeSeconds = 1.0 / 30;  // target for frames while moving; ≤ 0: none
+  bool pipeline = true;                // queue the next frame before the current one returns
 };
 
 // What the user controls.
@@ -77,10 +96,12 @@ struct ViewSettings {
 };
 
 struct PassInfo {
-  uint32_t frame = 0;                      // wire frame id, unique per pass
-  uint64_t viewId = 0;                     // increases with every setView()
-  int pass = 0;                            // 0: preview (when previewScale > 1)
-  int scale = 1;                           // the pass's pixels are scale × scale display pixels
+  uint32_t frame = 0;   // wire frame id, unique per pass
+  uint64_t viewId = 0;  // increases with every setView()
+  int pass = 0;         // 0: a frame while moving that is not averaged (reduced, or 1 spp)
+  int scale = 1;        // the pass's pixels are scale × scale display pixels
+  // The first frame of its view: shown when complete, never mixed with the view before.
+  bool firstOfView = false;
   std::shared_ptr<const RenderView> view;  // what the pass renders, at its own resolution
   std::vector<TileRect> tiles;             // in the pass's resolution
   // The light terms its tiles add up (its photon map and gather radius); null: direct only.
@@ -108,6 +129,18 @@ struct PhotonLiveStats {
   double mapBuildSeconds = 0.0;  // rank 0's build of the maps in use
 };
 
+// Frame times over the recent frames (every pass counts): what the user sees.
+struct FrameTimeStats {
+  int frames = 0;                // in the window (up to the last 60)
+  double medianSeconds = 0.0;    // a frame's time: its end minus the later of its start and
+  double p95Seconds = 0.0;       // the previous frame's end (frames overlap when pipelined)
+  double framesPerSecond = 0.0;  // frames / their summed times
+  int shownWidth = 0;            // the last finished frame's resolution
+  int shownHeight = 0;
+  uint64_t fullResolutionFrames = 0;  // frames while moving at full resolution, since the start
+  uint64_t reducedFrames = 0;         // and at a reduced one
+};
+
 struct LiveStats {
   uint32_t frame = 0;
   uint64_t viewId = 0;
@@ -118,8 +151,10 @@ struct LiveStats {
   double lastPassSeconds = 0.0;        // wall time of the last finished full-resolution pass
   double lastPassBusySeconds = 0.0;    // thread-seconds all ranks spent on it
   int totalThreads = 0;                // over all live ranks
-  double previewLatencySeconds = 0.0;  // setView() to its preview pass finished
+  double previewLatencySeconds = 0.0;  // setView() to the view's first frame finished
   double firstFullSeconds = 0.0;       // setView() to its first full-resolution pass finished
+  FrameTimeStats frameTimes;
+  double frameTimeTargetSeconds = 0.0;
   PhotonLiveStats photons;
 };
 
@@ -165,8 +200,15 @@ class LiveRenderer final : private FrameListener {
   // FrameListener: the dispatcher's calls, with its lock held (so never call it from these).
   void tileAssigned(uint32_t frame, uint32_t tile, int rank) override;
   void tileFinished(uint32_t frame, TileResult&& tile, int rank) override;
+  bool wantsTiles(uint32_t frame) override;
 
+  Pass* findLocked(uint32_t frame);
   std::optional<PassPlan> nextPassLocked();
+  bool mayStartLocked() const;
+  bool hasNextPassLocked() const;
+  void frameFinishedLocked(const Pass& pass, double end);
+  void takeDeliveriesLocked(std::vector<Event>& out);
+  bool deliverableLocked() const;
   std::shared_ptr<const RenderPass> passLight(const PassPlan& plan);
   std::shared_ptr<const RenderPass> causticMapLight(const PassPlan& plan);
   PassInfo beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
@@ -190,11 +232,18 @@ class LiveRenderer final : private FrameListener {
   uint64_t viewId_ = 0;
   SteadyClock::time_point viewSince_;
   uint32_t nextFrame_ = 1;  // 0 is `prism render`'s frame
-  std::unique_ptr<Pass> pass_;
-  std::deque<Event> events_;
+  // Passes started whose end the listener has not heard yet, oldest first (two at most: the
+  // pipeline's current frame and the next).
+  std::deque<std::unique_ptr<Pass>> passes_;
+  int lastIndex_ = -1;  // the last pass begun of the current view; -1: none yet
+  ResolutionGovernor governor_;
+  std::deque<double> frameSeconds_;  // recent frames' times, newest last
+  double lastFrameEnd_ = 0.0;        // when the last frame finished (seconds since start_)
   LiveStats live_;
   RayCounters raysAtLastStats_;
   SteadyClock::time_point lastStats_;
+
+  std::atomic<bool> cancelPhotons_{false};  // set by setView() under mutex_
 
   // Coordinator thread only: the photon side.
   std::unique_ptr<PhotonTracer> tracer_;  // planned for tracerBudget_ photons per pass

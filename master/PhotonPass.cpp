@@ -46,7 +46,9 @@ std::vector<Share> planShares(uint64_t total, int localThreads, const SlaveLink&
 
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
                                                  int threads, SlaveLink& link,
-                                                 PhotonPassStats& stats) {
+                                                 PhotonPassStats& stats,
+                                                 const std::atomic<bool>* cancel) {
+  const auto cancelled = [cancel] { return cancel && cancel->load(); };
   const auto start = SteadyClock::now();
   const int ranks = link.ranks();
   const double leaseSeconds = link.options().leaseSeconds;
@@ -64,7 +66,7 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
   PhotonTraceStats localStats;
   auto localWork = std::async(std::launch::async, [&] {
     std::vector<Photon> photons =
-        tracePhotons(tracer, pass, local.first, local.count, threads, &localStats);
+        tracePhotons(tracer, pass, local.first, local.count, threads, &localStats, cancel);
     link.wake();  // ends the wait for the slaves' shares below
     return photons;
   });
@@ -77,6 +79,10 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
   };
   bool localDone = false;
   for (;;) {
+    if (cancelled()) {
+      localWork.wait();  // within a chunk of photons
+      return nullptr;
+    }
     if (!localDone && localWork.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
       local.photons = localWork.get();
       local.done = localDone = true;
@@ -96,7 +102,7 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
         }
         link.retire(s.rank);
         PhotonTraceStats recovered;
-        s.photons = tracePhotons(tracer, pass, s.first, s.count, threads, &recovered);
+        s.photons = tracePhotons(tracer, pass, s.first, s.count, threads, &recovered, cancel);
         stats.trace += recovered;
         stats.photonsByRank[0] += s.count;
         s.done = true;

@@ -6,6 +6,7 @@
 // map then goes to every live slave with its gather settings.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -26,10 +27,14 @@ struct PhotonPassStats {
   std::vector<uint64_t> photonsByRank;  // photon indices each rank traced
 };
 
-// Traces pass `pass` and builds rank 0's photon map. threads: rank 0's tracing threads.
+// Traces pass `pass` and builds rank 0's photon map. threads: rank 0's tracing threads. Once
+// *cancel is set (the viewer's camera moved; wake the link too), rank 0 stops tracing within a
+// chunk of photons and returns null without waiting for the slaves, whose shares then arrive
+// late and are ignored.
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
                                                  int threads, SlaveLink& link,
-                                                 PhotonPassStats& stats);
+                                                 PhotonPassStats& stats,
+                                                 const std::atomic<bool>* cancel = nullptr);
 
 // Sends the map of pass `pass` with its gather settings to every live slave.
 void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettings& gather,

@@ -88,18 +88,42 @@ void TileDispatcher::startLocalWorkers() {
               });
 }
 
+TileDispatcher::Frame* TileDispatcher::findLocked(uint32_t frame) {
+  for (const std::unique_ptr<Frame>& f : frames_) {
+    if (f->plan.frame == frame) return f.get();
+  }
+  return nullptr;
+}
+
 void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
+  addFrame(std::move(plan), listener, true);
+}
+
+void TileDispatcher::queueFrame(FramePlan plan, FrameListener* listener) {
+  addFrame(std::move(plan), listener, false);
+}
+
+void TileDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endEarlier) {
   std::vector<std::vector<std::vector<uint8_t>>> slaveJobs(static_cast<size_t>(link_.ranks()));
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (frame_) reissuedBefore_ += frame_->scheduler.reissuedCount();
-    frame_ = std::make_unique<Frame>(std::move(plan), listener, link_.ranks(), options_);
+    // Frames that are over leave: all of them when this one replaces them, else the complete.
+    for (auto it = frames_.begin(); it != frames_.end();) {
+      if (endEarlier || (*it)->complete()) {
+        reissuedBefore_ += (*it)->scheduler.reissuedCount();
+        it = frames_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    frames_.push_back(std::make_unique<Frame>(std::move(plan), listener, link_.ranks(), options_));
+    Frame& frame = *frames_.back();
     for (int r = 1; r < link_.ranks(); ++r) {
       // What photon passes and earlier frames learnt of the slaves.
       RankStats& s = delivered_[static_cast<size_t>(r)];
       s.retired = s.retired || link_.retired(r);
       if (link_.rank(r).threads > 0) s.threads = link_.rank(r).threads;
-      if (s.retired) frame_->scheduler.retire(r);
+      if (s.retired) frame.scheduler.retire(r);
     }
     // The slaves' first jobs are taken before rank 0's render threads can see the frame: their
     // round trip overlaps rank 0's first tiles, and even a frame rank 0 could finish alone
@@ -113,31 +137,34 @@ void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
 void TileDispatcher::endFrame(uint32_t frame) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (!frame_ || frame_->plan.frame != frame) return;
-    reissuedBefore_ += frame_->scheduler.reissuedCount();
-    frame_.reset();
+    for (auto it = frames_.begin(); it != frames_.end(); ++it) {
+      if ((*it)->plan.frame != frame) continue;
+      reissuedBefore_ += (*it)->scheduler.reissuedCount();
+      frames_.erase(it);
+      break;
+    }
   }
   changed_.notify_all();
 }
 
 bool TileDispatcher::frameComplete() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return frame_ && frame_->complete();
+  return !frames_.empty() && frames_.back()->complete();
 }
 
 size_t TileDispatcher::tilesDone() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return frame_ ? frame_->done : 0;
+  return frames_.empty() ? 0 : frames_.back()->done;
 }
 
 std::optional<TileJob> TileDispatcher::nextLocalJob() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     if (stopped_) return std::nullopt;
-    if (frame_) {
-      if (const auto tile = frame_->scheduler.next(kLocalRank, now())) {
-        const FramePlan& plan = frame_->plan;
-        if (frame_->listener) frame_->listener->tileAssigned(plan.frame, *tile, kLocalRank);
+    for (const std::unique_ptr<Frame>& frame : frames_) {  // the oldest frame's tiles first
+      if (const auto tile = frame->scheduler.next(kLocalRank, now())) {
+        const FramePlan& plan = frame->plan;
+        if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, kLocalRank);
         return TileJob(*tile, plan.tiles[*tile], plan.frame, plan.view, plan.light);
       }
     }
@@ -150,10 +177,10 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     RankStats& s = delivered_[static_cast<size_t>(rank)];
-    Frame* frame = frame_.get();
-    const bool current = frame && frameId == frame->plan.frame;
-    const bool planned = current && tile.tileIndex < frame->plan.tiles.size() &&
-                         sameRect(tile.rect, frame->plan.tiles[tile.tileIndex]);
+    Frame* frame = findLocked(frameId);
+    const bool planned = frame && tile.tileIndex < frame->plan.tiles.size() &&
+                         sameRect(tile.rect, frame->plan.tiles[tile.tileIndex]) &&
+                         (!frame->listener || frame->listener->wantsTiles(frameId));
     if (!planned || !frame->scheduler.complete(tile.tileIndex, rank, now())) {
       ++s.staleTiles;
       return;
@@ -163,6 +190,12 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
     s.busySeconds += tile.seconds;
     ++frame->done;
     if (frame->listener) frame->listener->tileFinished(frameId, std::move(tile), rank);
+    // A complete frame behind the current one has nothing left to do here.
+    if (frame->complete() && frame != frames_.back().get()) {
+      reissuedBefore_ += frame->scheduler.reissuedCount();
+      frames_.erase(std::find_if(frames_.begin(), frames_.end(),
+                                 [frame](const auto& f) { return f.get() == frame; }));
+    }
   }
   wake();  // the coordinator feeds, or finishes the frame, at once
 }
@@ -174,23 +207,31 @@ void TileDispatcher::wake() {
 
 std::vector<std::vector<uint8_t>> TileDispatcher::jobsForLocked(int rank) {
   std::vector<std::vector<uint8_t>> outgoing;
-  Frame* frame = frame_.get();
-  if (!frame || frame->complete() || frame->scheduler.retired(rank)) return outgoing;
-  const FramePlan& plan = frame->plan;
   // prefetch tiles per render thread: a slave of T threads renders T tiles at once, and
   // with a fixed count per slave most of a many-threaded rank's threads would idle.
   const size_t inFlight = static_cast<size_t>(options_.prefetch) *
                           static_cast<size_t>(std::max(1, link_.rank(rank).threads));
-  while (frame->scheduler.outstanding(rank) < inFlight) {
-    const auto tile = frame->scheduler.next(rank, now());
-    if (!tile) break;
-    if (plan.view && !frame->viewSent[rank]) {
-      outgoing.push_back(wire::encodeView({plan.frame, *plan.view}));
-      frame->viewSent[rank] = true;
+  size_t outstanding = 0;
+  for (const std::unique_ptr<Frame>& frame : frames_) {
+    outstanding += frame->scheduler.outstanding(rank);
+  }
+  // Frames older than the oldest running one are over; a View tells the slave so.
+  const uint32_t liveFrom = frames_.empty() ? 0 : frames_.front()->plan.frame;
+  for (const std::unique_ptr<Frame>& frame : frames_) {  // the oldest frame's tiles first
+    if (frame->complete() || frame->scheduler.retired(rank)) continue;
+    const FramePlan& plan = frame->plan;
+    while (outstanding < inFlight) {
+      const auto tile = frame->scheduler.next(rank, now());
+      if (!tile) break;
+      ++outstanding;
+      if (plan.view && !frame->viewSent[rank]) {
+        outgoing.push_back(wire::encodeView({plan.frame, liveFrom, *plan.view}));
+        frame->viewSent[rank] = true;
+      }
+      outgoing.push_back(wire::encodeTileJob(
+          tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
+      if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
     }
-    outgoing.push_back(wire::encodeTileJob(
-        tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
-    if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
   }
   return outgoing;
 }
@@ -220,7 +261,7 @@ void TileDispatcher::retireRank(int rank) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     delivered_[static_cast<size_t>(rank)].retired = true;
-    if (frame_) frame_->scheduler.retire(rank);
+    for (const std::unique_ptr<Frame>& frame : frames_) frame->scheduler.retire(rank);
   }
   changed_.notify_all();
 }
@@ -238,9 +279,10 @@ void TileDispatcher::route(const SlaveMessage& incoming) {
       const wire::ProgressMessage progress = wire::decodeProgress(message);
       {
         const std::lock_guard<std::mutex> lock(mutex_);
-        if (!frame_ || progress.frame != frame_->plan.frame) return;  // counts of another frame
+        Frame* frame = findLocked(progress.frame);
+        if (!frame) return;  // counts of a frame that is over
         delivered_[static_cast<size_t>(rank)].lostTiles +=
-            frame_->scheduler.reconcile(rank, progress.jobsReceived, progress.heldTiles);
+            frame->scheduler.reconcile(rank, progress.jobsReceived, progress.heldTiles);
       }
       changed_.notify_all();
       return;
@@ -257,8 +299,9 @@ void TileDispatcher::route(const SlaveMessage& incoming) {
 void TileDispatcher::service(double waitSeconds) {
   if (!link_.hasSlaves()) {
     std::unique_lock<std::mutex> lock(mutex_);
-    changed_.wait_for(lock, std::chrono::duration<double>(waitSeconds),
-                      [this] { return stopped_ || (frame_ && frame_->complete()); });
+    changed_.wait_for(lock, std::chrono::duration<double>(waitSeconds), [this] {
+      return stopped_ || (!frames_.empty() && frames_.back()->complete());
+    });
     return;
   }
   feedSlaves();
@@ -279,7 +322,13 @@ void TileDispatcher::service(double waitSeconds) {
   std::vector<int> expired;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (frame_) expired = frame_->scheduler.reclaimExpired(now());
+    for (const std::unique_ptr<Frame>& frame : frames_) {
+      for (int rank : frame->scheduler.reclaimExpired(now())) {
+        if (std::find(expired.begin(), expired.end(), rank) == expired.end()) {
+          expired.push_back(rank);
+        }
+      }
+    }
     for (int r = 0; r < link_.ranks(); ++r) {  // what Ready messages said meanwhile
       RankStats& s = delivered_[static_cast<size_t>(r)];
       if (r > 0) s.threads = link_.rank(r).threads;
@@ -313,7 +362,9 @@ std::vector<RankStats> TileDispatcher::stats() {
 
 size_t TileDispatcher::reissuedTiles() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return reissuedBefore_ + (frame_ ? frame_->scheduler.reissuedCount() : 0);
+  size_t reissued = reissuedBefore_;
+  for (const std::unique_ptr<Frame>& frame : frames_) reissued += frame->scheduler.reissuedCount();
+  return reissued;
 }
 
 }  // namespace prism

@@ -56,6 +56,9 @@ class FrameListener {
  public:
   virtual ~FrameListener() = default;
   virtual void tileAssigned(uint32_t /*frame*/, uint32_t /*tile*/, int /*rank*/) {}
+  // Whether the frame's tiles are still wanted: the viewer drops a pass a moment before it ends
+  // its frame here, and a tile arriving in between is stale like one of an ended frame.
+  virtual bool wantsTiles(uint32_t /*frame*/) { return true; }
   // A tile of the frame, accepted: the first copy, matching the plan.
   virtual void tileFinished(uint32_t frame, TileResult&& tile, int rank) = 0;
 };
@@ -73,14 +76,19 @@ class TileDispatcher {
 
   // Starts rank 0's render threads; they take tiles of whatever frame is current.
   void startLocalWorkers();
-  // Makes plan the current frame; the one before is ended (its tiles left are dropped, its late
-  // results are stale). Called by the coordinating thread: it sends the slaves their first jobs
-  // before rank 0's render threads take any tile.
+  // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
+  // late results are stale). Called by the coordinating thread: it sends the slaves their first
+  // jobs before rank 0's render threads take any tile.
   void beginFrame(FramePlan plan, FrameListener* listener);
-  // Ends `frame` now if it is still the current one: no more of its tiles are handed out. A frame
-  // begun since is left alone, so a caller on another thread cannot end a newer frame by mistake.
+  // Pipelining (the viewer's frame stream): adds plan as the current frame behind the frames
+  // still running, which are not ended. A render thread or slave takes the oldest frame's tiles
+  // first and the next frame's once the older ones have none left for it, so nobody waits for
+  // a round trip between frames. An older frame leaves once complete (or ended).
+  void queueFrame(FramePlan plan, FrameListener* listener);
+  // Ends `frame` now if it is still running: no more of its tiles are handed out. Frames begun
+  // since are left alone, so a caller on another thread cannot end a newer frame by mistake.
   void endFrame(uint32_t frame);
-  // Whether the current frame has all its tiles (false with no frame).
+  // Whether the current (newest) frame has all its tiles (false with no frame).
   bool frameComplete();
   size_t tilesDone();
 
@@ -107,10 +115,12 @@ class TileDispatcher {
  private:
   struct Frame;
 
+  Frame* findLocked(uint32_t frame);
+  void addFrame(FramePlan plan, FrameListener* listener, bool endEarlier);
   std::optional<TileJob> nextLocalJob();
   void accept(uint32_t frame, TileResult&& tile, int rank);
   void feedSlaves();
-  // Up to its prefetch, the current frame's next jobs for a slave, encoded (mutex_ held).
+  // Up to its prefetch, the next jobs for a slave (oldest frame first), encoded (mutex_ held).
   std::vector<std::vector<uint8_t>> jobsForLocked(int rank);
   // Sends them; a refused send retires the slave.
   void sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs);
@@ -126,9 +136,9 @@ class TileDispatcher {
 
   std::mutex mutex_;
   std::condition_variable changed_;
-  std::unique_ptr<Frame> frame_;
-  std::vector<RankStats> delivered_;  // tiles, rays, busy and stale counts per rank
-  size_t reissuedBefore_ = 0;         // by frames already ended
+  std::vector<std::unique_ptr<Frame>> frames_;  // running, oldest first; the last is current
+  std::vector<RankStats> delivered_;            // tiles, rays, busy and stale counts per rank
+  size_t reissuedBefore_ = 0;                   // by frames already ended
   bool stopped_ = false;
 };
 

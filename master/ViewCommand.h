@@ -13,17 +13,20 @@
 namespace prism {
 
 struct ViewOptions {
-  RenderOptions render;    // scene path, overrides, threads and distribution, as for `render`
-  int previewScale = 4;    // the preview pass after a camera change: 1/previewScale, 1 spp
-  int maxPasses = 64;      // full-resolution passes before the view stops refining
+  RenderOptions render;  // scene path, overrides, threads and distribution, as for `render`
+  int previewScale = 4;  // frames while moving may drop to 1/previewScale of each side
+  int maxPasses = 64;    // full-resolution passes before the view stops refining
+  double frameTimeMilliseconds = 1000.0 / 30;  // target for frames while moving; 0: none
+  bool pipeline = true;    // queue the next frame before the current one's last tiles return
   std::string speedupCsv;  // loaded into the statistics panel at start
   // For scripts, tests and benchmarks (the window still opens):
   int exitAfterPasses = 0;         // quit when this many full passes of the first view are done
   std::string savePath;            // save the image here when quitting
   std::string screenshotPath;      // grab the whole window here ...
   double screenshotSeconds = 2.0;  // ... this long after start, then quit
-  int benchmarkMoves = 0;          // move the camera this often, print preview latencies, quit
-  std::string keys;                // typed into the window at start, in order (letters, + - =)
+  int benchmarkMoves = 0;          // move the camera this often, print frame rates, quit
+  double benchmarkMoveMilliseconds = 10.0;  // one move per this interval (a mouse drag's rate)
+  std::string keys;  // typed into the window at start, in order (letters, + - =)
 };
 
 class Transport;

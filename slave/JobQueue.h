@@ -1,6 +1,7 @@
 // Tile jobs received from the master, waiting for this rank's render threads.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <deque>
 #include <mutex>
@@ -43,6 +44,14 @@ class JobQueue {
   void clear() {
     const std::lock_guard<std::mutex> lock(mutex_);
     jobs_.clear();
+  }
+
+  // Drops the jobs not yet started of frames before `frame` (the master has ended them).
+  void dropBefore(uint32_t frame) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    jobs_.erase(std::remove_if(jobs_.begin(), jobs_.end(),
+                               [frame](const TileJob& job) { return job.frame < frame; }),
+                jobs_.end());
   }
 
  private:

@@ -241,12 +241,16 @@ int runSlave(Transport& session, const DistributionOptions& options,
   std::condition_variable beatStop;
   bool stopBeating = false;
   std::atomic<bool> masterGone{false};
-  // The current frame. Frame ids only grow: a View (the viewer) or a job of a later frame (the
-  // passes of `prism render`) starts a new one, and work of earlier frames is stale.
-  uint32_t frame = 0;
-  std::shared_ptr<const RenderView> view;  // the viewer's; `prism render` uses the scene's
-  uint64_t received = 0;                   // jobs of this frame
-  std::set<uint32_t> held;                 // tiles of this frame received, not yet returned
+  // The frames still running, by id; ids only grow. A View (the viewer) starts a frame and names
+  // the oldest one still running (the viewer pipelines its frames); a job of a later frame
+  // without a View (the passes of `prism render`) ends every earlier one. Work of a frame that
+  // has ended is stale.
+  struct FrameWork {
+    std::shared_ptr<const RenderView> view;  // the viewer's; `prism render` uses the scene's
+    uint64_t received = 0;                   // jobs of this frame
+    std::set<uint32_t> held;                 // its tiles received, not yet returned
+  };
+  std::map<uint32_t, FrameWork> frames;
   // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets the
   // master spot tiles this rank lost.
   std::thread heartbeat([&] {
@@ -254,8 +258,14 @@ int runSlave(Transport& session, const DistributionOptions& options,
     while (!beatStop.wait_for(lock, std::chrono::duration<double>(kHeartbeatSeconds),
                               [&] { return stopBeating; })) {
       if (hang) continue;
-      const wire::ProgressMessage progress{frame, received, {held.begin(), held.end()}};
-      if (!session.send(0, wire::encodeProgress(progress))) masterGone = true;
+      std::vector<wire::ProgressMessage> progress;  // one per running frame; frame 0: none yet
+      for (const auto& [id, work] : frames) {
+        progress.push_back({id, work.received, {work.held.begin(), work.held.end()}});
+      }
+      if (progress.empty()) progress.push_back({});
+      for (const wire::ProgressMessage& p : progress) {
+        if (!session.send(0, wire::encodeProgress(p))) masterGone = true;
+      }
     }
   });
   const auto stopHeartbeat = [&] {
@@ -281,8 +291,9 @@ int runSlave(Transport& session, const DistributionOptions& options,
       }
       bool masterReachable = !masterGone;
       for (wire::TileResultMessage& result : outbox.take()) {
-        if (result.frame != frame) continue;  // finished after the viewer moved on: stale
-        held.erase(result.result.tileIndex);
+        const auto work = frames.find(result.frame);
+        if (work == frames.end()) continue;  // finished after the viewer moved on: stale
+        work->second.held.erase(result.result.tileIndex);
         masterReachable = session.send(0, wire::encodeTileResult(result)) && masterReachable;
       }
       if (std::optional<wire::PhotonShareMessage> share = photons.finished()) {
@@ -322,11 +333,11 @@ int runSlave(Transport& session, const DistributionOptions& options,
       }
       if (message.type == wire::MessageType::View) {
         wire::ViewMessage next = wire::decodeView(message);
-        frame = next.frame;
-        view = std::make_shared<const RenderView>(std::move(next.view));
-        jobs.clear();  // tiles of earlier frames nobody wants any more
-        held.clear();
-        received = 0;
+        frames.erase(frames.begin(), frames.lower_bound(next.liveFrom));
+        jobs.dropBefore(next.liveFrom);  // tiles of frames nobody wants any more
+        FrameWork& work = frames[next.frame];
+        work = FrameWork{};
+        work.view = std::make_shared<const RenderView>(std::move(next.view));
         continue;
       }
       if (message.type == wire::MessageType::Echo) {  // a link probe: straight back
@@ -348,24 +359,25 @@ int runSlave(Transport& session, const DistributionOptions& options,
       }
       if (message.type != wire::MessageType::TileJob) continue;
       const wire::TileJobMessage job = wire::decodeTileJob(message);
-      if (job.frame < frame) continue;  // a job of a frame already ended
-      if (job.frame > frame) {          // a new frame: its counts start afresh
-        frame = job.frame;
-        received = 0;
-        held.clear();
+      auto work = frames.find(job.frame);
+      if (work == frames.end()) {
+        if (!frames.empty() && job.frame < frames.rbegin()->first) continue;  // ended already
+        frames.clear();  // a later frame of `prism render`: the earlier ones have ended
+        work = frames.emplace(job.frame, FrameWork{}).first;
       }
-      ++received;
+      FrameWork& frame = work->second;
+      ++frame.received;
       if (options.fault.appliesTo(session.rank()) &&
           options.fault.kind == FaultInjection::Kind::Crash) {
         std::_Exit(9);  // dies without MPI_Finalize, like a killed process
       }
-      if (hang || (drop && received % 2 == 0)) continue;
-      held.insert(job.tileIndex);  // with the count, so no heartbeat sees it received, not held
-      lock.unlock();               // the first tile of a caustic-map pass may build the maps
+      if (hang || (drop && frame.received % 2 == 0)) continue;
+      frame.held.insert(job.tileIndex);  // with the count: no heartbeat sees it received, not held
+      lock.unlock();                     // the first tile of a caustic-map pass may build the maps
       std::shared_ptr<const RenderPass> pass =
-          photons.pass(job.pass, job.terms, !view || view->causticMapBlur);
+          photons.pass(job.pass, job.terms, !frame.view || frame.view->causticMapBlur);
       lock.lock();
-      jobs.push(tileJobFromMessage(job, view, std::move(pass)));
+      jobs.push(tileJobFromMessage(job, frame.view, std::move(pass)));
     }
   } catch (const std::exception& e) {
     stopHeartbeat();

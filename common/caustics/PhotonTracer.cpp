@@ -136,12 +136,14 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
 }
 
 std::vector<Photon> tracePhotons(const PhotonTracer& tracer, uint32_t pass, uint64_t first,
-                                 uint64_t count, int threads, PhotonTraceStats* stats) {
+                                 uint64_t count, int threads, PhotonTraceStats* stats,
+                                 const std::atomic<bool>* cancel) {
   constexpr uint64_t kChunk = 4096;
   const uint64_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<std::vector<Photon>> results(chunks);
   std::vector<PhotonTraceStats> chunkStats(chunks);
   parallelFor(chunks, threads, [&](uint64_t c) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
     const uint64_t begin = first + c * kChunk;
     chunkStats[c] = tracer.trace(pass, begin, std::min(kChunk, first + count - begin), results[c]);
   });

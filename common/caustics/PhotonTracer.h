@@ -16,6 +16,7 @@
 // range is split between threads or ranks.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -62,8 +63,10 @@ class PhotonTracer {
 };
 
 // trace() over `threads` threads (0: every available core). The photons come back in index
-// order whatever the thread count.
+// order whatever the thread count. Once *cancel is set, chunks not yet begun are skipped: the
+// result is then incomplete and only good for dropping.
 std::vector<Photon> tracePhotons(const PhotonTracer& tracer, uint32_t pass, uint64_t first,
-                                 uint64_t count, int threads, PhotonTraceStats* stats = nullptr);
+                                 uint64_t count, int threads, PhotonTraceStats* stats = nullptr,
+                                 const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace prism

@@ -4,7 +4,8 @@
 
 namespace prism {
 
-PixelSampler::PixelSampler(int samplesPerPixel) : count_(samplesPerPixel) {
+PixelSampler::PixelSampler(int samplesPerPixel, bool jitterSingleSample)
+    : count_(samplesPerPixel), jitterSingle_(jitterSingleSample) {
   // The largest divisor not above √spp gives the squarest grid with exactly spp strata.
   rows_ = static_cast<int>(std::sqrt(static_cast<double>(samplesPerPixel)));
   while (rows_ > 1 && samplesPerPixel % rows_ != 0) --rows_;
@@ -13,7 +14,7 @@ PixelSampler::PixelSampler(int samplesPerPixel) : count_(samplesPerPixel) {
 }
 
 Vec2 PixelSampler::offset(int i, Pcg32& rng) const {
-  if (count_ == 1) return Vec2(0.5f);
+  if (count_ == 1 && !jitterSingle_) return Vec2(0.5f);
   const int column = i % columns_;
   const int row = i / columns_;
   const float jitterX = rng.nextFloat();

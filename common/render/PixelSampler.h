@@ -1,6 +1,7 @@
 // Stratified supersampling positions within a pixel. spp samples cover an nx × ny grid of
 // strata (nx·ny = spp, as square as spp's factors allow), one jittered sample per stratum; one
-// sample per pixel goes through the pixel centre, as in classic ray tracers.
+// sample per pixel goes through the pixel centre, as in classic ray tracers, unless asked to
+// jitter it too (the viewer's refinement passes at 1 spp).
 #pragma once
 
 #include "math/Random.h"
@@ -10,7 +11,7 @@ namespace prism {
 
 class PixelSampler {
  public:
-  explicit PixelSampler(int samplesPerPixel);
+  explicit PixelSampler(int samplesPerPixel, bool jitterSingleSample = false);
 
   int count() const { return count_; }
   int columns() const { return columns_; }
@@ -21,6 +22,7 @@ class PixelSampler {
 
  private:
   int count_;
+  bool jitterSingle_;
   int columns_;
   int rows_;
 };

@@ -25,6 +25,9 @@ struct RenderView {
   uint64_t seed = 0;  // each refinement pass uses its own, so passes average to more samples
   DebugView debugView = DebugView::Image;
   bool causticMapBlur = true;  // caustic mapping: the scene's Gaussian blur, or none (viewer `b`)
+  // One sample per pixel through a jittered point instead of the centre: the viewer's passes
+  // after the first, which must differ from it to average to more samples.
+  bool jitterSingleSample = false;
 };
 
 }  // namespace prism

@@ -18,7 +18,7 @@ TileRenderer::TileRenderer(const Scene& scene, const RenderView& view, const Lig
       seed_(view.seed),
       debugView_(view.debugView),
       integrator_(scene, terms),
-      sampler_(view.samplesPerPixel) {}
+      sampler_(view.samplesPerPixel, view.jitterSingleSample) {}
 
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   Pcg32 rng = Pcg32::forKey(seed_, static_cast<uint64_t>(x), static_cast<uint64_t>(y));

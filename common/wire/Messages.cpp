@@ -324,9 +324,11 @@ ProgressMessage decodeProgress(const Message& message) {
 
 std::vector<uint8_t> encodeView(const ViewMessage& message) {
   return encodeWith(MessageType::View, [&](ByteWriter& w) {
-    const auto& [frame, view] = message;
-    const auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur] = view;
+    const auto& [frame, liveFrom, view] = message;
+    const auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
+                 jitterSingleSample] = view;
     w.writeU32(frame);
+    w.writeU32(liveFrom);
     writeCamera(w, camera);
     w.writeI32(width);
     w.writeI32(height);
@@ -334,15 +336,22 @@ std::vector<uint8_t> encodeView(const ViewMessage& message) {
     w.writeU64(seed);
     w.writeU32(static_cast<uint32_t>(debugView));
     w.writeU8(causticMapBlur ? 1 : 0);
+    w.writeU8(jitterSingleSample ? 1 : 0);
   });
 }
 
 ViewMessage decodeView(const Message& message) {
   return decodePayload(message, MessageType::View, [](ByteReader& r) {
     ViewMessage m;
-    auto& [frame, view] = m;
-    auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur] = view;
+    auto& [frame, liveFrom, view] = m;
+    auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
+           jitterSingleSample] = view;
     frame = r.readU32();
+    liveFrom = r.readU32();
+    if (liveFrom > frame) {
+      throw WireError("view of frame " + std::to_string(frame) + " keeps a later frame " +
+                      std::to_string(liveFrom) + " running");
+    }
     camera = readCamera(r);
     width = r.readI32();
     height = r.readI32();
@@ -352,6 +361,9 @@ ViewMessage decodeView(const Message& message) {
     const uint8_t blur = r.readU8();
     if (blur > 1) throw WireError("invalid caustic-map blur flag " + std::to_string(blur));
     causticMapBlur = blur == 1;
+    const uint8_t jitter = r.readU8();
+    if (jitter > 1) throw WireError("invalid jitter flag " + std::to_string(jitter));
+    jitterSingleSample = jitter == 1;
     if (width <= 0 || height <= 0 || int64_t{width} * height > INT_MAX) {
       throw WireError("invalid view size " + std::to_string(width) + "x" + std::to_string(height));
     }

@@ -23,8 +23,9 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
 // 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
 // 5: the caustic-map term of TileJob, the view's caustic-map blur switch, and the Echo
-// message (`prism speedup` measures the links with it).
-inline constexpr uint16_t kVersion = 5;
+// message (`prism speedup` measures the links with it). 6: View names the oldest frame still
+// running (pipelined frames) and says whether one sample per pixel is jittered.
+inline constexpr uint16_t kVersion = 6;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -133,9 +134,11 @@ struct ProgressMessage {
 };
 
 // The viewer's render request: the TileJobs that follow with the same frame are tiles of this
-// view. A new View ends every earlier frame, so a slave drops the jobs it still holds for them.
+// view. A View ends every frame before liveFrom, so a slave drops the jobs it still holds for
+// them; frames from liveFrom on are still running (the viewer pipelines its frames).
 struct ViewMessage {
   uint32_t frame = 0;
+  uint32_t liveFrom = 0;  // ≤ frame; equal: this view ends every earlier frame
   RenderView view;
 };
 

@@ -81,6 +81,7 @@ int main(int argc, char** argv) {
   writeSeed(dir, "photon-map", encodePhotonMap(1, PhotonGatherSettings{}, somePhotons()));
   ViewMessage view;
   view.frame = 4;
+  view.liveFrom = 3;
   view.view.camera = loadScene(PRISM_SOURCE_DIR "/scenes/default.yaml").camera;
   view.view.width = 320;
   view.view.height = 240;

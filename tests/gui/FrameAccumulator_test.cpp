@@ -48,6 +48,43 @@ TEST(FrameAccumulator, PreviewFillsBlocksAndFullPassesAverage) {
   EXPECT_NEAR(f.image().at(5, 2).g, 0.5f, 1e-6f);
 }
 
+// A view's first frame is shown whole: until its last tile is in, the screen keeps the frame
+// before (never half of each view), then it replaces it at once.
+TEST(FrameAccumulator, AViewsFirstFrameIsShownOnlyWhenComplete) {
+  FrameAccumulator f(4, 2);
+  f.beginPass(pass(1, 1, 1, 4, 2));
+  ASSERT_TRUE(f.addTile(1, uniformTile(4, 2, Color(0.25f))));
+  f.takeDirty();
+
+  PassInfo moved = pass(2, 1, 1, 4, 2);
+  moved.viewId = 2;
+  moved.firstOfView = true;
+  moved.tiles = {{0, 0, 2, 2}, {2, 0, 2, 2}};
+  f.beginPass(moved);
+  TileResult left = uniformTile(2, 2, Color(1.0f));
+  ASSERT_TRUE(f.addTile(2, left));
+  EXPECT_EQ(f.image().at(0, 0), Color(0.25f));  // still the frame before
+  EXPECT_EQ(f.takeDirty().width, 0);            // nothing to repaint yet
+  EXPECT_EQ(f.completedPass(), -1);
+  TileResult right = uniformTile(2, 2, Color(0.5f));
+  right.tileIndex = 1;
+  right.rect = {2, 0, 2, 2};
+  ASSERT_TRUE(f.addTile(2, right));
+  EXPECT_EQ(f.image().at(0, 0), Color(1.0f));  // the whole new frame at once
+  EXPECT_EQ(f.image().at(3, 1), Color(0.5f));
+  const TileRect dirty = f.takeDirty();
+  EXPECT_EQ(dirty.width, 4);
+  EXPECT_EQ(dirty.height, 2);
+  EXPECT_EQ(f.completedPass(), 1);
+
+  // Pass 2 of the view refines in place, tile by tile.
+  PassInfo second = pass(3, 2, 1, 4, 2);
+  second.viewId = 2;
+  f.beginPass(second);
+  ASSERT_TRUE(f.addTile(3, uniformTile(4, 2, Color(0.0f))));
+  EXPECT_EQ(f.image().at(0, 0), Color(0.5f));
+}
+
 TEST(FrameAccumulator, StaleTilesChangeNothing) {
   FrameAccumulator f(4, 4);
   f.beginPass(pass(7, 1, 1, 4, 4));

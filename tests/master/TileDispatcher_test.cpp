@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -320,6 +321,71 @@ TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
   EXPECT_TRUE(complete);
   EXPECT_EQ(listener.finished(2), tiles.size());
   EXPECT_EQ(listener.finished(1), 0u);
+}
+
+// The viewer's pipelined frames: a frame queued behind a running one is not ended; every tile of
+// the older frame is handed out before any of the newer one's, and both complete.
+class OrderListener : public FrameListener {
+ public:
+  void tileAssigned(uint32_t frame, uint32_t, int) override { order_.push_back(frame); }
+  void tileFinished(uint32_t frame, TileResult&&, int) override { ++finished_[frame]; }
+  // Only after the threads stop:
+  const std::vector<uint32_t>& order() const { return order_; }
+  size_t finished(uint32_t frame) { return finished_[frame]; }
+
+ private:
+  std::vector<uint32_t> order_;
+  std::map<uint32_t, size_t> finished_;
+};
+
+TEST(TileDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
+  const Scene scene(smallScene());
+  DistributionOptions o;
+  o.threads = 2;
+  SlaveLink link(nullptr, o);
+  TileDispatcher dispatcher(scene, link, o);
+  OrderListener listener;
+  const std::vector<TileRect> tiles = planTiles(64, 48, 16);
+  dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.queueFrame({2, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.startLocalWorkers();
+  const auto start = std::chrono::steady_clock::now();
+  while (!dispatcher.frameComplete() &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    dispatcher.service(0.05);
+  }
+  dispatcher.stop();
+  dispatcher.join();
+  EXPECT_EQ(listener.finished(1), tiles.size());
+  EXPECT_EQ(listener.finished(2), tiles.size());
+  const std::vector<uint32_t>& order = listener.order();
+  ASSERT_EQ(order.size(), 2 * tiles.size());
+  EXPECT_TRUE(std::is_sorted(order.begin(), order.end())) << "a frame-2 tile before frame 1's last";
+  EXPECT_EQ(dispatcher.stats()[0].staleTiles, 0u);
+}
+
+// beginFrame, unlike queueFrame, ends every frame before: none of the first frame's tiles is
+// handed out once the second has begun.
+TEST(TileDispatcher, BeginningAFrameEndsAQueuedOne) {
+  const Scene scene(smallScene());
+  DistributionOptions o;
+  o.threads = 1;
+  SlaveLink link(nullptr, o);
+  TileDispatcher dispatcher(scene, link, o);
+  OrderListener listener;
+  const std::vector<TileRect> tiles = planTiles(64, 48, 16);
+  dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.beginFrame({2, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.startLocalWorkers();
+  const auto start = std::chrono::steady_clock::now();
+  while (!dispatcher.frameComplete() &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    dispatcher.service(0.05);
+  }
+  dispatcher.stop();
+  dispatcher.join();
+  EXPECT_EQ(listener.finished(1), 0u);
+  EXPECT_EQ(listener.finished(2), tiles.size());
 }
 
 }  // namespace

@@ -149,11 +149,12 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
-  // 4: before the caustic-map term, the blur switch and the Echo message.
-  for (uint16_t version : {1, 2, 3, 4, 6}) {
+  // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
+  // liveFrom.
+  for (uint16_t version : {1, 2, 3, 4, 5, 7}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 5");
+                    "message version " + std::to_string(version) + ", this build speaks 6");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo; 13 is the first unused type.
@@ -290,6 +291,7 @@ TEST(Messages, ProgressRoundTripsAndRejectsCorruption) {
 TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   ViewMessage m;
   m.frame = 41;
+  m.liveFrom = 40;
   m.view.camera.position = Vec3(1.0f, 2.0f, 3.0f);
   m.view.camera.lookAt = Vec3(-1.0f, 0.5f, 0.0f);
   m.view.camera.fovDegrees = 33.0f;
@@ -300,8 +302,10 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   m.view.seed = 0xDEADBEEFCAFEull;
   m.view.debugView = DebugView::Normals;
   m.view.causticMapBlur = false;
+  m.view.jitterSingleSample = true;
   const ViewMessage back = decodeView(decodeMessage(encodeView(m)));
   EXPECT_EQ(back.frame, 41u);
+  EXPECT_EQ(back.liveFrom, 40u);
   EXPECT_EQ(back.view.camera.position, m.view.camera.position);
   EXPECT_EQ(back.view.camera.lookAt, m.view.camera.lookAt);
   EXPECT_EQ(back.view.camera.fovDegrees, 33.0f);
@@ -312,12 +316,17 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   EXPECT_EQ(back.view.seed, 0xDEADBEEFCAFEull);
   EXPECT_EQ(back.view.debugView, DebugView::Normals);
   EXPECT_FALSE(back.view.causticMapBlur);
+  EXPECT_TRUE(back.view.jitterSingleSample);
   ViewMessage blurred = m;
   blurred.view.causticMapBlur = true;
   EXPECT_TRUE(decodeView(decodeMessage(encodeView(blurred))).view.causticMapBlur);
   EXPECT_STREQ(messageTypeName(MessageType::View), "View");
 
   ViewMessage bad = m;
+  bad.liveFrom = 42;
+  expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); },
+                  "view of frame 41 keeps a later frame 42 running");
+  bad = m;
   bad.view.width = 0;
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid view size 0x90");
   bad = m;
@@ -328,18 +337,23 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   bad.view.debugView = static_cast<DebugView>(77);
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid debug view 77");
   Message flag = decodeMessage(encodeView(m));
-  // The debug view is a u32 before the last byte; DebugView is a byte, so 256 must not read as
-  // Image (tests/fuzz/regressions/wire/view-debug-view-256).
+  // The debug view is a u32 before the last two bytes; DebugView is a byte, so 256 must not read
+  // as Image (tests/fuzz/regressions/wire/view-debug-view-256).
   Message wide = flag;
-  wide.payload[wide.payload.size() - 5] = 0;  // little-endian: 0 + 1 * 256
-  wide.payload[wide.payload.size() - 4] = 1;
+  wide.payload[wide.payload.size() - 6] = 0;  // little-endian: 0 + 1 * 256
+  wide.payload[wide.payload.size() - 5] = 1;
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, wide.payload))); },
       "invalid debug view 256");
-  flag.payload.back() = 2;  // the blur switch is the last byte
+  Message blur = flag;
+  blur.payload[blur.payload.size() - 2] = 2;  // the blur switch, then the jitter flag
+  expectWireError(
+      [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, blur.payload))); },
+      "invalid caustic-map blur flag 2");
+  flag.payload.back() = 3;
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, flag.payload))); },
-      "invalid caustic-map blur flag 2");
+      "invalid jitter flag 3");
   EXPECT_THROW(decodeView(decodeMessage(encodeShutdown())), WireError);
 }
 
