@@ -79,4 +79,48 @@ std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const Proje
   return points;
 }
 
+double streamBytesPerSecond(int width, int height, int tileSize, double framesPerSecond) {
+  double bytes = 0.0;
+  for (const TileRect& t : planTiles(width, height, tileSize)) {
+    bytes += tileResultBytes(t.pixelCount());
+  }
+  return bytes * framesPerSecond;
+}
+
+std::vector<FrameRatePoint> projectFrameRates(const TileCostMap& costs, const ProjectionPlan& plan,
+                                              const SpeedupReport& report) {
+  std::vector<FrameRatePoint> points;
+  const double perSample = 1.0 / std::max(report.samplesPerPixel, 1);
+  for (const auto& [width, height] : plan.sizes) {
+    const std::vector<TileRect> tiles = planTiles(width, height, plan.tileSize);
+    std::vector<double> tileSeconds = costs.tileCosts(width, height, plan.tileSize);
+    for (double& t : tileSeconds) t *= perSample;
+    // kPipelinedFrames frames back to back in one dynamic queue.
+    std::vector<double> stream;
+    std::vector<TileRect> streamTiles;
+    for (int f = 0; f < kPipelinedFrames; ++f) {
+      stream.insert(stream.end(), tileSeconds.begin(), tileSeconds.end());
+      streamTiles.insert(streamTiles.end(), tiles.begin(), tiles.end());
+    }
+    for (int ranks = 1; ranks * report.threadsPerRank <= plan.maxWorkers; ranks *= 2) {
+      const double one = simulateTileSchedule(simulationOf(tileSeconds, tiles, ranks,
+                                                           Schedule::Dynamic, 1.0, report))
+                             .seconds;
+      const double many = simulateTileSchedule(simulationOf(stream, streamTiles, ranks,
+                                                            Schedule::Dynamic, 1.0, report))
+                              .seconds;
+      FrameRatePoint p;
+      p.width = width;
+      p.height = height;
+      p.workers = ranks * report.threadsPerRank;
+      p.unpipelinedFramesPerSecond = one > 0.0 ? 1.0 / one : 0.0;
+      p.framesPerSecond = many > 0.0 ? kPipelinedFrames / many : 0.0;
+      p.resultBytesPerSecond =
+          streamBytesPerSecond(width, height, plan.tileSize, p.framesPerSecond);
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
 }  // namespace prism

@@ -38,4 +38,18 @@ struct ProjectionPlan {
 std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const ProjectionPlan& plan,
                                            const SpeedupReport& report);
 
+// The viewer's real-time frame rate at every size of the plan and worker count (doubling from
+// one rank of report.threadsPerRank threads up to plan.maxWorkers), dynamic schedule, the
+// measured link. Tile costs are the measured ones scaled from report.samplesPerPixel to 1.
+// Pipelined (TileDispatcher::queueFrame): kPipelinedFrames frames' tiles in one queue, their
+// count over the time until the last result (the first frame's start-up included, so slightly
+// low); unpipelined: one frame on its own, round trip included.
+inline constexpr int kPipelinedFrames = 16;
+std::vector<FrameRatePoint> projectFrameRates(const TileCostMap& costs, const ProjectionPlan& plan,
+                                              const SpeedupReport& report);
+
+// Bytes per second of tile results a stream of width×height frames at framesPerSecond puts on
+// rank 0's link (tiles of tileSize).
+double streamBytesPerSecond(int width, int height, int tileSize, double framesPerSecond);
+
 }  // namespace prism

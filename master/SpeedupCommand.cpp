@@ -312,6 +312,9 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     plan.maxWorkers = options.projectWorkers;
     plan.schedules = options.schedules;
     report.projection = projectScaling(costs, plan, report);
+    ProjectionPlan realtime = plan;
+    realtime.sizes = {{report.width, report.height}, {1280, 720}, {1920, 1080}};
+    report.frameRates = projectFrameRates(costs, realtime, report);
 
     printSpeedupTable(report, out);
     writeOutputs(report, files, chartWriter, out, err);

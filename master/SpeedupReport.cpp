@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "master/NumberText.h"
+#include "master/ScalingProjection.h"
 #include "master/ScheduleNames.h"
 
 namespace prism {
@@ -147,6 +148,58 @@ void writeProjectionCsv(const SpeedupReport& r, std::ostream& out) {
   }
 }
 
+namespace {
+
+// The viewer's projected real-time frame rates: one row per worker count, one column per size,
+// "pipelined (unpipelined)" frames/s; then what the largest size's stream puts on the link.
+void printFrameRates(const SpeedupReport& r, std::ostream& out) {
+  if (r.frameRates.empty()) return;
+  out << "\n  real time (simulated 1-spp frames at full resolution, frames/s pipelined "
+         "(unpipelined), the measured link):\n";
+  std::vector<std::pair<int, int>> sizes;
+  std::vector<int> workers;
+  for (const FrameRatePoint& p : r.frameRates) {
+    if (std::find(sizes.begin(), sizes.end(), std::pair{p.width, p.height}) == sizes.end())
+      sizes.push_back({p.width, p.height});
+    if (std::find(workers.begin(), workers.end(), p.workers) == workers.end())
+      workers.push_back(p.workers);
+  }
+  char line[160];
+  std::snprintf(line, sizeof line, "  %8s", "p");
+  out << line;
+  for (const auto& [w, h] : sizes) {
+    std::snprintf(line, sizeof line, " %18s",
+                  (std::to_string(w) + "x" + std::to_string(h)).c_str());
+    out << line;
+  }
+  out << "\n";
+  for (int p : workers) {
+    std::snprintf(line, sizeof line, "  %8d", p);
+    out << line;
+    for (const auto& size : sizes) {
+      std::string cell = "-";
+      for (const FrameRatePoint& q : r.frameRates) {
+        if (q.workers == p && q.width == size.first && q.height == size.second) {
+          cell = formatNumber("%.1f", q.framesPerSecond) + " (" +
+                 formatNumber("%.1f", q.unpipelinedFramesPerSecond) + ")";
+        }
+      }
+      std::snprintf(line, sizeof line, " %18s", cell.c_str());
+      out << line;
+    }
+    out << "\n";
+  }
+  const auto [w, h] = sizes.back();
+  const double bytesAt30 = streamBytesPerSecond(w, h, r.serialTileSize, 30.0);
+  std::snprintf(line, sizeof line,
+                "  a %dx%d stream at 30 frames/s sends %.0f MB/s of tile results to rank 0 "
+                "(%.1f Gbit/s), measured link: %.0f MB/s\n",
+                w, h, bytesAt30 / 1e6, bytesAt30 * 8 / 1e9, r.link.model.bytesPerSecond / 1e6);
+  out << line;
+}
+
+}  // namespace
+
 void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   char line[512];
   out << "\nprism speedup: " << r.scenePath << ", " << r.width << "x" << r.height << ", "
@@ -264,6 +317,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
       out << "\n";
     }
   }
+  printFrameRates(r, out);
 }
 
 }  // namespace prism

@@ -77,6 +77,16 @@ struct ProjectedPoint {
   double speedup() const { return serialSeconds / seconds; }
 };
 
+// The viewer's real-time frames as the model projects them: 1 sample per pixel, every frame at
+// full resolution, one after another (docs/viewer.md).
+struct FrameRatePoint {
+  int width = 0, height = 0;
+  int workers = 0;                          // render threads over all ranks
+  double framesPerSecond = 0.0;             // pipelined, as the viewer renders
+  double unpipelinedFramesPerSecond = 0.0;  // each frame waiting for its last result
+  double resultBytesPerSecond = 0.0;        // tile results reaching rank 0 at the pipelined rate
+};
+
 struct SpeedupReport {
   std::string scenePath;
   int width = 0, height = 0, samplesPerPixel = 0;
@@ -92,6 +102,7 @@ struct SpeedupReport {
   int serialTileSize = 0;
   std::vector<ScalingPoint> points;
   std::vector<ProjectedPoint> projection;
+  std::vector<FrameRatePoint> frameRates;
 
   // Mean |model − measured| / measured over the points, and over those not oversubscribed
   // (NaN when there are none).
