@@ -163,8 +163,12 @@ bool LiveRenderer::mayStartLocked() const {
     newest = p.get();
   }
   if (open == 0) return true;
-  // Pipelined: the next frame's tiles are handed out once the current frame's all are.
-  return options_.pipeline && open == 1 && newest->allAssigned();
+  // Pipelined: the next frame's tiles are handed out once the current frame's all are. Not
+  // with photon mapping: a slave holds one photon map, and the next pass's would replace it
+  // while a tile of this pass could still be re-issued to it.
+  const bool photons =
+      newest->info.light && newest->info.light->caustics && !newest->info.light->causticMap;
+  return options_.pipeline && !photons && open == 1 && newest->allAssigned();
 }
 
 bool LiveRenderer::hasNextPassLocked() const {
