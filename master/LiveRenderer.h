@@ -8,7 +8,8 @@
 // previewScale), and the resolution comes back as soon as a frame fits again. Frames are
 // pipelined: once every tile of the current frame has been handed out, the next frame (the
 // newest view, or the next pass of a still one) is queued on the tile dispatcher, so render
-// threads and slaves go straight on to its tiles while the last ones of the frame before return.
+// threads and slaves go straight on to its tiles while the last ones of the frame before return
+// (except behind a photon-mapped pass: a slave holds one photon map at a time).
 // The first frame of a view is always finished (a move shows within about one frame time); a
 // view that arrives meanwhile is rendered by the next frame. Refinement passes of a still view
 // are ended at once by a move.
