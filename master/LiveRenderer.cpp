@@ -52,6 +52,11 @@ namespace {
 
 constexpr size_t kFrameTimeWindow = 60;  // frames the frame-time statistics cover
 
+// Whether the view's refinement passes trace a photon pass first.
+bool tracesPhotons(const ViewSettings& view) {
+  return view.caustics == CausticMethod::PhotonMap && view.debugView == DebugView::Image;
+}
+
 double percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -117,6 +122,7 @@ void LiveRenderer::stop() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopped_ = true;
+    cancelPhotons_ = true;  // run() returns without finishing a photon pass
   }
   dispatcher_.stop();
   changed_.notify_all();
@@ -155,6 +161,8 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
 }
 
 bool LiveRenderer::mayStartLocked() const {
+  const bool refine = lastIndex_ >= 0 && lastIndex_ < options_.maxPasses;
+  if (!pendingView_ && !refine) return false;  // nothing to render
   size_t open = 0;
   const Pass* newest = nullptr;
   for (const std::unique_ptr<Pass>& p : passes_) {
@@ -164,15 +172,13 @@ bool LiveRenderer::mayStartLocked() const {
   }
   if (open == 0) return true;
   // Pipelined: the next frame's tiles are handed out once the current frame's all are. Not
-  // with photon mapping: a slave holds one photon map, and the next pass's would replace it
-  // while a tile of this pass could still be re-issued to it.
-  const bool photons =
-      newest->info.light && newest->info.light->caustics && !newest->info.light->causticMap;
-  return options_.pipeline && !photons && open == 1 && newest->allAssigned();
-}
-
-bool LiveRenderer::hasNextPassLocked() const {
-  return pendingView_ || (lastIndex_ >= 0 && lastIndex_ < options_.maxPasses);
+  // behind a photon-mapped pass (a slave holds one photon map, and the next pass's would
+  // replace it while a tile of this one could still be re-issued to it), nor for a pass that
+  // traces photons first (the coordinator would trace while this frame's end waits).
+  if (!options_.pipeline || open != 1 || !newest->allAssigned()) return false;
+  const RenderPass* light = newest->info.light.get();
+  if (light && light->caustics && !light->causticMap) return false;
+  return pendingView_ || !tracesPhotons(view_);
 }
 
 std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
@@ -198,7 +204,6 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
     lastIndex_ = isPassOne ? 1 : 0;
     return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, scale, true};
   }
-  if (!hasNextPassLocked()) return std::nullopt;
   ++lastIndex_;  // the still camera's next full-resolution pass
   cancelPhotons_ = false;
   return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, 1, false};
@@ -431,23 +436,7 @@ void LiveRenderer::run(LiveListener& listener) {
         plan = nextPassLocked();
         takeDeliveriesLocked(events);
       }
-      if (plan) {
-        // Photons are traced here, without the lock: the GUI thread can still ask for views.
-        std::shared_ptr<const RenderPass> light = passLight(*plan);
-        {
-          const std::lock_guard<std::mutex> lock(mutex_);
-          // A view asked for meanwhile wins; this pass is dropped before it starts.
-          if (!pendingView_ && plan->viewId == viewId_) {
-            started = beginPassLocked(*plan, light, liveThreads);
-          }
-        }
-        if (started) {
-          const FramePlan frame{started->frame, started->tiles, started->view,
-                                started->light, true,           -1};
-          // Queued behind the frame still running, which the listener hears of first.
-          dispatcher_.queueFrame(frame, this);
-        }
-      }
+      // The news first: a photon pass traced below must not hold up the frame before it.
       for (Event& e : events) {
         switch (e.kind) {
           case Event::Kind::Started:
@@ -464,6 +453,26 @@ void LiveRenderer::run(LiveListener& listener) {
             break;
         }
       }
+      if (plan) {
+        // Photons are traced here, without the lock: the GUI thread can still ask for views.
+        std::shared_ptr<const RenderPass> light = passLight(*plan);
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          // A view asked for meanwhile wins; this pass is dropped before it starts.
+          if (!pendingView_ && plan->viewId == viewId_) {
+            started = beginPassLocked(*plan, light, liveThreads);
+          }
+        }
+        if (started) {
+          FramePlan frame;
+          frame.frame = started->frame;
+          frame.tiles = started->tiles;
+          frame.view = started->view;
+          frame.light = started->light;
+          // Queued behind the frame still running, which the listener hears of first.
+          dispatcher_.queueFrame(frame, this);
+        }
+      }
       if (started) continue;  // its first tiles may be news already; the next frame may be due
       if (link_.hasSlaves()) {
         // A view, a stop, a finished tile or a frame handed out wakes this wait; the bound is
@@ -471,9 +480,8 @@ void LiveRenderer::run(LiveListener& listener) {
         dispatcher_.service(0.05);
       } else {
         std::unique_lock<std::mutex> lock(mutex_);
-        changed_.wait_for(lock, std::chrono::milliseconds(50), [this] {
-          return stopped_ || deliverableLocked() || (mayStartLocked() && hasNextPassLocked());
-        });
+        changed_.wait_for(lock, std::chrono::milliseconds(50),
+                          [this] { return stopped_ || deliverableLocked() || mayStartLocked(); });
       }
       bool due = false;
       {

@@ -9,7 +9,8 @@
 // pipelined: once every tile of the current frame has been handed out, the next frame (the
 // newest view, or the next pass of a still one) is queued on the tile dispatcher, so render
 // threads and slaves go straight on to its tiles while the last ones of the frame before return
-// (except behind a photon-mapped pass: a slave holds one photon map at a time).
+// (except around photon passes: a slave holds one photon map at a time, and the coordinator
+// traces photons itself).
 // The first frame of a view is always finished (a move shows within about one frame time); a
 // view that arrives meanwhile is rendered by the next frame. Refinement passes of a still view
 // are ended at once by a move.
@@ -205,8 +206,9 @@ class LiveRenderer final : private FrameListener {
 
   Pass* findLocked(uint32_t frame);
   std::optional<PassPlan> nextPassLocked();
+  // Whether a pass should start now: there is one to render, and no frame running that it
+  // must wait for.
   bool mayStartLocked() const;
-  bool hasNextPassLocked() const;
   void frameFinishedLocked(const Pass& pass, double end);
   void takeDeliveriesLocked(std::vector<Event>& out);
   bool deliverableLocked() const;

@@ -467,6 +467,39 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   EXPECT_FLOAT_EQ(stats.photons.radius, settings.radius * settings.radiusScale);
 }
 
+// A move never waits for a photon pass: it cancels the one being traced.
+TEST(LiveRenderer, AMoveCancelsThePhotonPassBeingTraced) {
+  const SceneDescription d = causticScene();
+  const Scene scene(d);
+  LiveOptions options;
+  options.distribution.threads = 2;
+  options.previewScale = 1;
+  options.maxPasses = 2;
+  LiveRenderer renderer(scene, options);
+  Recorder recorder;
+  std::thread coordinator([&] { renderer.run(recorder); });
+  // 20 million photons: seconds of tracing for pass 1, which starts once pass 0 is done.
+  constexpr uint64_t kPhotons = 20'000'000;
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, kPhotons});
+  ASSERT_TRUE(recorder.waitForPass(1, 0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // tracing now
+  CameraDesc moved = d.camera;
+  moved.position.x += 0.2f;
+  const auto start = std::chrono::steady_clock::now();
+  renderer.setView({moved, 1, DebugView::Image, CausticMethod::PhotonMap, kPhotons});
+  ASSERT_TRUE(recorder.waitForPass(2, 0));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  renderer.stop();
+  coordinator.join();
+
+  // Cancelled within a chunk of photons; the whole pass would take seconds even on a fast
+  // machine (measured here: about 10 M photons/s on 2 threads).
+  EXPECT_LT(seconds, 1.5);
+  for (const PassInfo& p : recorder.passes()) EXPECT_NE(p.pass, 1) << "the cancelled pass ran";
+  EXPECT_EQ(renderer.stats().photons.passes, 0);
+}
+
 TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {
   const SceneDescription d = causticScene();
   const Scene scene(d);
