@@ -76,7 +76,7 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
   render->add_option("--exposure", o.exposure, "Radiance multiplier before PNG tone mapping")
       ->check(CLI::PositiveNumber);
   addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
-           "Ray/triangle intersector: moller_trumbore (default) or plane_inside");
+           "Ray/triangle intersector: moller_trumbore (default), plane_inside or watertight");
   render
       ->add_option("--tile-size", o.distribution.tileSize,
                    "Tile edge in pixels (default 0: automatic)")

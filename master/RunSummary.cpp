@@ -9,6 +9,18 @@
 namespace prism {
 namespace {
 
+const char* triangleTestTitle(TriangleTest test) {
+  switch (test) {
+    case TriangleTest::MollerTrumbore:
+      return "Moller-Trumbore";
+    case TriangleTest::PlaneThenInside:
+      return "plane-then-inside";
+    case TriangleTest::Watertight:
+      return "watertight";
+  }
+  return "?";
+}
+
 std::string fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
@@ -135,11 +147,10 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
       << "geometry  " << g.spheres << " spheres, " << g.cones << " cones, " << g.triangles
-      << " triangles ("
-      << (r.triangleTest == TriangleTest::MollerTrumbore ? "Moller-Trumbore" : "plane-then-inside")
-      << "), " << g.planes << " planes, " << s.lightCount << " lights\n"
+      << " triangles (" << triangleTestTitle(r.triangleTest) << "), " << g.planes << " planes, "
+      << s.lightCount << " lights\n"
       << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
-      << formatBytes(static_cast<double>(g.bvh.memoryBytes)) << " (+"
+      << formatBytes(static_cast<double>(g.accelerationBytes())) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "
       << milliseconds(g.bvh.seconds) << " (scene build " << milliseconds(s.buildSeconds) << ")\n"
       << "image     " << r.width << "x" << r.height << ", " << r.samplesPerPixel

@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 
+#include "accel/Simd.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
 namespace {
+
+using simd::Float4;
+using simd::Int4;
 
 constexpr int kBinCount = 16;
 constexpr uint32_t kMaxLeafSize = 8;
@@ -15,44 +20,103 @@ constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
 // Subtrees below this size are not worth a thread.
 constexpr uint32_t kParallelMinPrimitives = 32768;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// A box as two SIMD registers (x, y, z, unused). extend() keeps Aabb::extend's operand order,
+// (new < old ? new : old), so every bound is bit for bit what the scalar code computes.
+struct Box4 {
+  Float4 lower = {kInf, kInf, kInf, kInf};
+  Float4 upper = {-kInf, -kInf, -kInf, -kInf};
+
+  void extend(const Box4& b) {
+    lower = simd::minLanes(b.lower, lower);
+    upper = simd::maxLanes(b.upper, upper);
+  }
+  void extendPoint(Float4 p) {
+    lower = simd::minLanes(p, lower);
+    upper = simd::maxLanes(p, upper);
+  }
+  Aabb aabb() const {
+    return {Vec3(lower[0], lower[1], lower[2]), Vec3(upper[0], upper[1], upper[2])};
+  }
+  // Aabb::surfaceArea, term for term.
+  float surfaceArea() const {
+    if (lower[0] > upper[0] || lower[1] > upper[1] || lower[2] > upper[2]) return 0.0f;
+    const Float4 e = upper - lower;
+    return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+  }
+};
+
+// A primitive's box during the build, 32 bytes, moved by the partitions (the index travels in
+// the order array beside it): the binning reads it without an indirection.
+struct alignas(16) BuildBox {
+  Float4 lower;
+  Float4 upper;
+  Float4 center() const { return 0.5f * (lower + upper); }  // Aabb::center
+};
+
+// What a node's primitives span: their boxes and their centres.
+struct NodeExtent {
+  Box4 box;
+  Box4 centers;
+};
+
+// Boxes and primitive counts of every bin on every axis.
+struct Bins {
+  Box4 boxes[3][kBinCount];
+  uint32_t counts[3][kBinCount] = {};
+
+  // Min/max and sums: merging bins filled apart gives the bins filled together.
+  void merge(const Bins& other) {
+    for (int a = 0; a < 3; ++a) {
+      for (int k = 0; k < kBinCount; ++k) {
+        boxes[a][k].extend(other.boxes[a][k]);
+        counts[a][k] += other.counts[a][k];
+      }
+    }
+  }
+};
+
+// Ranges below this size are binned by one thread.
+constexpr uint32_t kParallelBinningMinPrimitives = 65536;
 
 struct Builder {
-  const std::vector<Aabb>& bounds;
-  const std::vector<Vec3>& centers;
-  std::vector<uint32_t>& order;
+  BuildBox* boxes;
+  uint32_t* order;
   std::vector<BvhNode>& nodes;
   BvhBuildStats& stats;
   uint32_t block = 1;
   int parallelLevels = 0;  // this many levels below the root build their right half on a thread
+  int blockShift = -1;     // log2(block) when block is a power of two: no division per cost
+  unsigned threads = 1;    // for the nodes above the parallel subtrees (the root on two cores)
 
-  float blocks(uint32_t count) const { return static_cast<float>((count + block - 1) / block); }
+  float blocks(uint32_t count) const {
+    const uint32_t rounded = count + block - 1;
+    return static_cast<float>(blockShift >= 0 ? rounded >> blockShift : rounded / block);
+  }
 
-  uint32_t build(uint32_t begin, uint32_t end, size_t depth) {
+  uint32_t build(uint32_t begin, uint32_t end, const NodeExtent& extent, size_t depth) {
     const uint32_t nodeIndex = static_cast<uint32_t>(nodes.size());
     nodes.emplace_back();
     stats.maxDepth = std::max(stats.maxDepth, depth);
-    Aabb box, centerBox;
-    for (uint32_t i = begin; i < end; ++i) {
-      box.extend(bounds[order[i]]);
-      centerBox.extend(centers[order[i]]);
-    }
-    nodes[nodeIndex].bounds = box;
+    nodes[nodeIndex].bounds = extent.box.aabb();
     const uint32_t count = end - begin;
 
     int axis = -1;
     uint32_t middle = begin;
+    NodeExtent left, right;
     if (count > 1 && (depth < Bvh::kMaxDepth || count > kMaxLeafSize))
-      chooseSplit(begin, end, box, centerBox, axis, middle);
+      chooseSplit(begin, end, extent, depth, axis, middle, left, right);
     if (axis < 0) {
       makeLeaf(nodeIndex, begin, count);
       return nodeIndex;
     }
     uint32_t second;
     if (static_cast<int>(depth) < parallelLevels && count >= kParallelMinPrimitives) {
-      second = buildHalvesInParallel(begin, middle, end, depth);
+      second = buildHalvesInParallel(begin, middle, end, left, right, depth);
     } else {
-      build(begin, middle, depth + 1);
-      second = build(middle, end, depth + 1);
+      build(begin, middle, left, depth + 1);
+      second = build(middle, end, right, depth + 1);
     }
     nodes[nodeIndex].offset = second;
     nodes[nodeIndex].splitAxis = static_cast<uint8_t>(axis);
@@ -60,18 +124,20 @@ struct Builder {
   }
 
   // The right half is built into its own array on another thread (the halves partition
-  // disjoint ranges of order), then appended: the nodes come out exactly as a serial build
-  // lays them out, so the tree does not depend on the number of threads.
-  uint32_t buildHalvesInParallel(uint32_t begin, uint32_t middle, uint32_t end, size_t depth) {
+  // disjoint ranges), then appended: the nodes come out exactly as a serial build lays them
+  // out, so the tree does not depend on the number of threads.
+  uint32_t buildHalvesInParallel(uint32_t begin, uint32_t middle, uint32_t end,
+                                 const NodeExtent& left, const NodeExtent& right, size_t depth) {
     std::vector<BvhNode> rightNodes;
     rightNodes.reserve(2 * (end - middle));
     BvhBuildStats rightStats;
-    Builder right{bounds, centers, order, rightNodes, rightStats, block, parallelLevels};
+    Builder rightBuilder{boxes, order,          rightNodes, rightStats,
+                         block, parallelLevels, blockShift, threads};
     parallelFor(2, 2, [&](uint64_t half) {
       if (half == 0) {
-        build(begin, middle, depth + 1);
+        build(begin, middle, left, depth + 1);
       } else {
-        right.build(middle, end, depth + 1);
+        rightBuilder.build(middle, end, right, depth + 1);
       }
     });
     const uint32_t base = static_cast<uint32_t>(nodes.size());
@@ -90,48 +156,104 @@ struct Builder {
     ++stats.leafCount;
   }
 
-  // Picks the binned-SAH split, or axis = -1 when a leaf is cheaper (and allowed).
-  void chooseSplit(uint32_t begin, uint32_t end, const Aabb& box, const Aabb& centerBox, int& axis,
-                   uint32_t& middle) {
+  // Bin of each axis's centre coordinate: trunc((c − lower) · scale) clamped to [0, 15], as a
+  // scalar cast and clamp would give (lanes of axes without extent are never read).
+  static Int4 binsOf(Float4 center, Float4 lower, Float4 scale) {
+    Int4 bin = __builtin_convertvector((center - lower) * scale, Int4);
+    bin = bin < 0 ? Int4{} : bin;
+    const Int4 last = Int4{} + (kBinCount - 1);
+    return bin > last ? last : bin;
+  }
+
+  void binRange(uint32_t begin, uint32_t end, Float4 lower, Float4 scale, Bins& bins) const {
+    for (uint32_t i = begin; i < end; ++i) {
+      const BuildBox& b = boxes[i];
+      const Int4 bin = binsOf(b.center(), lower, scale);
+      for (int a = 0; a < 3; ++a) {
+        Box4& target = bins.boxes[a][bin[a]];
+        target.lower = simd::minLanes(b.lower, target.lower);
+        target.upper = simd::maxLanes(b.upper, target.upper);
+        ++bins.counts[a][bin[a]];
+      }
+    }
+  }
+
+  // Picks the binned-SAH split and partitions [begin, end) by it, gathering what each side
+  // spans on the way; axis = -1 when a leaf is cheaper (and allowed). One pass bins all three
+  // axes; the costs, the chosen bin and the partition's order are those of the per-axis
+  // original (Wald 2007; std::partition's two-ended swap).
+  void chooseSplit(uint32_t begin, uint32_t end, const NodeExtent& node, size_t depth, int& axis,
+                   uint32_t& middle, NodeExtent& leftOut, NodeExtent& rightOut) {
     const uint32_t count = end - begin;
     const float leafCost = kIntersectionCost * blocks(count);
-    float bestCost = std::numeric_limits<float>::infinity();
-    int bestAxis = -1;
-    int bestBin = 0;
+    const Aabb centerBox = node.centers.aabb();
     const Vec3 extent = centerBox.extent();
+    const Float4 lower = node.centers.lower;
+    Float4 scale = {0.0f, 0.0f, 0.0f, 0.0f};
+    bool anyAxis = false;
     for (int a = 0; a < 3; ++a) {
       if (!(extent[a] > 0.0f)) continue;
-      std::array<Aabb, kBinCount> binBoxes;
-      std::array<uint32_t, kBinCount> binCounts{};
-      const float scale = kBinCount / extent[a];
-      for (uint32_t i = begin; i < end; ++i) {
-        const int bin = binOf(centers[order[i]][a], centerBox.lower[a], scale);
-        binBoxes[bin].extend(bounds[order[i]]);
-        ++binCounts[bin];
+      scale[a] = kBinCount / extent[a];
+      anyAxis = true;
+    }
+    float bestCost = kInf;
+    int bestAxis = -1;
+    int bestBin = 0;
+    if (anyAxis) {
+      Bins bins;
+      // The root's range is binned in two halves at once (the halves below build in parallel
+      // anyway); merged in a fixed order, the bins are the same as one thread's.
+      const unsigned binThreads = depth == 0 ? std::min(threads, 2u) : 1u;
+      if (binThreads > 1 && count >= kParallelBinningMinPrimitives) {
+        Bins upper;
+        const uint32_t half = begin + count / 2;
+        parallelFor(2, 2, [&](uint64_t part) {
+          if (part == 0) {
+            binRange(begin, half, lower, scale, bins);
+          } else {
+            binRange(half, end, lower, scale, upper);
+          }
+        });
+        bins.merge(upper);
+      } else {
+        binRange(begin, end, lower, scale, bins);
       }
-      // Sweep from the right to get the area and count of every right-hand side.
-      std::array<float, kBinCount> rightArea{};
-      std::array<uint32_t, kBinCount> rightCount{};
-      Aabb accumulated;
-      uint32_t accumulatedCount = 0;
-      for (int b = kBinCount - 1; b > 0; --b) {
-        accumulated.extend(binBoxes[b]);
-        accumulatedCount += binCounts[b];
-        rightArea[b] = accumulated.surfaceArea();
-        rightCount[b] = accumulatedCount;
-      }
-      Aabb left;
-      uint32_t leftCount = 0;
-      for (int b = 1; b < kBinCount; ++b) {
-        left.extend(binBoxes[b - 1]);
-        leftCount += binCounts[b - 1];
-        if (leftCount == 0 || rightCount[b] == 0) continue;
-        const float cost =
-            left.surfaceArea() * blocks(leftCount) + rightArea[b] * blocks(rightCount[b]);
-        if (cost < bestCost) {
-          bestCost = cost;
-          bestAxis = a;
-          bestBin = b;
+      const auto& binBoxes = bins.boxes;
+      const auto& binCounts = bins.counts;
+      for (int a = 0; a < 3; ++a) {
+        if (!(extent[a] > 0.0f)) continue;
+        // Only splits just above an occupied bin are candidates: a split above an empty bin
+        // divides the primitives as the one below it does, costs the same, and the first of
+        // equal costs is the one taken, so skipping those changes nothing.
+        int occupied[kBinCount];
+        int used = 0;
+        for (int b = 0; b < kBinCount; ++b) {
+          if (binCounts[a][b] != 0) occupied[used++] = b;
+        }
+        // Sweep from the right for the area and count of every right-hand side: rightArea[j]
+        // for the primitives in occupied[j..].
+        float rightArea[kBinCount];
+        uint32_t rightCount[kBinCount];
+        Box4 accumulated;
+        uint32_t accumulatedCount = 0;
+        for (int j = used - 1; j > 0; --j) {
+          accumulated.extend(binBoxes[a][occupied[j]]);
+          accumulatedCount += binCounts[a][occupied[j]];
+          rightArea[j] = accumulated.surfaceArea();
+          rightCount[j] = accumulatedCount;
+        }
+        Box4 left;
+        uint32_t leftCount = 0;
+        for (int j = 0; j + 1 < used; ++j) {
+          left.extend(binBoxes[a][occupied[j]]);
+          leftCount += binCounts[a][occupied[j]];
+          const float cost =
+              left.surfaceArea() * blocks(leftCount) + rightArea[j + 1] * blocks(rightCount[j + 1]);
+          if (cost < bestCost) {
+            bestCost = cost;
+            bestAxis = a;
+            bestBin = occupied[j] + 1;
+          }
         }
       }
     }
@@ -139,26 +261,64 @@ struct Builder {
       // Every centre coincides: no SAH split exists. Small sets become a leaf, large ones are
       // halved by index so a leaf never exceeds kMaxLeafSize.
       if (count > kMaxLeafSize) {
-        axis = box.longestAxis();
+        axis = node.box.aabb().longestAxis();
         middle = begin + count / 2;
+        leftOut = extentOf(begin, middle);
+        rightOut = extentOf(middle, end);
       }
       return;
     }
-    const float parentArea = std::max(box.surfaceArea(), 1e-30f);
+    const float parentArea = std::max(node.box.surfaceArea(), 1e-30f);
     const float splitCost = kTraversalCost + kIntersectionCost * bestCost / parentArea;
     if (count <= kMaxLeafSize && splitCost >= leafCost) return;
-    const float scale = kBinCount / extent[bestAxis];
-    const float lower = centerBox.lower[bestAxis];
-    auto* split = std::partition(order.data() + begin, order.data() + end, [&](uint32_t p) {
-      return binOf(centers[p][bestAxis], lower, scale) < bestBin;
-    });
     axis = bestAxis;
-    middle = static_cast<uint32_t>(split - order.data());
+    middle = partition(begin, end, bestAxis, bestBin, lower, scale, leftOut, rightOut);
   }
 
-  static int binOf(float value, float lower, float scale) {
-    const int bin = static_cast<int>((value - lower) * scale);
-    return std::clamp(bin, 0, kBinCount - 1);
+  // Primitives whose centre falls in a bin below `splitBin` go left. Two ends moving inwards,
+  // swapping misplaced pairs (the order std::partition leaves). Each primitive is classified
+  // once, and added to the extent of its side then.
+  uint32_t partition(uint32_t begin, uint32_t end, int splitAxis, int splitBin, Float4 lower,
+                     Float4 scale, NodeExtent& left, NodeExtent& right) {
+    const float axisLower = lower[splitAxis], axisScale = scale[splitAxis];
+    const auto goesLeft = [&](uint32_t i) {
+      const Float4 c = boxes[i].center();
+      // The split axis's lane of binsOf, computed alone.
+      const int bin = static_cast<int>((c[splitAxis] - axisLower) * axisScale);
+      const bool isLeft = std::clamp(bin, 0, kBinCount - 1) < splitBin;
+      NodeExtent& side = isLeft ? left : right;
+      side.box.lower = simd::minLanes(boxes[i].lower, side.box.lower);
+      side.box.upper = simd::maxLanes(boxes[i].upper, side.box.upper);
+      side.centers.extendPoint(c);
+      return isLeft;
+    };
+    uint32_t first = begin, last = end;
+    for (;;) {
+      for (;;) {
+        if (first == last) return first;
+        if (!goesLeft(first)) break;
+        ++first;
+      }
+      --last;
+      for (;;) {
+        if (first == last) return first;
+        if (goesLeft(last)) break;
+        --last;
+      }
+      std::swap(boxes[first], boxes[last]);
+      std::swap(order[first], order[last]);
+      ++first;
+    }
+  }
+
+  NodeExtent extentOf(uint32_t begin, uint32_t end) const {
+    NodeExtent e;
+    for (uint32_t i = begin; i < end; ++i) {
+      e.box.lower = simd::minLanes(boxes[i].lower, e.box.lower);
+      e.box.upper = simd::maxLanes(boxes[i].upper, e.box.upper);
+      e.centers.extendPoint(boxes[i].center());
+    }
+    return e;
   }
 };
 
@@ -171,17 +331,38 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions&
   stats_ = {};
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
   if (!primitiveBounds.empty()) {
-    std::vector<Vec3> centers;
-    centers.reserve(primitiveBounds.size());
-    for (const Aabb& b : primitiveBounds) centers.push_back(b.center());
+    const uint32_t count = static_cast<uint32_t>(primitiveBounds.size());
+    const unsigned threads = std::max(1u, options.threads);
+    // The builder's copy of the boxes and the root's extent, in two halves on two cores,
+    // merged in a fixed order (min and max give the same extent either way).
+    const std::unique_ptr<BuildBox[]> boxes(new BuildBox[count]);  // filled below, not zeroed
+    NodeExtent halves[2];
+    const uint32_t middle = count / 2;
+    parallelFor(2, count >= kParallelBinningMinPrimitives ? std::min(threads, 2u) : 1,
+                [&](uint64_t part) {
+                  const uint32_t begin = part == 0 ? 0 : middle, end = part == 0 ? middle : count;
+                  NodeExtent& e = halves[part];
+                  for (uint32_t i = begin; i < end; ++i) {
+                    const Aabb& b = primitiveBounds[i];
+                    BuildBox& box = boxes[i];
+                    box.lower = Float4{b.lower.x, b.lower.y, b.lower.z, 0.0f};
+                    box.upper = Float4{b.upper.x, b.upper.y, b.upper.z, 0.0f};
+                    e.box.lower = simd::minLanes(box.lower, e.box.lower);
+                    e.box.upper = simd::maxLanes(box.upper, e.box.upper);
+                    e.centers.extendPoint(box.center());
+                  }
+                });
+    NodeExtent root = halves[0];
+    root.box.extend(halves[1].box);
+    root.centers.extend(halves[1].centers);
     // One level of threads per doubling of the cores: two cores build two halves at once.
     int levels = 0;
-    for (unsigned cores = std::max(1u, options.threads); cores > 1; cores /= 2) ++levels;
-    Builder builder{primitiveBounds, centers, order_,
-                    nodes_,          stats_,  std::max(1u, options.primitiveBlock),
-                    levels};
+    for (unsigned cores = threads; cores > 1; cores /= 2) ++levels;
+    const uint32_t block = std::max(1u, options.primitiveBlock);
+    const int blockShift = (block & (block - 1)) == 0 ? __builtin_ctz(block) : -1;
+    Builder builder{boxes.get(), order_.data(), nodes_, stats_, block, levels, blockShift, threads};
     nodes_.reserve(2 * primitiveBounds.size());
-    builder.build(0, static_cast<uint32_t>(primitiveBounds.size()), 0);
+    builder.build(0, count, root, 0);
     nodes_.shrink_to_fit();
   }
   stats_.nodeCount = nodes_.size();

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "math/Aabb.h"
+#include "math/FloatError.h"
 #include "util/Parallel.h"
 
 namespace prism {
@@ -70,6 +71,12 @@ class Bvh {
   BvhBuildStats stats_;
 };
 
+// Every slab test (binary, wide, packets) scales its far distances by this (Ize, "Robust BVH
+// Ray Traversal", JCGT 2(2), 2013, as pbrt-v4 does): a slab distance (plane − o)·(1/d) carries
+// three roundings, so a ray through a box's edge or corner could be told it misses a box it
+// enters, and with it the triangles a watertight test would hit there.
+inline constexpr float kSlabFarScale = 1.0f + 2.0f * gammaBound(3);
+
 // Slab test returning the entry distance, or +inf when the ray misses the box within
 // [tMin, tMax]. invDir may hold ±inf for axis-parallel rays.
 inline float rayBoxEntry(const Aabb& box, const Vec3& origin, const Vec3& invDir, float tMin,
@@ -77,7 +84,7 @@ inline float rayBoxEntry(const Aabb& box, const Vec3& origin, const Vec3& invDir
   const Vec3 t0 = (box.lower - origin) * invDir;
   const Vec3 t1 = (box.upper - origin) * invDir;
   const Vec3 tNear = glm::min(t0, t1);
-  const Vec3 tFar = glm::max(t0, t1);
+  const Vec3 tFar = glm::max(t0, t1) * kSlabFarScale;
   const float enter = std::max(std::max(tNear.x, tNear.y), std::max(tNear.z, tMin));
   const float leave = std::min(std::min(tFar.x, tFar.y), std::min(tFar.z, tMax));
   return enter <= leave ? enter : std::numeric_limits<float>::infinity();

@@ -27,7 +27,8 @@ uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float 
       const float inv = 1.0f / ray.direction[a];
       const int nearSide = std::signbit(inv) ? 1 : 0;
       const float tNear = (node.bounds[2 * a + nearSide][i] - ray.origin[a]) * inv;
-      const float tFar = (node.bounds[2 * a + 1 - nearSide][i] - ray.origin[a]) * inv;
+      const float tFar =
+          (node.bounds[2 * a + 1 - nearSide][i] - ray.origin[a]) * inv * kSlabFarScale;
       enter = tNear > enter ? tNear : enter;
       leave = tFar < leave ? tFar : leave;
     }

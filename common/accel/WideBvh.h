@@ -58,7 +58,7 @@ inline uint32_t slabTest(const WideBvhNode& node, int firstLane, const WideRay& 
     const V farPlane = simd::load<V>(&node.bounds[2 * a + 1 - ray.nearSide[a]][firstLane]);
     // The slab distances go first: a NaN there leaves enter and leave as they were.
     enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
-    leave = simd::minLanes((farPlane - origin) * invDir, leave);
+    leave = simd::minLanes((farPlane - origin) * invDir * kSlabFarScale, leave);
   }
   std::memcpy(entry + firstLane, &enter, sizeof(V));
   return simd::laneMask(enter <= leave) << firstLane;

@@ -96,7 +96,8 @@ inline uint32_t packetEntersChildren(const WideBvhNode& node, const RayPacket8& 
       const Float4 farA = farPlane - simd::broadcast<Float4>(packet.originHigh[a]);
       const Float4 farB = farPlane - simd::broadcast<Float4>(packet.originLow[a]);
       const Float4 tFar = simd::maxLanes(simd::maxLanes(farA * invLow, farA * invHigh),
-                                         simd::maxLanes(farB * invLow, farB * invHigh));
+                                         simd::maxLanes(farB * invLow, farB * invHigh)) *
+                          kSlabFarScale;
       enter = simd::maxLanes(tNear, enter);
       leave = simd::minLanes(tFar, leave);
     }
@@ -125,7 +126,7 @@ inline uint32_t raysEnteringChild(const WideBvhNode& node, int slot, const RayPa
       const Float4 farPlane =
           simd::broadcast<Float4>(node.bounds[2 * a + 1 - packet.nearSide[a]][slot]);
       enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
-      leave = simd::minLanes((farPlane - origin) * invDir, leave);
+      leave = simd::minLanes((farPlane - origin) * invDir * kSlabFarScale, leave);
     }
     mask |= simd::laneMask(enter <= leave) << at;
   }

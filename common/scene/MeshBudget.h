@@ -10,12 +10,14 @@
 
 namespace prism {
 
-// Per triangle: indices in the wire bytes and the description (12 + 12), the Scene's Triangle
-// twice while it is reordered (44 + 44), its box, centre, BVH order and leaf reference
-// (24 + 12 + 4 + 4 + 4), up to two 32-byte BVH nodes (64) and its shading indices (12).
-// The parallel BVH build's second node array (at most 32) comes while only one Triangle copy
-// exists; the wide BVH and its triangle packs (about 65) after the gathered copies, boxes and
-// references (72) are freed (Scene.cpp), so neither raises the peak.
+// Per triangle, at the peak (the binary BVH build): indices in the wire bytes and the
+// description (12 + 12), the Scene's gathered Triangle (44), its box and reference (24 + 4), the
+// builder's SIMD copy of the box and the BVH order (32 + 4), up to two 32-byte BVH nodes (64),
+// the parallel build's second node array (at most 32) and its shading indices (12): 240.
+// While the triangles are reordered into BVH order the builder's copy and the second node array
+// are gone and the Triangle exists twice (224); the wide BVH and its triangle packs (about 65)
+// come after the gathered copies, boxes and references are freed and the binary tree is dropped
+// (Scene.cpp), so neither raises the peak.
 inline constexpr uint64_t kBytesPerTriangle = 240;
 // Per vertex: position and normal in the wire bytes and the description (24 + 24), the
 // Scene's shading normal (12), rounded up.

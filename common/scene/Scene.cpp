@@ -5,7 +5,9 @@
 #include "accel/WideBvhPacket.h"
 
 #include "geometry/TriangleMollerTrumbore.h"
+#include "geometry/TriangleMollerTrumbore4.h"
 #include "geometry/TrianglePlaneInside.h"
+#include "geometry/TriangleWatertight4.h"
 #include "scene/PrimitiveRef.h"
 
 namespace prism {
@@ -65,6 +67,10 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   std::vector<Aabb> bounds;
   std::vector<uint32_t> refs;
   std::vector<uint8_t> sphereCaustic, coneCaustic;
+  const size_t bounded = d.spheres.size() + d.cones.size() + d.triangleCount();
+  triangles.reserve(d.triangleCount());
+  bounds.reserve(bounded);
+  refs.reserve(bounded);
   const auto materialOf = [&](MaterialId id) -> const MaterialDesc& {
     return materials_[id < materials_.size() ? id : 0];
   };
@@ -90,7 +96,8 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   for (uint32_t m = 0; m < d.meshes.size(); ++m) {
     const MeshDesc& mesh = d.meshes[m];
     const uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
-    meshes_.push_back({mesh.normals, mesh.indices, mesh.material, caustic});
+    meshes_.push_back({mesh.normals, mesh.indices, mesh.material, caustic,
+                       static_cast<uint32_t>(triangles.size())});
     if (caustic & kCastsCaustics) {
       Aabb meshBounds;
       for (const Vec3& p : mesh.positions) meshBounds.extend(p);
@@ -101,7 +108,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
       const Vec3& b = mesh.positions[mesh.indices[3 * f + 1]];
       const Vec3& c = mesh.positions[mesh.indices[3 * f + 2]];
       refs.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles.size()));
-      triangles.push_back({a, b - a, c - a, m, f});
+      triangles.push_back({a, b, c, m, f});
       bounds.push_back(triangles.back().bounds());
     }
   }
@@ -121,16 +128,24 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
 
   // The SIMD walk tests four triangles for the price of one: let the SAH fill packs.
   const bool packed =
-      traversal_ == Traversal::WideSimd && settings_.triangleTest == TriangleTest::MollerTrumbore;
+      traversal_ == Traversal::WideSimd && settings_.triangleTest != TriangleTest::PlaneThenInside;
   BvhBuildOptions buildOptions;
   buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
   bvh_.build(bounds, buildOptions);
+  std::vector<Aabb>().swap(bounds);
+  // Packed triangles go straight from the gathered array into their packs: their leaf entries
+  // point into it, and it is freed once the packs are built.
   leafRefs_.reserve(refs.size());
+  if (!packed) triangles_.reserve(triangles.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
     const uint32_t ref = refs[original];
     const uint32_t index = PrimitiveRef::index(ref);
     switch (PrimitiveRef::kind(ref)) {
       case PrimitiveKind::Triangle:
+        if (packed) {
+          leafRefs_.push_back(ref);
+          break;
+        }
         leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles_.size()));
         triangles_.push_back(triangles[index]);
         break;
@@ -148,33 +163,54 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
         break;  // planes are unbounded and never enter the BVH
     }
   }
-  // The gathered copies are done with: free them before the wide BVH and its packs are built,
-  // so the build's peak stays within scene/MeshBudget.h's estimate.
-  std::vector<Triangle>().swap(triangles);
-  std::vector<Aabb>().swap(bounds);
+  // The gathered copies are done with (but for packed triangles): free them before the wide
+  // BVH and its packs are built, so the build's peak stays within scene/MeshBudget.h's estimate.
+  if (!packed) std::vector<Triangle>().swap(triangles);
   std::vector<uint32_t>().swap(refs);
 
-  if (traversal_ != Traversal::BinaryScalar) wideBvh_.build(bvh_);
-  if (packed) buildTrianglePacks();
+  stats_.bvh = bvh_.stats();
+  if (traversal_ != Traversal::BinaryScalar) {
+    wideBvh_.build(bvh_);
+    bvh_ = Bvh();  // the wide walk never reads the binary tree again
+    stats_.binaryBvhReleased = true;
+  }
+  if (packed) {
+    buildTrianglePacks(triangles);
+    // The packs hold every triangle's vertices and source: the triangles and, unless spheres
+    // or cones share the leaves, the leaf entries are no longer read.
+    std::vector<Triangle>().swap(triangles);
+    if (spheres_.empty() && cones_.empty()) std::vector<uint32_t>().swap(leafRefs_);
+  }
 
   stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
   stats_.cones = cones_.size();
-  stats_.triangles = triangles_.size();
-  stats_.bvh = bvh_.stats();
+  stats_.triangles = d.triangleCount();
   stats_.wideBvh = wideBvh_.stats();
   stats_.packBytes = packs_.size() * sizeof(LeafPack);
-  stats_.geometryBytes = triangles_.size() * sizeof(Triangle) + spheres_.size() * sizeof(Sphere) +
-                         cones_.size() * sizeof(Cone) + planes_.size() * sizeof(Plane) +
-                         leafRefs_.size() * sizeof(uint32_t);
+  stats_.geometryBytes = triangles_.capacity() * sizeof(Triangle) +
+                         spheres_.size() * sizeof(Sphere) + cones_.size() * sizeof(Cone) +
+                         planes_.size() * sizeof(Plane) + leafRefs_.capacity() * sizeof(uint32_t);
   for (const MeshShading& m : meshes_) {
     stats_.geometryBytes += m.normals.size() * sizeof(Vec3) + m.indices.size() * sizeof(uint32_t);
   }
 }
 
-void Scene::buildTrianglePacks() {
-  // Leaves are relabelled to (first pack, pack count); every leaf gets at least one pack, if
-  // only to carry its entries for the spheres and cones.
+void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
+  // Every leaf gets at least one pack, if only to carry its entries for the spheres and cones.
+  size_t packCount = 0;
+  for (const WideBvhNode& node : wideBvh_.nodes()) {
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+      if (node.count[i] == 0) continue;
+      uint32_t leafTriangles = 0;
+      for (uint32_t k = node.child[i]; k < node.child[i] + node.count[i]; ++k) {
+        leafTriangles += PrimitiveRef::kind(leafRefs_[k]) == PrimitiveKind::Triangle;
+      }
+      packCount += std::max(1u, (leafTriangles + 3) / 4);
+    }
+  }
+  packs_.reserve(packCount);
+  // Leaves are relabelled to (first pack, pack count).
   wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
     const uint32_t firstPack = static_cast<uint32_t>(packs_.size());
     packs_.emplace_back();
@@ -191,8 +227,8 @@ void Scene::buildTrianglePacks() {
         packs_.emplace_back();
         lane = 0;
       }
-      const uint32_t index = PrimitiveRef::index(ref);
-      packs_.back().triangles.set(lane++, triangles_[index], index);
+      const Triangle& tri = triangles[PrimitiveRef::index(ref)];
+      packs_.back().triangles.set(lane++, tri, meshes_[tri.mesh].firstTriangle + tri.face);
     }
     return std::pair<uint32_t, uint32_t>(firstPack,
                                          static_cast<uint32_t>(packs_.size()) - firstPack);
@@ -200,9 +236,9 @@ void Scene::buildTrianglePacks() {
 }
 
 template <bool kAnyHit>
-bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
-                          float& tMax, HitRecord& hit) const {
-  const bool classicTriangleTest = settings_.triangleTest == TriangleTest::PlaneThenInside;
+bool Scene::intersectLeaf(const Ray& ray, const WatertightRay& sheared, uint32_t first,
+                          uint32_t count, bool skipTriangles, float& tMax, HitRecord& hit) const {
+  const TriangleTest test = settings_.triangleTest;
   bool found = false;
   for (uint32_t i = first; i < first + count; ++i) {
     const uint32_t ref = leafRefs_[i];
@@ -213,9 +249,13 @@ bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool s
       case PrimitiveKind::Triangle: {
         if (skipTriangles) break;
         const Triangle& tri = triangles_[index];
-        hitThis = classicTriangleTest
-                      ? intersectPlaneThenInside(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v)
-                      : intersectMollerTrumbore(ray, tri.v0, tri.e1, tri.e2, tMax, t, u, v);
+        if (test == TriangleTest::Watertight) {
+          hitThis = intersectWatertight(ray, sheared, tri.v0, tri.v1, tri.v2, tMax, t, u, v);
+        } else if (test == TriangleTest::PlaneThenInside) {
+          hitThis = intersectPlaneThenInside(ray, tri.v0, tri.edge1(), tri.edge2(), tMax, t, u, v);
+        } else {
+          hitThis = intersectMollerTrumbore(ray, tri.v0, tri.edge1(), tri.edge2(), tMax, t, u, v);
+        }
         break;
       }
       case PrimitiveKind::Sphere:
@@ -240,48 +280,84 @@ bool Scene::intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool s
 template <bool kAnyHit>
 bool Scene::intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
                                 HitRecord& hit) const {
+  return intersectLeafPacked<kAnyHit>(ray, shearFor(ray), firstPack, packCount, tMax, hit);
+}
+
+template <bool kAnyHit>
+bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
+                                uint32_t packCount, float& tMax, HitRecord& hit) const {
+  const bool watertight = settings_.triangleTest == TriangleTest::Watertight;
   bool found = false;
   for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
     const TrianglePack4& pack = packs_[p].triangles;
+    simd::Float4 t, u, v;
+    const uint32_t mask = watertight ? intersectWatertight4(ray, sheared, pack, tMax, t, u, v)
+                                     : intersectMollerTrumbore4(ray, pack, tMax, t, u, v);
     if constexpr (kAnyHit) {
-      simd::Float4 t, u, v;
-      if (intersectMollerTrumbore4(ray, pack, tMax, t, u, v) != 0) return true;
+      if (mask != 0) return true;
     } else {
-      const PackHit best = closestInPack(ray, pack, tMax);
+      const PackHit best = closestLane(mask, t, u, v);
       if (best.lane >= 0) {
         tMax = best.t;
-        hit = {best.t, PrimitiveRef::make(PrimitiveKind::Triangle, pack.triangle[best.lane]),
-               best.u, best.v};
+        // Packed triangles are numbered by their lane: pack · 4 + lane.
+        const uint32_t index = p * TrianglePack4::kWidth + static_cast<uint32_t>(best.lane);
+        hit = {best.t, PrimitiveRef::make(PrimitiveKind::Triangle, index), best.u, best.v};
         found = true;
       }
     }
   }
   const LeafPack& leaf = packs_[firstPack];
   if (leaf.hasOtherKinds) {
-    found |= intersectLeaf<kAnyHit>(ray, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
+    found |= intersectLeaf<kAnyHit>(ray, sheared, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
   }
   return found;
 }
 
+WatertightRay Scene::shearFor(const Ray& ray) const {
+  return settings_.triangleTest == TriangleTest::Watertight ? WatertightRay(ray.direction)
+                                                            : WatertightRay();
+}
+
 template <bool kAnyHit>
 bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const {
+  const WatertightRay sheared = shearFor(ray);  // once per ray, not per triangle
   if (traversal_ == Traversal::BinaryScalar) {
     return bvh_.traverse(ray, tMax, kAnyHit, [&](uint32_t first, uint32_t count, float& leafTMax) {
-      return intersectLeaf<kAnyHit>(ray, first, count, false, leafTMax, hit);
+      return intersectLeaf<kAnyHit>(ray, sheared, first, count, false, leafTMax, hit);
     });
   }
   if (packs_.empty()) {
     return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
-      return intersectLeaf<kAnyHit>(ray, first, count, false, t, hit);
+      return intersectLeaf<kAnyHit>(ray, sheared, first, count, false, t, hit);
     });
   }
   return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
-    return intersectLeafPacked<kAnyHit>(ray, first, count, t, hit);
+    return intersectLeafPacked<kAnyHit>(ray, sheared, first, count, t, hit);
   });
 }
 
+Triangle Scene::triangle(uint32_t index) const {
+  if (packs_.empty()) return triangles_[index];
+  const TrianglePack4& pack = packs_[index / TrianglePack4::kWidth].triangles;
+  const int lane = static_cast<int>(index % TrianglePack4::kWidth);
+  Triangle tri;
+  for (int a = 0; a < 3; ++a) {
+    tri.v0[a] = pack.v0[a][lane];
+    tri.v1[a] = pack.v1[a][lane];
+    tri.v2[a] = pack.v2[a][lane];
+  }
+  // The lane keeps the triangle's number over all meshes; the meshes' first numbers ascend.
+  const uint32_t number = pack.triangle[lane];
+  const auto next =
+      std::upper_bound(meshes_.begin(), meshes_.end(), number,
+                       [](uint32_t n, const MeshShading& mesh) { return n < mesh.firstTriangle; });
+  tri.mesh = static_cast<uint32_t>(next - meshes_.begin()) - 1;
+  tri.face = number - meshes_[tri.mesh].firstTriangle;
+  return tri;
+}
+
 uint32_t Scene::meshFace(const HitRecord& hit) const {
-  return triangles_[PrimitiveRef::index(hit.primitive)].face;
+  return triangle(PrimitiveRef::index(hit.primitive)).face;
 }
 
 bool Scene::intersect(const Ray& ray, HitRecord& hit) const {
@@ -395,9 +471,9 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   Vec3 geometric, shading;
   switch (PrimitiveRef::kind(hit.primitive)) {
     case PrimitiveKind::Triangle: {
-      const Triangle& tri = triangles_[index];
+      const Triangle tri = triangle(index);
       const MeshShading& mesh = meshes_[tri.mesh];
-      geometric = glm::normalize(glm::cross(tri.e1, tri.e2));
+      geometric = glm::normalize(glm::cross(tri.edge1(), tri.edge2()));
       shading = geometric;
       if (!mesh.normals.empty()) {
         const uint32_t* corner = &mesh.indices[3 * tri.face];

@@ -13,7 +13,8 @@
 #include "geometry/Plane.h"
 #include "geometry/Sphere.h"
 #include "geometry/Triangle.h"
-#include "geometry/TriangleMollerTrumbore4.h"
+#include "geometry/TrianglePack4.h"
+#include "geometry/TriangleWatertight.h"
 #include "scene/Camera.h"
 #include "scene/CubeMap.h"
 #include "scene/SceneDescription.h"
@@ -32,17 +33,24 @@ struct CasterBounds {
 // How rays walk the scene. Both find the same closest hits (tests/common/scene/Scene_test.cpp);
 // the binary walk is the reference the fast one is measured and tested against.
 enum class Traversal {
-  WideSimd,          // 8-wide BVH collapsed from the binary one, Möller–Trumbore on 4 triangles
+  WideSimd,          // 8-wide BVH collapsed from the binary one, triangles tested 4 at a time
   WideScalarLeaves,  // the same wide BVH, triangles one at a time (measures what packs buy)
   BinaryScalar       // the binary SAH BVH, one box and one primitive at a time
 };
 
 struct SceneBuildStats {
   size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
-  BvhBuildStats bvh;
-  WideBvhStats wideBvh;      // empty under Traversal::BinaryScalar
-  size_t packBytes = 0;      // triangle packs of the wide walk
-  size_t geometryBytes = 0;  // primitive arrays and mesh shading data, excluding the BVH
+  BvhBuildStats bvh;               // the binary SAH build
+  bool binaryBvhReleased = false;  // the wide walk dropped the binary tree once collapsed
+  WideBvhStats wideBvh;            // empty under Traversal::BinaryScalar
+  size_t packBytes = 0;            // triangle packs of the wide walk
+  size_t geometryBytes = 0;        // primitive arrays and mesh shading data, excluding the BVH
+
+  // What the scene holds for finding hits: the trees it keeps and the triangle packs.
+  size_t accelerationBytes() const {
+    return (binaryBvhReleased ? 0 : bvh.memoryBytes) + wideBvh.memoryBytes + packBytes;
+  }
+  size_t heldBytes() const { return accelerationBytes() + geometryBytes; }
 };
 
 // The caustic bits (kCastsCaustics | kReceivesCaustics) of an object: what its role asks for,
@@ -96,6 +104,7 @@ class Scene {
     std::vector<uint32_t> indices;
     MaterialId material;
     uint8_t caustic;
+    uint32_t firstTriangle;  // number of its first triangle, counting over all meshes in order
   };
 
   // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH
@@ -110,12 +119,21 @@ class Scene {
   template <bool kAnyHit>
   bool intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const;
   template <bool kAnyHit>
-  bool intersectLeaf(const Ray& ray, uint32_t first, uint32_t count, bool skipTriangles,
-                     float& tMax, HitRecord& hit) const;
+  bool intersectLeaf(const Ray& ray, const WatertightRay& sheared, uint32_t first, uint32_t count,
+                     bool skipTriangles, float& tMax, HitRecord& hit) const;
   template <bool kAnyHit>
   bool intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t packCount, float& tMax,
                            HitRecord& hit) const;
-  void buildTrianglePacks();
+  template <bool kAnyHit>
+  bool intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
+                           uint32_t packCount, float& tMax, HitRecord& hit) const;
+  // The watertight test's per-ray shear, or nothing computed when another test is chosen.
+  WatertightRay shearFor(const Ray& ray) const;
+  // A triangle by the index its hits carry: into triangles_, or pack · 4 + lane once packed.
+  Triangle triangle(uint32_t index) const;
+  // Fills packs_ from the triangles the leaf entries point at and relabels the wide BVH's
+  // leaves to (first pack, pack count).
+  void buildTrianglePacks(const std::vector<Triangle>& triangles);
 
   RenderSettings settings_;
   CausticSettings caustics_;
@@ -125,7 +143,7 @@ class Scene {
   std::optional<CubeMap> environment_;
   std::vector<MaterialDesc> materials_;
   std::vector<PointLightDesc> lights_;
-  std::vector<Triangle> triangles_;
+  std::vector<Triangle> triangles_;  // in BVH order; empty once packs hold the triangles
   std::vector<Sphere> spheres_;
   std::vector<Cone> cones_;
   std::vector<Plane> planes_;
@@ -133,8 +151,8 @@ class Scene {
   std::vector<uint8_t> sphereCaustic_, coneCaustic_, planeCaustic_;  // parallel to the arrays
   std::vector<CasterBounds> casters_;
   Aabb bounds_;
-  std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry
-  Bvh bvh_;
+  std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry (packs: only if mixed)
+  Bvh bvh_;                         // empty once the wide BVH is collapsed from it
   Traversal traversal_;
   WideBvh wideBvh_;
   std::vector<LeafPack> packs_;

@@ -120,7 +120,7 @@ struct CubeMapDesc {
 
 // Names and limits of these settings: SettingNames.h, SettingLimits.h; validate() checks them
 // (SceneValidation.h).
-enum class TriangleTest { MollerTrumbore, PlaneThenInside };
+enum class TriangleTest { MollerTrumbore, PlaneThenInside, Watertight };
 
 struct RenderSettings {
   int width = 640;

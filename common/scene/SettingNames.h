@@ -61,7 +61,8 @@ inline constexpr NameTable<Projection> kProjectionNames{kProjectionList};
 
 inline constexpr NamedValue<TriangleTest> kTriangleTestList[] = {
     {"moller_trumbore", TriangleTest::MollerTrumbore},
-    {"plane_inside", TriangleTest::PlaneThenInside}};
+    {"plane_inside", TriangleTest::PlaneThenInside},
+    {"watertight", TriangleTest::Watertight}};
 inline constexpr NameTable<TriangleTest> kTriangleTestNames{kTriangleTestList};
 
 inline constexpr NamedValue<CausticMethod> kCausticMethodList[] = {

@@ -25,6 +25,7 @@ bool isKnown(TriangleTest t) {
   switch (t) {
     case TriangleTest::MollerTrumbore:
     case TriangleTest::PlaneThenInside:
+    case TriangleTest::Watertight:
       return true;
   }
   return false;

@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -45,6 +46,12 @@ double threadCpuSeconds() {
 double wallSeconds() {
   timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double processCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
@@ -189,6 +196,7 @@ struct EmbreeScene {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   double buildSeconds = 0.0;
+  double buildCpuSeconds = 0.0;  // every thread of the process, Embree's workers included
   size_t bytes = 0;
 
   explicit EmbreeScene(const MeshDesc& mesh) {
@@ -210,9 +218,10 @@ struct EmbreeScene {
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene, geometry);
     rtcReleaseGeometry(geometry);
-    const double start = wallSeconds();
+    const double start = wallSeconds(), startCpu = processCpuSeconds();
     rtcCommitScene(scene);
     buildSeconds = wallSeconds() - start;
+    buildCpuSeconds = processCpuSeconds() - startCpu;
     bytes = static_cast<size_t>(embreeBytes - before);
   }
   ~EmbreeScene() {
@@ -361,23 +370,44 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   d.meshes.push_back(mesh);
   std::printf("\n## %s: %zu triangles\n\n", mesh.source.c_str(), mesh.triangleCount());
 
-  const double start = wallSeconds();
-  const Scene prism(d, Traversal::WideSimd);
-  const double prismBuild = wallSeconds() - start;
+  // Builds alternate, Prism then Embree, --runs times; the last of each is kept for tracing.
+  std::vector<double> prismBuilds, prismBvh, prismCollapse, embreeBuilds, prismCpu, embreeCpu;
+  std::unique_ptr<Scene> prismScene;
+  std::unique_ptr<EmbreeScene> embreeScene;
+  for (int round = 0; round < options.runs; ++round) {
+    prismScene.reset();
+    const double start = wallSeconds(), startCpu = processCpuSeconds();
+    prismScene = std::make_unique<Scene>(d, Traversal::WideSimd);
+    prismBuilds.push_back(wallSeconds() - start);
+    prismCpu.push_back(processCpuSeconds() - startCpu);
+    prismBvh.push_back(prismScene->buildStats().bvh.seconds);
+    prismCollapse.push_back(prismScene->buildStats().wideBvh.seconds);
+    embreeScene.reset();
+    embreeScene = std::make_unique<EmbreeScene>(mesh);
+    embreeCpu.push_back(embreeScene->buildCpuSeconds);
+    embreeBuilds.push_back(embreeScene->buildSeconds);
+  }
+  const Scene& prism = *prismScene;
+  const EmbreeScene& embree = *embreeScene;
+  SceneDescription watertightDescription = d;
+  watertightDescription.render.triangleTest = TriangleTest::Watertight;
+  const Scene prismWatertight(watertightDescription, Traversal::WideSimd);
   const Scene prismLeaves(d, Traversal::WideScalarLeaves);
   const Scene prismBinary(d, Traversal::BinaryScalar);
-  const EmbreeScene embree(mesh);
   const SceneBuildStats& st = prism.buildStats();
   std::printf(
-      "build (wall s, all cores): Prism scene %.3f (binary SAH %.3f, collapse %.3f), "
-      "Embree %.3f\n",
-      prismBuild, st.bvh.seconds, st.wideBvh.seconds, embree.buildSeconds);
+      "build (wall s, all cores, median of %d alternating): Prism scene %.3f (binary SAH %.3f, "
+      "collapse %.3f), Embree %.3f, Prism/Embree %.2f; CPU s of all threads: Prism %.3f, Embree "
+      "%.3f, Prism/Embree %.2f\n",
+      options.runs, median(prismBuilds), median(prismBvh), median(prismCollapse),
+      median(embreeBuilds), median(prismBuilds) / median(embreeBuilds), median(prismCpu),
+      median(embreeCpu), median(prismCpu) / median(embreeCpu));
   std::printf(
-      "memory (MiB): Prism %.1f (binary nodes+order %.1f, wide nodes %.1f, packs %.1f, "
-      "triangles %.1f), Embree %.1f\n",
-      (st.bvh.memoryBytes + st.wideBvh.memoryBytes + st.packBytes + st.geometryBytes) / 1048576.0,
-      st.bvh.memoryBytes / 1048576.0, st.wideBvh.memoryBytes / 1048576.0, st.packBytes / 1048576.0,
-      st.geometryBytes / 1048576.0, embree.bytes / 1048576.0);
+      "memory held (MiB): Prism %.1f (binary nodes+order %.1f, wide nodes %.1f, packs %.1f, "
+      "shading and other geometry %.1f), Embree %.1f, Prism/Embree %.2f\n",
+      st.heldBytes() / 1048576.0, (st.binaryBvhReleased ? 0 : st.bvh.memoryBytes) / 1048576.0,
+      st.wideBvh.memoryBytes / 1048576.0, st.packBytes / 1048576.0, st.geometryBytes / 1048576.0,
+      embree.bytes / 1048576.0, static_cast<double>(st.heldBytes()) / embree.bytes);
 
   const Aabb bounds = meshBounds(mesh);
   const int width = options.quick ? 256 : 1024, height = options.quick ? 192 : 768;
@@ -386,13 +416,16 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   sets.push_back({"incoherent", incoherentRays(prism, sets[0].rays, 9), 0});
   sets.push_back({"shadow", shadowRays(prism, sets[0].rays, bounds), width});
 
-  for (const RaySet& set : sets) {
-    const Agreement a = compareHits(prism, embree.scene, set);
-    std::printf(
-        "agreement %-10s: %zu rays, hit/miss differs %zu (%.4f%%), other triangle %zu "
-        "(%zu of them at the same t), max relative t difference %.2g\n",
-        set.kind.c_str(), a.rays, a.hitMismatch, 100.0 * a.hitMismatch / a.rays,
-        a.primitiveMismatch, a.primitiveTies, a.maxRelativeTError);
+  for (const Scene* scene : {&prism, &prismWatertight}) {
+    for (const RaySet& set : sets) {
+      const Agreement a = compareHits(*scene, embree.scene, set);
+      std::printf(
+          "agreement %-10s (%s): %zu rays, hit/miss differs %zu (%.4f%%), other triangle %zu "
+          "(%zu of them at the same t), max relative t difference %.2g\n",
+          set.kind.c_str(), scene == &prism ? "Moller-Trumbore" : "watertight", a.rays,
+          a.hitMismatch, 100.0 * a.hitMismatch / a.rays, a.primitiveMismatch, a.primitiveTies,
+          a.maxRelativeTError);
+    }
   }
 
   for (const RaySet& set : sets) {
@@ -429,6 +462,7 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
                           },
                           {},
                           {}});
+    contenders.push_back({"Prism watertight", prismTracer(prismWatertight), {}, {}});
     if (options.withVariants) {
       contenders.push_back({"Prism wide, scalar tri", prismTracer(prismLeaves), {}, {}});
       contenders.push_back({"Prism binary (main)", prismTracer(prismBinary), {}, {}});

@@ -8,6 +8,7 @@
 
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TrianglePlaneInside.h"
+#include "geometry/TriangleWatertight.h"
 #include "math/Random.h"
 
 namespace prism {
@@ -44,7 +45,7 @@ GrazingError measure(double degrees, Intersector intersect) {
     ray.origin = Vec3(origin);
     ray.direction = Vec3(direction);
     float t, u, v;
-    if (!intersect(ray, v0, v1 - v0, v2 - v0, 1e30f, t, u, v)) {
+    if (!intersect(ray, v0, v1, v2, 1e30f, t, u, v)) {
       ++e.misses;
       continue;
     }
@@ -59,16 +60,32 @@ TEST(GrazingAngles, HitErrorGrowsAsOneOverSineOfTheAngle) {
   const double angles[] = {30.0, 1.0, 0.1, 0.01, 0.001};
   double error[5];
   for (int i = 0; i < 5; ++i) {
-    const GrazingError mt = measure(angles[i], intersectMollerTrumbore);
-    const GrazingError classic = measure(angles[i], intersectPlaneThenInside);
+    const GrazingError mt =
+        measure(angles[i], [](const Ray& r, const Vec3& a, const Vec3& b, const Vec3& c, float tMax,
+                              float& t, float& u, float& v) {
+          return intersectMollerTrumbore(r, a, b - a, c - a, tMax, t, u, v);
+        });
+    const GrazingError classic =
+        measure(angles[i], [](const Ray& r, const Vec3& a, const Vec3& b, const Vec3& c, float tMax,
+                              float& t, float& u, float& v) {
+          return intersectPlaneThenInside(r, a, b - a, c - a, tMax, t, u, v);
+        });
+    const GrazingError watertight =
+        measure(angles[i],
+                [](const Ray& r, const Vec3& a, const Vec3& b, const Vec3& c, float tMax, float& t,
+                   float& u, float& v) { return intersectWatertight(r, a, b, c, tMax, t, u, v); });
     std::printf(
         "[ grazing ] %7.3f deg: max hit error %.3g (Moller-Trumbore), %.3g "
-        "(plane-then-inside); misses %d, %d of 2000\n",
-        angles[i], mt.maxAlongPlane, classic.maxAlongPlane, mt.misses, classic.misses);
+        "(plane-then-inside), %.3g (watertight); misses %d, %d, %d of 2000\n",
+        angles[i], mt.maxAlongPlane, classic.maxAlongPlane, watertight.maxAlongPlane, mt.misses,
+        classic.misses, watertight.misses);
     error[i] = mt.maxAlongPlane;
     // Aimed 0.1 or more inside every edge, no ray misses at any of these angles.
     EXPECT_EQ(mt.misses, 0) << angles[i] << " degrees";
     EXPECT_EQ(classic.misses, 0) << angles[i] << " degrees";
+    EXPECT_EQ(watertight.misses, 0) << angles[i] << " degrees";
+    // The watertight test's distance comes from the same kind of dot product: no better.
+    EXPECT_LT(watertight.maxAlongPlane, 0.1) << angles[i] << " degrees";
   }
   // Steep rays land within float rounding of the exact point (coordinates near 10: ~1e-6).
   EXPECT_LT(error[0], 1e-5);

@@ -30,7 +30,7 @@ TEST(TriangleMollerTrumbore4, LanesMatchTheScalarTestBitForBit) {
     const int used = 1 + round % 4;  // partly filled packs too
     for (int lane = 0; lane < used; ++lane) {
       const Vec3 a = randomVec(rng, -1, 1), b = randomVec(rng, -1, 1), c = randomVec(rng, -1, 1);
-      tris[lane] = {a, b - a, c - a, 0, 0};
+      tris[lane] = {a, b, c, 0, 0};
       if (round % 7 == 0 && lane == 1) tris[lane] = tris[0];  // an exact tie
       pack.set(lane, tris[lane], static_cast<uint32_t>(lane));
     }
@@ -42,8 +42,8 @@ TEST(TriangleMollerTrumbore4, LanesMatchTheScalarTestBitForBit) {
     float bestT = tMax, bestU = 0, bestV = 0;
     for (int lane = 0; lane < used; ++lane) {
       float t, u, v;
-      if (intersectMollerTrumbore(ray, tris[lane].v0, tris[lane].e1, tris[lane].e2, bestT, t, u,
-                                  v)) {
+      if (intersectMollerTrumbore(ray, tris[lane].v0, tris[lane].edge1(), tris[lane].edge2(), bestT,
+                                  t, u, v)) {
         expectedLane = lane;
         bestT = t;
         bestU = u;

@@ -267,10 +267,12 @@ TEST(YamlSceneParser, NamedValuesAcceptEitherSpelling) {
               TriangleTest::PlaneThenInside)
         << test;
   }
+  EXPECT_EQ(parse("render: {triangle_test: watertight}").render.triangleTest,
+            TriangleTest::Watertight);
   EXPECT_EQ(parse("caustics: {map_paths: front-face}").caustics.mapPaths,
             CausticMapPaths::FrontFace);
-  EXPECT_NE(std::string(parseError("render: {triangle_test: watertight}").what())
-                .find("(expected moller_trumbore or plane_inside)"),
+  EXPECT_NE(std::string(parseError("render: {triangle_test: pluecker}").what())
+                .find("(expected moller_trumbore, plane_inside or watertight)"),
             std::string::npos);
 }
 
@@ -619,7 +621,7 @@ const BadScene kBadScenes[] = {
     {"bad_bool.yaml", 3, 14, "expected true or false for 'fresnel', found 'maybe'"},
     {"bad_projection.yaml", 2, 15,
      "unknown projection 'fisheye' (expected perspective or orthographic)"},
-    {"bad_triangle_test.yaml", 2, 18, "unknown triangle_test 'watertight'"},
+    {"bad_triangle_test.yaml", 2, 18, "unknown triangle_test 'pluecker'"},
     // values
     {"nan_radius.yaml", 3, 41, "'radius' must be finite, found '.nan'"},
     {"infinite_position.yaml", 2, 19, "'position' must be finite, found '-.inf'"},

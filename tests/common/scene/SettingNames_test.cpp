@@ -23,7 +23,7 @@ TEST(SettingNames, AliasesAreAcceptedButNeverListed) {
 
 TEST(SettingNames, EveryValueOfEveryTableHasOneCanonicalName) {
   EXPECT_EQ(kProjectionNames.names.size(), 2u);
-  EXPECT_EQ(kTriangleTestNames.names.size(), 2u);
+  EXPECT_EQ(kTriangleTestNames.names.size(), 3u);
   EXPECT_EQ(kCausticMethodNames.names.size(), 3u);
   EXPECT_EQ(kCausticMapPathsNames.names.size(), 2u);
   EXPECT_EQ(kPhotonFilterNames.names.size(), 3u);
