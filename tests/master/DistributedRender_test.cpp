@@ -5,8 +5,13 @@
 // a slave has even built its scene).
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <tuple>
 
 #include "PrismProcess.h"
@@ -68,6 +73,28 @@ INSTANTIATE_TEST_SUITE_P(RanksSchedulesTiles, DistributedRenderMatrix,
 // (btl tcp and self only, so no shared memory; pml ob1, or UCX would carry the messages instead)
 // sends them through sockets as between machines (the tcp btl skips loopback and uses the real
 // interface). The verbose btl output shows TCP was really initialised.
+// Held while an MPI job that loses a rank on purpose runs: two such jobs at once on one machine
+// (ctest -j) can leave the one over TCP hung inside Open MPI after its slave dies (measured: 1
+// of 2 concurrent runs hung until the 120 s timeout; never alone, nor beside busy processes or
+// other MPI jobs). An flock, so it also holds across the test processes ctest runs in parallel.
+class CrashedJobLock {
+ public:
+  CrashedJobLock() {
+    const std::string file =
+        (std::filesystem::temp_directory_path() / "prism-tests-crashed-rank.lock").string();
+    fd_ = ::open(file.c_str(), O_CREAT | O_RDWR, 0666);
+    if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+  }
+  ~CrashedJobLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
+  }
+  CrashedJobLock(const CrashedJobLock&) = delete;
+  CrashedJobLock& operator=(const CrashedJobLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 const std::string kOverTcp = "--mca pml ob1 --mca btl tcp,self --mca btl_base_verbose 30";
 
 bool tcpTransportWasUsed(const std::string& output) {
@@ -103,6 +130,7 @@ INSTANTIATE_TEST_SUITE_P(RanksSchedules, DistributedRenderOverTcp,
 // A slave that dies breaks its TCP connections (the other ranks see a reset, not a silent
 // shared-memory segment): under --enable-recovery the master must still retire it and finish.
 TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTheSamePixels) {
+  const CrashedJobLock alone;
   const ImageRgb reference = singleProcessReference();
   const test::ProcessRun run = test::runPrismMpi(
       3,
@@ -261,6 +289,7 @@ TEST_F(DistributedRender, TilesLostByALiveSlaveAreReissuedAndTheFrameCompletes) 
 // Open MPI 4.1 has no ULFM: by default the death of any rank aborts the whole job. With
 // `mpirun --enable-recovery` the others live on, and the master re-issues the dead slave's tiles.
 TEST_F(DistributedRender, CrashedSlaveUnderEnableRecoveryIsRetiredAndTheFrameCompletes) {
+  const CrashedJobLock alone;
   const ImageRgb reference = singleProcessReference();
   const test::ProcessRun run = test::runPrismMpi(
       3,
@@ -273,6 +302,7 @@ TEST_F(DistributedRender, CrashedSlaveUnderEnableRecoveryIsRetiredAndTheFrameCom
 }
 
 TEST_F(DistributedRender, CrashedSlaveWithoutRecoveryEndsTheJobPromptly) {
+  const CrashedJobLock alone;
   const test::ProcessRun run =
       test::runPrismMpi(3, "render " + kScene + " -o " + path("crash.png") +
                                " --schedule static --inject-fault crash:1");
