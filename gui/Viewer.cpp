@@ -19,6 +19,7 @@
 #include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
 #include "image/ImageIo.h"
+#include "util/Percentile.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -31,15 +32,6 @@ bool haveDisplay() {
     if (value && *value) return true;
   }
   return false;
-}
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double position = p * static_cast<double>(values.size() - 1);
-  const size_t below = static_cast<size_t>(position);
-  const size_t above = std::min(below + 1, values.size() - 1);
-  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
 }
 
 bool sameCamera(const CameraDesc& a, const CameraDesc& b) {

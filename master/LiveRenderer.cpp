@@ -8,6 +8,7 @@
 #include "master/PhotonPass.h"
 #include "master/TilePlan.h"
 #include "math/Random.h"
+#include "util/Percentile.h"
 
 namespace prism {
 
@@ -55,16 +56,6 @@ constexpr size_t kFrameTimeWindow = 60;  // frames the frame-time statistics cov
 // Whether the view's refinement passes trace a photon pass first.
 bool tracesPhotons(const ViewSettings& view) {
   return view.caustics == CausticMethod::PhotonMap && view.debugView == DebugView::Image;
-}
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double position = p * static_cast<double>(values.size() - 1);
-  const size_t below = static_cast<size_t>(position);
-  const size_t above = std::min(below + 1, values.size() - 1);
-  const double t = position - static_cast<double>(below);
-  return values[below] + t * (values[above] - values[below]);
 }
 
 }  // namespace

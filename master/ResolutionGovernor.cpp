@@ -1,7 +1,8 @@
 #include "master/ResolutionGovernor.h"
 
 #include <algorithm>
-#include <vector>
+
+#include "util/Percentile.h"
 
 namespace prism {
 
@@ -17,10 +18,7 @@ void ResolutionGovernor::frameFinished(uint64_t samples, double seconds) {
 double ResolutionGovernor::samplesPerSecond() const {
   if (rates_.empty()) return 0.0;
   // The median: one frame slowed by the machine (or a burst of messages) moves it little.
-  std::vector<double> sorted(rates_.begin(), rates_.end());
-  std::sort(sorted.begin(), sorted.end());
-  const size_t n = sorted.size();
-  return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return percentile({rates_.begin(), rates_.end()}, 0.5);
 }
 
 int ResolutionGovernor::scaleFor(int width, int height) const {

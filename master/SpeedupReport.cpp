@@ -150,20 +150,28 @@ void writeProjectionCsv(const SpeedupReport& r, std::ostream& out) {
 
 namespace {
 
+// The image sizes and worker counts of projected points, each once, in their order.
+template <class Point>
+std::pair<std::vector<std::pair<int, int>>, std::vector<int>> sizesAndWorkers(
+    const std::vector<Point>& points) {
+  std::vector<std::pair<int, int>> sizes;
+  std::vector<int> workers;
+  for (const Point& p : points) {
+    if (std::find(sizes.begin(), sizes.end(), std::pair{p.width, p.height}) == sizes.end())
+      sizes.push_back({p.width, p.height});
+    if (std::find(workers.begin(), workers.end(), p.workers) == workers.end())
+      workers.push_back(p.workers);
+  }
+  return {sizes, workers};
+}
+
 // The viewer's projected real-time frame rates: one row per worker count, one column per size,
 // "pipelined (unpipelined)" frames/s; then what the largest size's stream puts on the link.
 void printFrameRates(const SpeedupReport& r, std::ostream& out) {
   if (r.frameRates.empty()) return;
   out << "\n  real time (simulated 1-spp frames at full resolution, frames/s pipelined "
          "(unpipelined), the measured link):\n";
-  std::vector<std::pair<int, int>> sizes;
-  std::vector<int> workers;
-  for (const FrameRatePoint& p : r.frameRates) {
-    if (std::find(sizes.begin(), sizes.end(), std::pair{p.width, p.height}) == sizes.end())
-      sizes.push_back({p.width, p.height});
-    if (std::find(workers.begin(), workers.end(), p.workers) == workers.end())
-      workers.push_back(p.workers);
-  }
+  const auto [sizes, workers] = sizesAndWorkers(r.frameRates);
   char line[160];
   std::snprintf(line, sizeof line, "  %8s", "p");
   out << line;
@@ -284,14 +292,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   out << line;
   if (!r.projection.empty()) {
     out << "\n  projection (simulated, one core per render thread; speedup S for p workers):\n";
-    std::vector<std::pair<int, int>> sizes;
-    std::vector<int> workers;
-    for (const ProjectedPoint& p : r.projection) {
-      if (std::find(sizes.begin(), sizes.end(), std::pair{p.width, p.height}) == sizes.end())
-        sizes.push_back({p.width, p.height});
-      if (std::find(workers.begin(), workers.end(), p.workers) == workers.end())
-        workers.push_back(p.workers);
-    }
+    const auto [sizes, workers] = sizesAndWorkers(r.projection);
     std::snprintf(line, sizeof line, "  %8s", "p");
     out << line;
     for (const auto& [w, h] : sizes) {
