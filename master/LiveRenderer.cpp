@@ -189,9 +189,7 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
     // pixel, and no photon pass, which a moving camera would wait for).
     const RenderSettings& r = scene_.settings();
     const int scale = governor_.scaleFor(r.width, r.height);
-    const bool isPassOne =
-        scale == 1 && view_.samplesPerPixel == 1 &&
-        !(view_.caustics == CausticMethod::PhotonMap && view_.debugView == DebugView::Image);
+    const bool isPassOne = scale == 1 && view_.samplesPerPixel == 1 && !tracesPhotons(view_);
     lastIndex_ = isPassOne ? 1 : 0;
     return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, scale, true};
   }
