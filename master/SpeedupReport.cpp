@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 
@@ -150,10 +151,10 @@ void writeProjectionCsv(const SpeedupReport& r, std::ostream& out) {
 
 namespace {
 
-// The image sizes and worker counts of projected points, each once, in their order.
-template <class Point>
-std::pair<std::vector<std::pair<int, int>>, std::vector<int>> sizesAndWorkers(
-    const std::vector<Point>& points) {
+// Projected points as a table: a row per worker count, a column per image size (each in their
+// order), a cell from the point `cell` returns text for ("-" where none does).
+template <class Point, class Cell>
+void printSizeTable(const std::vector<Point>& points, int cellWidth, Cell cell, std::ostream& out) {
   std::vector<std::pair<int, int>> sizes;
   std::vector<int> workers;
   for (const Point& p : points) {
@@ -162,7 +163,29 @@ std::pair<std::vector<std::pair<int, int>>, std::vector<int>> sizesAndWorkers(
     if (std::find(workers.begin(), workers.end(), p.workers) == workers.end())
       workers.push_back(p.workers);
   }
-  return {sizes, workers};
+  char line[160];
+  std::snprintf(line, sizeof line, "  %8s", "p");
+  out << line;
+  for (const auto& [w, h] : sizes) {
+    std::snprintf(line, sizeof line, " %*s", cellWidth,
+                  (std::to_string(w) + "x" + std::to_string(h)).c_str());
+    out << line;
+  }
+  out << "\n";
+  for (int p : workers) {
+    std::snprintf(line, sizeof line, "  %8d", p);
+    out << line;
+    for (const auto& [w, h] : sizes) {
+      std::string text = "-";
+      for (const Point& q : points) {
+        if (q.workers != p || q.width != w || q.height != h) continue;
+        if (const std::optional<std::string> t = cell(q)) text = *t;
+      }
+      std::snprintf(line, sizeof line, " %*s", cellWidth, text.c_str());
+      out << line;
+    }
+    out << "\n";
+  }
 }
 
 // The viewer's projected real-time frame rates: one row per worker count, one column per size,
@@ -171,33 +194,16 @@ void printFrameRates(const SpeedupReport& r, std::ostream& out) {
   if (r.frameRates.empty()) return;
   out << "\n  real time (simulated 1-spp frames at full resolution, frames/s pipelined "
          "(unpipelined), the measured link):\n";
-  const auto [sizes, workers] = sizesAndWorkers(r.frameRates);
+  printSizeTable(
+      r.frameRates, 18,
+      [](const FrameRatePoint& q) -> std::optional<std::string> {
+        return formatNumber("%.1f", q.framesPerSecond) + " (" +
+               formatNumber("%.1f", q.unpipelinedFramesPerSecond) + ")";
+      },
+      out);
   char line[160];
-  std::snprintf(line, sizeof line, "  %8s", "p");
-  out << line;
-  for (const auto& [w, h] : sizes) {
-    std::snprintf(line, sizeof line, " %18s",
-                  (std::to_string(w) + "x" + std::to_string(h)).c_str());
-    out << line;
-  }
-  out << "\n";
-  for (int p : workers) {
-    std::snprintf(line, sizeof line, "  %8d", p);
-    out << line;
-    for (const auto& size : sizes) {
-      std::string cell = "-";
-      for (const FrameRatePoint& q : r.frameRates) {
-        if (q.workers == p && q.width == size.first && q.height == size.second) {
-          cell = formatNumber("%.1f", q.framesPerSecond) + " (" +
-                 formatNumber("%.1f", q.unpipelinedFramesPerSecond) + ")";
-        }
-      }
-      std::snprintf(line, sizeof line, " %18s", cell.c_str());
-      out << line;
-    }
-    out << "\n";
-  }
-  const auto [w, h] = sizes.back();
+  const FrameRatePoint& largest = r.frameRates.back();
+  const int w = largest.width, h = largest.height;
   const double bytesAt30 = streamBytesPerSecond(w, h, r.serialTileSize, 30.0);
   std::snprintf(line, sizeof line,
                 "  a %dx%d stream at 30 frames/s sends %.0f MB/s of tile results to rank 0 "
@@ -292,31 +298,13 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   out << line;
   if (!r.projection.empty()) {
     out << "\n  projection (simulated, one core per render thread; speedup S for p workers):\n";
-    const auto [sizes, workers] = sizesAndWorkers(r.projection);
-    std::snprintf(line, sizeof line, "  %8s", "p");
-    out << line;
-    for (const auto& [w, h] : sizes) {
-      std::snprintf(line, sizeof line, " %12s",
-                    (std::to_string(w) + "x" + std::to_string(h)).c_str());
-      out << line;
-    }
-    out << "\n";
-    for (int p : workers) {
-      std::snprintf(line, sizeof line, "  %8d", p);
-      out << line;
-      for (const auto& size : sizes) {
-        std::string cell = "-";
-        for (const ProjectedPoint& q : r.projection) {
-          if (q.workers == p && q.width == size.first && q.height == size.second &&
-              q.schedule == Schedule::Dynamic) {
-            cell = formatNumber("%.1f", q.speedup());
-          }
-        }
-        std::snprintf(line, sizeof line, " %12s", cell.c_str());
-        out << line;
-      }
-      out << "\n";
-    }
+    printSizeTable(
+        r.projection, 12,
+        [](const ProjectedPoint& q) -> std::optional<std::string> {
+          if (q.schedule != Schedule::Dynamic) return std::nullopt;
+          return formatNumber("%.1f", q.speedup());
+        },
+        out);
   }
   printFrameRates(r, out);
 }

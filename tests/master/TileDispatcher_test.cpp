@@ -323,6 +323,19 @@ TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
   EXPECT_EQ(listener.finished(1), 0u);
 }
 
+// Renders the dispatcher's frames on rank 0's threads until the current one is complete (20 s at
+// most), then stops them.
+void renderUntilComplete(TileDispatcher& dispatcher) {
+  dispatcher.startLocalWorkers();
+  const auto start = std::chrono::steady_clock::now();
+  while (!dispatcher.frameComplete() &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    dispatcher.service(0.05);
+  }
+  dispatcher.stop();
+  dispatcher.join();
+}
+
 // The viewer's pipelined frames: a frame queued behind a running one is not ended; every tile of
 // the older frame is handed out before any of the newer one's, and both complete.
 class OrderListener : public FrameListener {
@@ -348,14 +361,7 @@ TEST(TileDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
   dispatcher.queueFrame({2, tiles, nullptr, nullptr, true, -1}, &listener);
-  dispatcher.startLocalWorkers();
-  const auto start = std::chrono::steady_clock::now();
-  while (!dispatcher.frameComplete() &&
-         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
-    dispatcher.service(0.05);
-  }
-  dispatcher.stop();
-  dispatcher.join();
+  renderUntilComplete(dispatcher);
   EXPECT_EQ(listener.finished(1), tiles.size());
   EXPECT_EQ(listener.finished(2), tiles.size());
   const std::vector<uint32_t>& order = listener.order();
@@ -376,14 +382,7 @@ TEST(TileDispatcher, BeginningAFrameEndsAQueuedOne) {
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
   dispatcher.beginFrame({2, tiles, nullptr, nullptr, true, -1}, &listener);
-  dispatcher.startLocalWorkers();
-  const auto start = std::chrono::steady_clock::now();
-  while (!dispatcher.frameComplete() &&
-         std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
-    dispatcher.service(0.05);
-  }
-  dispatcher.stop();
-  dispatcher.join();
+  renderUntilComplete(dispatcher);
   EXPECT_EQ(listener.finished(1), 0u);
   EXPECT_EQ(listener.finished(2), tiles.size());
 }
