@@ -146,9 +146,10 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
   const double mrays =
       f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
-      << "geometry  " << g.spheres << " spheres, " << g.cones << " cones, " << g.triangles
-      << " triangles (" << triangleTestTitle(r.triangleTest) << "), " << g.planes << " planes, "
-      << s.lightCount << " lights\n"
+      << "geometry  " << g.spheres << " spheres, " << g.cones << " cones"
+      << (g.coneSegments != g.cones ? " (" + std::to_string(g.coneSegments) + " BVH parts)" : "")
+      << ", " << g.triangles << " triangles (" << triangleTestTitle(r.triangleTest) << "), "
+      << g.planes << " planes, " << s.lightCount << " lights\n"
       << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
       << formatBytes(static_cast<double>(g.accelerationBytes())) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "

@@ -1,5 +1,7 @@
 #include "geometry/Cone.h"
 
+#include <algorithm>
+
 namespace prism {
 
 Cone::Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius,
@@ -10,17 +12,35 @@ Cone::Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadiu
   axis_ = along / height_;
   orthonormalBasis(axis_, side1_, side2_);
   slope_ = (apexRadius_ - baseRadius_) / height_;
+  zHigh_ = height_;
+}
+
+Cone Cone::segment(float zLow, float zHigh) const {
+  Cone part = *this;
+  part.zLow_ = zLow;
+  part.zHigh_ = zHigh;
+  return part;
 }
 
 Aabb Cone::bounds() const {
   // Each end circle is bounded per axis by radius·sqrt(1 - axis_i²).
   const Vec3 spread = glm::sqrt(glm::max(Vec3(0.0f), Vec3(1.0f) - axis_ * axis_));
+  const bool whole = zLow_ == 0.0f && zHigh_ == height_;
+  const Vec3 low = base_ + zLow_ * axis_, high = base_ + zHigh_ * axis_;
+  const float lowRadius = zLow_ == 0.0f ? baseRadius_ : baseRadius_ + slope_ * zLow_;
+  const float highRadius = zHigh_ == height_ ? apexRadius_ : baseRadius_ + slope_ * zHigh_;
   Aabb box;
-  const Vec3 apex = base_ + height_ * axis_;
-  box.extend(base_ - baseRadius_ * spread);
-  box.extend(base_ + baseRadius_ * spread);
-  box.extend(apex - apexRadius_ * spread);
-  box.extend(apex + apexRadius_ * spread);
+  box.extend(low - std::max(lowRadius, 0.0f) * spread);
+  box.extend(low + std::max(lowRadius, 0.0f) * spread);
+  box.extend(high - std::max(highRadius, 0.0f) * spread);
+  box.extend(high + std::max(highRadius, 0.0f) * spread);
+  if (whole) return box;
+  // A cut circle is computed in float, and a hit at the cut belongs to both neighbours: widen a
+  // segment's box by a few units in the last place of its coordinates so none falls between.
+  const Vec3 magnitude = glm::max(glm::abs(box.lower), glm::abs(box.upper));
+  const Vec3 pad = magnitude * (8.0f * std::numeric_limits<float>::epsilon());
+  box.lower -= pad;
+  box.upper += pad;
   return box;
 }
 
@@ -60,7 +80,7 @@ bool Cone::intersect(const Ray& ray, float tMax, float& tHit) const {
     if (!(t > ray.tMin && t < tMax)) continue;
     const double z = oz + t * dz;
     // The quadratic also holds the mirrored nappe beyond the tip, where the radius is negative.
-    if (z < 0.0 || z > height_ || baseRadius_ + slope * z < 0.0) continue;
+    if (z < zLow_ || z > zHigh_ || baseRadius_ + slope * z < 0.0) continue;
     tHit = static_cast<float>(t);
     return true;
   }

@@ -1,5 +1,7 @@
 // Open truncated cone (NFF "c"): the lateral surface between a base circle and an apex circle,
-// without caps; a cylinder when both radii are equal.
+// without caps; a cylinder when both radii are equal. A cone may also stand for one axial
+// segment of itself (segment()): the same surface, equation and arithmetic, with hits accepted
+// only between two heights, so a long slanted cone can enter the BVH as several tight boxes.
 #pragma once
 
 #include "geometry/MaterialId.h"
@@ -11,13 +13,19 @@ class Cone {
  public:
   Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius, MaterialId material);
 
+  // The part of this cone between heights zLow and zHigh along the axis (0 ≤ zLow < zHigh ≤
+  // height()). A hit in it has the very t the whole cone computes for that hit.
+  Cone segment(float zLow, float zHigh) const;
+
+  // Bounds of the segment's lateral surface (of the whole cone unless segment() made it).
   Aabb bounds() const;
-  // Nearest hit in (ray.tMin, tMax); the surface is two-sided.
+  // Nearest hit in (ray.tMin, tMax) within the segment; the surface is two-sided.
   bool intersect(const Ray& ray, float tMax, float& tHit) const;
   // Outward normal (pointing away from the axis) at a point on the surface.
   Vec3 normalAt(const Vec3& p) const;
 
   MaterialId material() const { return material_; }
+  float height() const { return height_; }
 
  private:
   Vec3 base_;
@@ -27,6 +35,8 @@ class Cone {
   float baseRadius_;
   float slope_;  // radius change per unit of height
   float apexRadius_;
+  // The segment this cone stands for: hits with zLow_ ≤ z ≤ zHigh_ (the whole cone: 0, height_).
+  float zLow_ = 0.0f, zHigh_;
   MaterialId material_;
 };
 

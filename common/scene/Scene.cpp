@@ -4,6 +4,7 @@
 
 #include "accel/WideBvhPacket.h"
 
+#include "geometry/ConeSegments.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TriangleMollerTrumbore4.h"
 #include "geometry/TrianglePlaneInside.h"
@@ -87,11 +88,15 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
     }
   }
   for (const ConeDesc& c : d.cones) {
-    refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
-    cones.emplace_back(c.base, c.baseRadius, c.apex, c.apexRadius, c.material);
-    bounds.push_back(cones.back().bounds());
-    coneCaustic.push_back(causticFlags(c.caustic, materialOf(c.material)));
-    if (coneCaustic.back() & kCastsCaustics) casters_.push_back(boundingSphere(bounds.back()));
+    const Cone cone(c.base, c.baseRadius, c.apex, c.apexRadius, c.material);
+    const uint8_t caustic = causticFlags(c.caustic, materialOf(c.material));
+    if (caustic & kCastsCaustics) casters_.push_back(boundingSphere(cone.bounds()));
+    for (const Cone& part : splitForBvh(cone)) {
+      refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
+      cones.push_back(part);
+      bounds.push_back(part.bounds());
+      coneCaustic.push_back(caustic);
+    }
   }
   for (uint32_t m = 0; m < d.meshes.size(); ++m) {
     const MeshDesc& mesh = d.meshes[m];
@@ -184,7 +189,8 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
 
   stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
-  stats_.cones = cones_.size();
+  stats_.cones = d.cones.size();
+  stats_.coneSegments = cones_.size();
   stats_.triangles = d.triangleCount();
   stats_.wideBvh = wideBvh_.stats();
   stats_.packBytes = packs_.size() * sizeof(LeafPack);

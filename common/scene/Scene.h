@@ -40,6 +40,7 @@ enum class Traversal {
 
 struct SceneBuildStats {
   size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
+  size_t coneSegments = 0;         // the cones' entries in the BVH (a slanted cone enters in parts)
   BvhBuildStats bvh;               // the binary SAH build
   bool binaryBvhReleased = false;  // the wide walk dropped the binary tree once collapsed
   WideBvhStats wideBvh;            // empty under Traversal::BinaryScalar
