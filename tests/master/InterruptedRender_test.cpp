@@ -194,7 +194,10 @@ TEST_F(InterruptedRender, SigintToRankZeroStopsEveryRankAndSavesTheFinishedTiles
   const std::string log = readFile(run.log);
   std::printf("every rank gone %.3f s after SIGINT to rank 0\n", gone);
   EXPECT_GE(gone, 0.0) << log;
-  EXPECT_LT(gone, 2.0) << log;
+  // About 0.05 s alone and 0.14-0.25 s beside builds (docs/reliability.md); once in a full
+  // `ctest -j2` run 2.01 s. What this guards against is a rank left waiting: rank 0 gives up on
+  // acknowledgements after 10 s, mpiexec kills after its own seconds.
+  EXPECT_LT(gone, 5.0) << log;
   EXPECT_EQ(exitCode, 130) << log;
 
   EXPECT_FALSE(fs::exists(path("frame.exr"))) << "an interrupted frame is never the finished one";
