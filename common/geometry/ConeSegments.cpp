@@ -24,7 +24,7 @@ float totalSurfaceArea(const Cone& cone, int n) {
 
 }  // namespace
 
-std::vector<Cone> splitForBvh(const Cone& cone) {
+int bvhPartCount(const Cone& cone) {
   int segments = 1;
   float area = cone.bounds().surfaceArea();
   while (segments < kMaxSegments) {
@@ -33,6 +33,11 @@ std::vector<Cone> splitForBvh(const Cone& cone) {
     segments *= 2;
     area = halvedArea;
   }
+  return segments;
+}
+
+std::vector<Cone> splitForBvh(const Cone& cone) {
+  const int segments = bvhPartCount(cone);
   std::vector<Cone> parts;
   parts.reserve(segments);
   for (int i = 0; i < segments; ++i) parts.push_back(part(cone, i, segments));

@@ -13,4 +13,7 @@ namespace prism {
 // extra entries.
 std::vector<Cone> splitForBvh(const Cone& cone);
 
+// How many parts splitForBvh makes, without making them (the memory estimate counts them).
+int bvhPartCount(const Cone& cone);
+
 }  // namespace prism

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "geometry/ConeSegments.h"
 #include "scene/MeshBudget.h"
 
 namespace prism {
@@ -11,7 +12,13 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
   for (const MeshDesc& m : d.meshes) {
     bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
   }
-  const uint64_t primitives = d.spheres.size() + d.planes.size() + d.cones.size();
+  // A slanted cone enters the BVH in parts, each costing what a sphere does.
+  uint64_t coneParts = 0;
+  for (const ConeDesc& c : d.cones) {
+    coneParts += static_cast<uint64_t>(
+        bvhPartCount(Cone(c.base, c.baseRadius, c.apex, c.apexRadius, c.material)));
+  }
+  const uint64_t primitives = d.spheres.size() + d.planes.size() + coneParts;
   bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
   if (d.environment) {
     for (const ImageRgb& face : d.environment->faces) {

@@ -22,7 +22,7 @@ inline constexpr uint64_t kBytesPerTriangle = 240;
 // Per vertex: position and normal in the wire bytes and the description (24 + 24), the
 // Scene's shading normal (12), rounded up.
 inline constexpr uint64_t kBytesPerVertex = 64;
-// A sphere, plane or cone with its box, reference and BVH share.
+// A sphere, plane or cone part (geometry/ConeSegments.h) with its box, reference and BVH share.
 inline constexpr uint64_t kBytesPerOtherPrimitive = 256;
 
 inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {

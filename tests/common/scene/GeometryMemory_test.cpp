@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "geometry/ConeSegments.h"
+
 namespace prism {
 namespace {
 
@@ -18,6 +20,22 @@ SceneDescription thousandTrianglesAndTwoSpheres() {
 TEST(GeometryMemory, CountsTrianglesVerticesAndPrimitives) {
   // 1000 x 240 + 600 x 64 + 2 x 256
   EXPECT_EQ(geometryMemoryBytes(thousandTrianglesAndTwoSpheres()), 278912u);
+}
+
+TEST(GeometryMemory, CountsEachPartASlantedConeEntersTheBvhAs) {
+  SceneDescription d;
+  ConeDesc upright;  // default: base at the origin, apex one unit up, pointed
+  upright.apex = {0, 5, 0};
+  upright.baseRadius = upright.apexRadius = 0.1f;
+  d.cones.push_back(upright);
+  EXPECT_EQ(geometryMemoryBytes(d), 256u);  // an axis-aligned cylinder stays whole
+  ConeDesc slanted = upright;
+  slanted.apex = {4, 4, 4};
+  d.cones.push_back(slanted);
+  // Each of the parts splitForBvh makes costs a sphere's 256 bytes.
+  const std::vector<Cone> parts = splitForBvh(Cone(slanted.base, 0.1f, slanted.apex, 0.1f, 0));
+  ASSERT_GT(parts.size(), 1u);
+  EXPECT_EQ(geometryMemoryBytes(d), 256u * (1 + parts.size()));
 }
 
 TEST(GeometryMemory, RefusesOneByteShortWithTheBytesAndTheLimit) {
