@@ -3,6 +3,7 @@
 // launcher, every rank runs this: rank 0 becomes the master and runs the command, the others
 // slaves, whatever the command. MPI and Qt are modules loaded only when used (MpiModule.h,
 // ViewerModule.h), so a process pays at start-up only for the libraries it needs.
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
@@ -40,8 +41,14 @@ int main(int argc, char** argv) {
 #endif
   if (command.exitNow) return command.exitCode;
   if (slave) {
-    return prism::runSlave(*session, command.distribution,
-                           prism::memoryLimitOrPhysical(command.memoryLimit));
+    const prism::SlaveEnd end = prism::runSlave(*session, command.distribution,
+                                                prism::memoryLimitOrPhysical(command.memoryLimit));
+    // Without rank 0, MPI_Finalize (in the session's destructor) would wait for it forever.
+    if (end.masterLost) {
+      std::cerr.flush();
+      std::_Exit(end.exitCode);
+    }
+    return end.exitCode;
   }
   return command.runMaster(session.get());
 }

@@ -183,8 +183,8 @@ void awaitShutdown(Transport& session, double timeoutSeconds) {
 
 }  // namespace
 
-int runSlave(Transport& session, const DistributionOptions& options,
-             const MemoryLimit& memoryLimit) {
+SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
+                  const MemoryLimit& memoryLimit) {
   const double startSeconds = secondsSinceProcessStart().value_or(-1.0);  // before any work
   installInterruptHandlers();
   std::vector<uint8_t> bytes;
@@ -192,14 +192,14 @@ int runSlave(Transport& session, const DistributionOptions& options,
     session.broadcast(bytes, options.masterTimeoutSeconds);
   } catch (const TransportError& e) {
     std::fprintf(stderr, "prism: rank %d: %s\n", session.rank(), e.what());
-    return 1;
+    return {1, true};
   }
 
   std::unique_ptr<Scene> scene;
   try {
     const wire::Message message = wire::decodeMessage(bytes.data(), bytes.size());
     // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
-    if (message.type == wire::MessageType::Error) return 1;
+    if (message.type == wire::MessageType::Error) return {1};
     const auto buildStart = Clock::now();
     SceneDescription description = wire::decodeScene(message);
     // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
@@ -212,7 +212,7 @@ int runSlave(Transport& session, const DistributionOptions& options,
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({std::string("cannot build the scene: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);
-    return 1;
+    return {1};
   }
 
   JobQueue jobs;
@@ -394,7 +394,7 @@ int runSlave(Transport& session, const DistributionOptions& options,
   } catch (const std::exception& e) {
     session.send(0, wire::encodeError({std::string("render thread failed: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);
-    return 1;
+    return {1};
   }
   if (shutdownReceived) {
     session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
@@ -406,11 +406,11 @@ int runSlave(Transport& session, const DistributionOptions& options,
     awaitShutdown(session, kInterruptedShutdownSeconds);
     // SIGTERM comes from mpiexec ending the job: MPI_Finalize would wait for the SIGKILL.
     if (interruptSignalName() == std::string("SIGTERM")) std::_Exit(kInterruptedExitCode);
-    return kInterruptedExitCode;
+    return {kInterruptedExitCode};
   } else if (!masterSilent) {
     awaitShutdown(session, options.masterTimeoutSeconds);  // after an error this rank reported
   }
-  return exitCode;
+  return {exitCode, masterSilent};
 }
 
 }  // namespace prism

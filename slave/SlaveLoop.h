@@ -9,11 +9,18 @@ namespace prism {
 
 class Transport;
 
-// Returns the process exit code. Errors are sent to the master, which reports them; a slave
-// prints only when it cannot reach the master.
+struct SlaveEnd {
+  int exitCode = 0;
+  // Rank 0 is gone (a send to it failed) or silent past masterTimeoutSeconds: the process should
+  // end without MPI_Finalize, which waits for every rank, rank 0 included.
+  bool masterLost = false;
+};
+
+// Errors are sent to the master, which reports them; a slave prints only when it cannot reach
+// the master.
 // Reads options.threads, masterTimeoutSeconds and fault. A scene whose geometry exceeds
 // memoryLimit (this rank's --memory-limit, or its machine's memory) is refused before it is built.
-int runSlave(Transport& session, const DistributionOptions& options,
-             const MemoryLimit& memoryLimit = {});
+SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
+                  const MemoryLimit& memoryLimit = {});
 
 }  // namespace prism

@@ -63,7 +63,10 @@ bool Doorbell::ring(const std::string& name) const {
   const int from = socket_ >= 0 ? socket_ : selfSocket_[1];
   const ssize_t sent = ::sendto(from, &byte, 1, MSG_DONTWAIT | MSG_NOSIGNAL,
                                 reinterpret_cast<const sockaddr*>(&address), length);
-  return sent == 1 || errno == EAGAIN || errno == EWOULDBLOCK;
+  if (sent == 1) return true;
+  // Nobody bound the name: the peer's process has ended (its socket closed with it). Any other
+  // failure (a full queue: a ring is waiting already) loses at most a wake-up.
+  return errno != ECONNREFUSED && errno != ENOENT;
 }
 
 void Doorbell::ringSelf() const {

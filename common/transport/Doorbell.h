@@ -22,9 +22,10 @@ class Doorbell {
 
   bool reachable() const { return bound_; }
 
-  // Rings the bell a peer bound as `name`; false if nobody has (the peer is gone). A bell with
-  // rings not yet heard is not rung twice (the socket's queue is full): one wake-up is enough.
-  // Safe from any thread, like ringSelf().
+  // Rings the bell a peer bound as `name`; false only if nobody has (the peer's process is
+  // gone: a bound bell lives as long as its process). A bell with rings not yet heard is not
+  // rung twice (the socket's queue is full): one wake-up is enough. Safe from any thread, like
+  // ringSelf().
   bool ring(const std::string& name) const;
   // Ends this process's wait() in progress, or the next one, at once.
   void ringSelf() const;

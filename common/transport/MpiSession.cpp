@@ -117,9 +117,9 @@ void MpiSession::setUpDoorbells() {
   rungByPeers_ = rank_ == 0 ? nodeSize == size_ : !peerDoorbells_[0].empty();
 }
 
-void MpiSession::ring(int dest) const {
+bool MpiSession::ring(int dest) const {
   const std::string& bell = peerDoorbells_[static_cast<size_t>(dest)];
-  if (!bell.empty()) doorbell_->ring(bell);
+  return bell.empty() || doorbell_->ring(bell);
 }
 
 MpiSession::~MpiSession() {
@@ -169,8 +169,17 @@ bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   // comes before the message; what is left completes in progressSends(), which rings again.
   int done = 0;
   MPI_Test(&pending->request, &done, MPI_STATUS_IGNORE);
+  // A peer on this machine whose bell no longer answers has ended. Open MPI may never fail a
+  // send to it (under --enable-recovery a send to a dead rank over TCP stays pending), so the
+  // bell is what tells the caller; a slave whose rank 0 is gone must not wait for it.
+  if (!ring(dest)) {
+    if (!done) {
+      MPI_Cancel(&pending->request);
+      MPI_Request_free(&pending->request);
+    }
+    return false;
+  }
   if (!done) pendingSends_.push_back(std::move(pending));
-  ring(dest);
   return true;
 }
 

@@ -31,7 +31,8 @@ class MpiSession final : public Transport {
 
   // Queues bytes for rank dest without blocking; the buffer lives until the send completes.
   // Returns false when MPI refuses at once (the destination is known to be gone, e.g. under
-  // `mpirun --enable-recovery`); the caller decides what that rank's loss means.
+  // `mpirun --enable-recovery`) or a destination on this machine no longer answers its doorbell
+  // (its process has ended); the caller decides what that rank's loss means.
   bool send(int dest, std::vector<uint8_t> bytes) override;
   // Completes finished sends; returns how many are still outstanding.
   size_t progressSends() override;
@@ -51,7 +52,8 @@ class MpiSession final : public Transport {
  private:
   struct PendingSend;
   void setUpDoorbells();
-  void ring(int dest) const;
+  // Rings dest's doorbell where it has one; false if that bell is gone (so is its process).
+  bool ring(int dest) const;
   Doorbell::Heard sleepFor(double seconds);
 
   int rank_ = 0;

@@ -667,7 +667,7 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
     DistributionOptions slave;
     slave.threads = 1;
     slave.masterTimeoutSeconds = 30.0;
-    slaveExit = runSlave(network.endpoint(1), slave);
+    slaveExit = runSlave(network.endpoint(1), slave).exitCode;
   });
   std::vector<uint8_t> bytes = wire::encodeScene(d);
   network.endpoint(0).broadcast(bytes, 10.0);

@@ -263,7 +263,7 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
       DistributionOptions slave;
       slave.threads = 1;
       slave.masterTimeoutSeconds = 30.0;
-      exitCodes[static_cast<size_t>(r)] = runSlave(network.endpoint(r), slave);
+      exitCodes[static_cast<size_t>(r)] = runSlave(network.endpoint(r), slave).exitCode;
     });
   }
   std::vector<uint8_t> bytes = wire::encodeScene(d);

@@ -1,6 +1,7 @@
 #include "transport/Doorbell.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -69,6 +70,36 @@ TEST(Doorbell, ItsOwnRingIsToldApartFromAPeers) {
 TEST(Doorbell, RingingANameNobodyHoldsFails) {
   const Doorbell bell(bellName("lonely"));
   EXPECT_FALSE(bell.ring(bellName("nobody")));
+}
+
+// What MpiSession relies on to notice a peer on this machine has ended (without Open MPI, which
+// may never fail a send to a dead rank): its bell rings while its process lives, never after.
+TEST(Doorbell, ABellStopsAnsweringWhenItsProcessEnds) {
+  int toChild[2];
+  int fromChild[2];
+  ASSERT_EQ(::pipe(toChild), 0);
+  ASSERT_EQ(::pipe(fromChild), 0);
+  const std::string name = bellName("child");  // the parent's pid in it, for both processes
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const Doorbell bell(name);
+    char byte = bell.reachable() ? 1 : 0;
+    [[maybe_unused]] ssize_t n = ::write(fromChild[1], &byte, 1);  // bound (or not)
+    n = ::read(toChild[0], &byte, 1);                              // until told to end
+    ::_exit(0);
+  }
+  char bound = 0;
+  ASSERT_EQ(::read(fromChild[0], &bound, 1), 1);
+  ASSERT_EQ(bound, 1);
+  const Doorbell parent;
+  EXPECT_TRUE(parent.ring(name));
+  const char end = 1;
+  ASSERT_EQ(::write(toChild[1], &end, 1), 1);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_FALSE(parent.ring(name));
+  for (int fd : {toChild[0], toChild[1], fromChild[0], fromChild[1]}) ::close(fd);
 }
 
 TEST(Doorbell, ANameTakenAlreadyGivesABellOnlyItsProcessRings) {
