@@ -1,5 +1,6 @@
 #include "master/SlaveShutdown.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,10 +18,11 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
   constexpr double kAcknowledgeSeconds = 10.0;
   constexpr double kSilentAcknowledgeSeconds = 2.0;
   std::vector<bool> gone(static_cast<size_t>(session->size()), false);
+  std::vector<bool> lost(static_cast<size_t>(session->size()), false);
   int waiting = session->size() - 1;
   for (int rank = 1; rank < session->size(); ++rank) {
     if (!session->send(rank, wire::encodeShutdown())) {
-      gone[rank] = true;  // MPI already knows it is gone
+      gone[rank] = lost[rank] = true;  // the transport knows its process has ended
       --waiting;
     }
   }
@@ -43,9 +45,16 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
     gone[incoming->source] = true;
     --waiting;
   }
-  if (waiting == 0) return exitCode;
+  // MPI_Finalize waits for every rank, a dead one too (seen hanging under --enable-recovery):
+  // with a rank lost the job ends with MPI_Abort, once the others have acknowledged.
+  const bool anyLost = std::find(lost.begin(), lost.end(), true) != lost.end();
+  if (waiting == 0 && !anyLost) return exitCode;
   for (int rank = 1; rank < session->size(); ++rank) {
-    if (!gone[rank]) {
+    if (lost[rank]) {
+      err << "prism: rank " << rank
+          << " has ended; ending the job with MPI_Abort so that MPI_Finalize does not wait for "
+             "it\n";
+    } else if (!gone[rank]) {
       err << "prism: rank " << rank << " did not acknowledge the end of the job in "
           << secondsSince(start) << " s; ending the job with MPI_Abort so it does not hang\n";
     }

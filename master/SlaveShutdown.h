@@ -1,6 +1,7 @@
 // The end of an MPI job. Each slave answers rank 0's Shutdown with its own Shutdown as it leaves.
-// One that does not answer within the bound is stopped or wedged, and MPI_Finalize would wait
-// for it forever; so the job is ended with MPI_Abort instead, after saying why. The image is
+// One that does not answer within the bound is stopped or wedged, and one the transport knows
+// has ended (a crash under --enable-recovery) is dead; MPI_Finalize would wait for either
+// forever, so the job is ended with MPI_Abort instead, after saying why. The image is
 // already written by then, and the exit code stays the run's own.
 #pragma once
 

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -27,6 +29,9 @@ constexpr int kMessageTag = 7;
 constexpr double kProbeIntervalSeconds = 0.001;
 
 using Clock = SteadyClock;
+
+// MPI_Finalize takes well under a second here, a few under load; ten means it will not return.
+constexpr double kFinalizeBoundSeconds = 10.0;
 
 // Polls a request until it completes or the time is up. Short sleeps keep a waiting rank from
 // burning the core its render threads need.
@@ -133,7 +138,37 @@ MpiSession::~MpiSession() {
     MPI_Request_free(&pending->request);
   }
   pendingSends_.clear();
+  finalizeBounded();
+}
+
+// MPI_Finalize waits for every rank of the job. Under --enable-recovery a rank can die and the job
+// go on; then Finalize may wait for it for good (seen: two live ranks stuck in its fence after a
+// third crashed), even when rank 0 ends the job with MPI_Abort, whose kill does not always reach
+// a rank. The work is done and delivered by now, so past a bound the process ends without it.
+void MpiSession::finalizeBounded() {
+  std::mutex mutex;
+  std::condition_variable done;
+  bool finished = false;
+  std::thread watchdog([&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    if (done.wait_for(lock, std::chrono::duration<double>(kFinalizeBoundSeconds),
+                      [&] { return finished; })) {
+      return;
+    }
+    std::fprintf(stderr,
+                 "prism: rank %d: MPI_Finalize did not return within %.0f s (a rank of the job is "
+                 "gone); ending without it\n",
+                 rank_, kFinalizeBoundSeconds);
+    std::fflush(nullptr);
+    std::_Exit(1);
+  });
   MPI_Finalize();
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    finished = true;
+  }
+  done.notify_all();
+  watchdog.join();
 }
 
 void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {

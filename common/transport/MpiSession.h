@@ -52,6 +52,7 @@ class MpiSession final : public Transport {
  private:
   struct PendingSend;
   void setUpDoorbells();
+  void finalizeBounded();
   // Rings dest's doorbell where it has one; false if that bell is gone (so is its process).
   bool ring(int dest) const;
   Doorbell::Heard sleepFor(double seconds);

@@ -6,7 +6,9 @@ The issue's measure: a frame of a few seconds rendered by one process with one t
 whole processes (launch, MPI_Init, parse, broadcast, build, render, write, MPI_Finalize).
 Each round runs the one-process render and then every variant's 2-rank job, in an order that
 alternates between rounds; a round's efficiency uses that round's one-process time, and the
-table gives each variant's median over the rounds with the spread.
+table gives each variant's median over the rounds with the spread. With --two-threads each round
+also runs one process with 2 threads (no MPI): the machine's own ceiling for two workers, so
+what the 2-rank jobs lose beyond it is MPI's and Prism's distribution.
 
 A variant is NAME=PRISM, optionally followed by environment settings for mpirun:
     job_efficiency.py --variant before=/tmp/old/prism --variant now=build/prism \\
@@ -55,6 +57,8 @@ def main():
     parser.add_argument("-H", type=int, default=1024)
     parser.add_argument("--spp", type=int, default=6)
     parser.add_argument("--bind-to", default=None, help="mpirun --bind-to (default: mpirun's)")
+    parser.add_argument("--two-threads", action="store_true",
+                        help="also time one process with 2 threads each round (the ceiling)")
     parser.add_argument("--variant", action="append", required=True,
                         help="NAME=PRISM[:VAR=VALUE...]; the first one's PRISM renders alone")
     args = parser.parse_args()
@@ -66,27 +70,35 @@ def main():
               "--spp", str(args.spp), "-q", "--overwrite", "-o", out]
     mpirun = ["mpirun", "-np", "2"] + (["--bind-to", args.bind_to] if args.bind_to else [])
     serial = []
-    efficiency = {name: [] for name, _, _ in variants}
-    jobs = {name: [] for name, _, _ in variants}
+    ceiling = "one process, 2 threads (no MPI)"
+    rows = [name for name, _, _ in variants] + ([ceiling] if args.two_threads else [])
+    efficiency = {name: [] for name in rows}
+    jobs = {name: [] for name in rows}
     for r in range(args.rounds):
         steps = [("one process", None)] + [(name, (prism, extra)) for name, prism, extra in variants]
+        if args.two_threads:
+            steps.append((ceiling, None))
         if r % 2:
             steps.reverse()
         times = {}
         for name, spec in steps:
-            if spec is None:
+            if name == ceiling:
+                two = [a if a != "1" or i != render.index("--threads") + 1 else "2"
+                       for i, a in enumerate(render)]
+                times[name] = timed([variants[0][1]] + two, env)
+            elif spec is None:
                 times[name] = timed([variants[0][1]] + render, env)
             else:
                 prism, extra = spec
                 times[name] = timed(mpirun + [prism] + render, dict(env, **extra))
         serial.append(times["one process"])
-        for name, _, _ in variants:
+        for name in rows:
             jobs[name].append(times[name])
             efficiency[name].append(times["one process"] / (2 * times[name]))
         print("round %d/%d: one process %.3f s; %s" % (
             r + 1, args.rounds, times["one process"],
-            ", ".join("%s %.3f s (%.3f)" % (n, times[n], efficiency[n][-1])
-                      for n, _, _ in variants)), file=sys.stderr)
+            ", ".join("%s %.3f s (%.3f)" % (n, times[n], efficiency[n][-1]) for n in rows)),
+            file=sys.stderr)
     if os.path.exists(out):
         os.remove(out)
 
@@ -95,9 +107,9 @@ def main():
                                           args.rounds, statistics.median(serial),
                                           " ".join("%.2f" % x for x in os.getloadavg())))
     print()
-    print("| variant | 2-rank job s, median | efficiency per round | median |")
+    print("| variant | job s, median | efficiency per round | median |")
     print("|---|---:|---|---:|")
-    for name, _, _ in variants:
+    for name in rows:
         print("| %s | %.3f | %s | %.3f |" % (
             name, statistics.median(jobs[name]), ", ".join("%.2f" % e for e in efficiency[name]),
             statistics.median(efficiency[name])))
