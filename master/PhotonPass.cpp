@@ -80,6 +80,13 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
   bool localDone = false;
   for (;;) {
     if (cancelled()) {
+      // The slaves still tracing this pass stop too (their threads are wanted for the next
+      // frame's tiles) and send nothing for it.
+      for (const Share& s : shares) {
+        if (s.rank != 0 && !s.done && s.count > 0) {
+          link.send(s.rank, wire::encodePhotonCancel({pass}));
+        }
+      }
       localWork.wait();  // within a chunk of photons
       return nullptr;
     }

@@ -29,8 +29,9 @@ struct PhotonPassStats {
 
 // Traces pass `pass` and builds rank 0's photon map. threads: rank 0's tracing threads. Once
 // *cancel is set (the viewer's camera moved; wake the link too), rank 0 stops tracing within a
-// chunk of photons and returns null without waiting for the slaves, whose shares then arrive
-// late and are ignored.
+// chunk of photons, tells the slaves still tracing their shares to stop (PhotonCancel: they send
+// nothing for the pass) and returns null without waiting for them; a share already on its way
+// arrives late and is ignored.
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
                                                  int threads, SlaveLink& link,
                                                  PhotonPassStats& stats,

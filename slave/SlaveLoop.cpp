@@ -85,18 +85,28 @@ class PhotonWork {
       tracer_ = std::make_unique<PhotonTracer>(scene_, job.photonsPerPass,
                                                scene_.causticSettings().maxBounces);
     }
-    running_ = std::async(std::launch::async, [this, job] {
-      const auto start = Clock::now();
-      wire::PhotonShareMessage share{job.pass, job.first, job.count, {}, 0.0, {}};
-      share.photons =
-          tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats);
-      share.seconds = secondsSince(start);
-      session_.wake();  // the main thread sends it
-      return share;
-    });
+    runningPass_ = job.pass;
+    cancel_ = false;
+    running_ =
+        std::async(std::launch::async, [this, job]() -> std::optional<wire::PhotonShareMessage> {
+          const auto start = Clock::now();
+          wire::PhotonShareMessage share{job.pass, job.first, job.count, {}, 0.0, {}};
+          share.photons = tracePhotons(*tracer_, job.pass, job.first, job.count, threads_,
+                                       &share.stats, &cancel_);
+          share.seconds = secondsSince(start);
+          session_.wake();  // the main thread sends it, or forgets it when cancelled
+          if (cancel_) return std::nullopt;
+          return share;
+        });
   }
 
-  // The finished share, once there is one.
+  // Rank 0 dropped this pass: the share being traced stops within a chunk of photons and is
+  // not sent, so this rank's threads are free for the next frame's tiles at once.
+  void cancel(uint32_t pass) {
+    if (running_.valid() && runningPass_ == pass) cancel_ = true;
+  }
+
+  // The finished share, once there is one (none for a cancelled pass).
   std::optional<wire::PhotonShareMessage> finished() {
     if (!running_.valid() ||
         running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
@@ -153,7 +163,9 @@ class PhotonWork {
   int threads_;
   Transport& session_;
   std::unique_ptr<PhotonTracer> tracer_;
-  std::future<wire::PhotonShareMessage> running_;
+  std::future<std::optional<wire::PhotonShareMessage>> running_;
+  uint32_t runningPass_ = 0;
+  std::atomic<bool> cancel_{false};
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
@@ -349,6 +361,10 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         lock.unlock();  // waits for a share still being traced
         photons.start(wire::decodePhotonJob(message));
         lock.lock();
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonCancel) {
+        photons.cancel(wire::decodePhotonCancel(message).pass);
         continue;
       }
       if (message.type == wire::MessageType::PhotonMap) {

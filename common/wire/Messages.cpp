@@ -17,7 +17,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::Echo);
+         raw <= static_cast<uint16_t>(MessageType::PhotonCancel);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -99,6 +99,8 @@ const char* messageTypeName(MessageType type) {
       return "View";
     case MessageType::Echo:
       return "Echo";
+    case MessageType::PhotonCancel:
+      return "PhotonCancel";
     case MessageType::PhotonJob:
       return "PhotonJob";
     case MessageType::PhotonShare:
@@ -292,6 +294,15 @@ EchoMessage decodeEcho(const Message& message) {
     echo.padding = r.readString();
     return echo;
   });
+}
+
+std::vector<uint8_t> encodePhotonCancel(const PhotonCancelMessage& cancel) {
+  return encodeWith(MessageType::PhotonCancel, [&](ByteWriter& w) { w.writeU32(cancel.pass); });
+}
+
+PhotonCancelMessage decodePhotonCancel(const Message& message) {
+  return decodePayload(message, MessageType::PhotonCancel,
+                       [](ByteReader& r) { return PhotonCancelMessage{r.readU32()}; });
 }
 
 std::vector<uint8_t> encodeShutdown() {

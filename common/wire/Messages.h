@@ -24,8 +24,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
 // 5: the caustic-map term of TileJob, the view's caustic-map blur switch, and the Echo
 // message (`prism speedup` measures the links with it). 6: View names the oldest frame still
-// running (pipelined frames) and says whether one sample per pixel is jittered.
-inline constexpr uint16_t kVersion = 6;
+// running (pipelined frames) and says whether one sample per pixel is jittered. 7: PhotonCancel.
+inline constexpr uint16_t kVersion = 7;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -41,7 +41,8 @@ enum class MessageType : uint16_t {
   PhotonShare = 9,
   PhotonMap = 10,
   View = 11,
-  Echo = 12
+  Echo = 12,
+  PhotonCancel = 13
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -86,6 +87,12 @@ struct PhotonJobMessage {
   uint64_t first = 0;
   uint64_t count = 0;
   uint64_t photonsPerPass = 0;
+};
+
+// Master to slave: stop tracing the PhotonJob of this pass and send nothing for it (the camera
+// moved or the viewer stopped: rank 0 dropped the pass).
+struct PhotonCancelMessage {
+  uint32_t pass = 0;
 };
 
 // Slave to master: the photons it stored for a PhotonJob, in photon-index order.
@@ -173,6 +180,9 @@ std::vector<uint8_t> encodeView(const ViewMessage& view);
 ViewMessage decodeView(const Message& message);
 std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job);
 PhotonJobMessage decodePhotonJob(const Message& message);
+
+std::vector<uint8_t> encodePhotonCancel(const PhotonCancelMessage& cancel);
+PhotonCancelMessage decodePhotonCancel(const Message& message);
 
 std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share);
 PhotonShareMessage decodePhotonShare(const Message& message);

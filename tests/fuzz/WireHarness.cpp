@@ -60,6 +60,9 @@ void decodePayload(const std::vector<uint8_t>& bytes) {
     case MessageType::Echo:
       expectSameBytes(bytes, decodeEcho(message), &encodeEcho);
       break;
+    case MessageType::PhotonCancel:
+      expectSameBytes(bytes, decodePhotonCancel(message), &encodePhotonCancel);
+      break;
     default:
       throw InvariantBroken("decodeMessage accepted an unknown message type");
   }
@@ -78,7 +81,7 @@ Outcome fuzzWire(const uint8_t* data, size_t size) {
   } catch (const WireError&) {
   }
   if (size == 0) return accepted ? Outcome::Accepted : Outcome::Rejected;
-  // Types 1..12 are known; the rest of the byte's range checks that unknown types are refused.
+  // Types 1..13 are known; the rest of the byte's range checks that unknown types are refused.
   const auto type = static_cast<MessageType>(data[0] % 16);
   try {
     decodePayload(encodeMessage(type, std::vector<uint8_t>(data + 1, data + size)));

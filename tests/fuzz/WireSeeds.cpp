@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
   view.view.seed = 99;
   writeSeed(dir, "view", encodeView(view));
   writeSeed(dir, "echo", encodeEcho({5, std::string(64, 'x')}));
+  writeSeed(dir, "photon-cancel", encodePhotonCancel({3}));
   // Refused ones: a truncated message and a flipped payload byte.
   std::vector<uint8_t> bytes = encodeReady({0.25, 8});
   bytes.pop_back();

@@ -17,6 +17,7 @@
 
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
+#include "master/PhotonPass.h"
 #include "master/ScriptedSlave.h"
 #include "master/SlaveShutdown.h"
 #include "master/TilePlan.h"
@@ -282,6 +283,94 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_GT(f.caustics.photonsByRank[1], 0u);
   EXPECT_EQ(f.frames.workers[0].tiles, 0u);
   EXPECT_EQ(f.frames.workers[1].tiles + f.frames.workers[2].tiles, f.frames.tileCount);
+}
+
+// A camera move cancels rank 0's photon pass; the slaves tracing their shares of it are told to
+// stop (PhotonCancel), and only those whose share is still out.
+TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
+  const Scene scene(smallCausticScene());
+  TwoRanks job(scene);
+  std::atomic<bool> cancelReceived{false};
+  uint32_t cancelledPass = 0;
+  job.start([&](ScriptedSlave& s, std::atomic<bool>&) {
+    if (!s.waitFor(wire::MessageType::PhotonJob)) return;  // takes its share and never answers
+    if (const auto cancel = s.waitFor(wire::MessageType::PhotonCancel)) {
+      cancelledPass = wire::decodePhotonCancel(*cancel).pass;
+      cancelReceived = true;
+    }
+  });
+  DistributionOptions o;
+  o.threads = 1;
+  o.leaseSeconds = 60.0;
+  o.heartbeatTimeoutSeconds = 60.0;
+  SlaveLink link(&job.master(), o);
+  link.receive(5.0);  // the scripted slave's Ready (taken in by the link)
+  ASSERT_TRUE(link.ready(1));
+  // Rank 0's own share is large enough to be still running when the cancel comes.
+  const PhotonTracer tracer(scene, 4'000'000, scene.causticSettings().maxBounces);
+  std::atomic<bool> cancel{false};
+  std::thread mover([&cancel] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    cancel = true;
+  });
+  PhotonPassStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  const std::shared_ptr<const PhotonMap> map = tracePhotonPass(tracer, 7, 1, link, stats, &cancel);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  mover.join();
+  job.join();
+  EXPECT_EQ(map, nullptr);
+  EXPECT_LT(seconds, 5.0);
+  EXPECT_TRUE(cancelReceived);
+  EXPECT_EQ(cancelledPass, 7u);
+}
+
+// A real slave (runSlave on a thread) told to cancel the share it is tracing stops within a
+// chunk of photons and sends nothing for it: its shutdown acknowledgement comes at once, not
+// after the share's seconds of tracing (the slave finishes its photon work before it leaves).
+TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) {
+  const SceneDescription d = smallCausticScene();
+  LoopbackNetwork network(2);
+  int exitCode = -1;
+  std::thread slave([&network, &exitCode] {
+    DistributionOptions o;
+    o.threads = 1;
+    o.masterTimeoutSeconds = 30.0;
+    exitCode = runSlave(network.endpoint(1), o).exitCode;
+  });
+  Transport& master = network.endpoint(0);
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  master.broadcast(bytes, 10.0);
+  const auto waitFor = [&master](wire::MessageType type, double seconds) {
+    std::vector<wire::MessageType> seen;
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+           seconds) {
+      const auto incoming = master.waitForMessage(0.05);
+      if (!incoming) continue;
+      seen.push_back(wire::decodeMessage(incoming->bytes).type);
+      if (seen.back() == type) break;
+    }
+    return seen;
+  };
+  ASSERT_EQ(waitFor(wire::MessageType::Ready, 10.0).back(), wire::MessageType::Ready);
+  // 20 M photons on one thread take about 10 s to trace (3.9 s for 8 M, measured).
+  constexpr uint64_t kPhotons = 20'000'000;
+  master.send(1, wire::encodePhotonJob({3, 0, kPhotons, kPhotons}));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  master.send(1, wire::encodePhotonCancel({3}));
+  master.send(1, wire::encodeShutdown());
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<wire::MessageType> seen = waitFor(wire::MessageType::Shutdown, 20.0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  slave.join();
+  EXPECT_EQ(exitCode, 0);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.back(), wire::MessageType::Shutdown);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), wire::MessageType::PhotonShare), 0);
+  EXPECT_LT(seconds, 3.0);
 }
 
 class CountingListener : public FrameListener {

@@ -150,15 +150,16 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
-  // liveFrom.
-  for (uint16_t version : {1, 2, 3, 4, 5, 7}) {
+  // liveFrom; 6: before PhotonCancel.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 8}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 6");
+                    "message version " + std::to_string(version) + ", this build speaks 7");
   }
 
-  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo; 13 is the first unused type.
-  for (uint16_t type : {0, 13, 0xFFFF}) {
+  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel; 14 is the
+  // first unused type.
+  for (uint16_t type : {0, 14, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -605,6 +606,17 @@ TEST(Messages, EchoRoundTripsWithItsPadding) {
   EXPECT_STREQ(messageTypeName(MessageType::Echo), "Echo");
   expectWireError([&] { decodeEcho(decodeMessage(encodeShutdown())); },
                   "expected a Echo message, got Shutdown");
+}
+
+TEST(Messages, PhotonCancelRoundTripsAndIsChecked) {
+  const std::vector<uint8_t> bytes = encodePhotonCancel({41});
+  EXPECT_EQ(bytes.size(), kHeaderSize + 4);
+  EXPECT_EQ(decodePhotonCancel(decodeMessage(bytes)).pass, 41u);
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonCancel), "PhotonCancel");
+  expectWireError([&] { decodePhotonCancel(decodeMessage(encodeShutdown())); },
+                  "expected a PhotonCancel message, got Shutdown");
+  const std::vector<uint8_t> longer = encodeMessage(MessageType::PhotonCancel, {1, 0, 0, 0, 0});
+  EXPECT_THROW(decodePhotonCancel(decodeMessage(longer)), WireError);
 }
 
 }  // namespace
