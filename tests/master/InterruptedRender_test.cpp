@@ -168,10 +168,43 @@ size_t checkTiles(const ImageRgb& partial, const ImageRgb& reference) {
   return finished;
 }
 
+// What became of a 3-rank job after a signal to its rank 0.
+struct SignalledJob {
+  bool signalled = false;  // rank 0 was found and signalled
+  double gone = -1.0;      // seconds until every rank was gone, -1 after the timeout
+  int exitCode = -1;       // mpiexec's
+  std::string log;
+};
+
 class InterruptedRender : public test::ScratchFolderTest {
  protected:
   std::string prism() const { return PRISM_EXECUTABLE; }
   std::string mpiexec() const { return "mpiexec -n 3 --oversubscribe " + prism(); }
+
+  // Once the job `run` (writing its status to path("status")) has finished two tiles, sends
+  // `signal` to its rank 0 and waits up to timeoutSeconds for every rank and mpiexec to end.
+  SignalledJob signalRankZero(const Spawned& run, int signal, double timeoutSeconds) {
+    SignalledJob job;
+    if (!waitForTiles(path("status"), 2, 60.0)) {
+      job.log = readFile(run.log);
+      ADD_FAILURE() << "no tiles finished: " << job.log;
+      return job;
+    }
+    const std::vector<pid_t> ranks = childrenOf(run.pid);
+    const pid_t rankZero = ranks.size() == 3 ? rankZeroOf(ranks) : -1;
+    if (rankZero <= 0) {
+      job.log = readFile(run.log);
+      ADD_FAILURE() << ranks.size() << " ranks found, rank 0 not among them: " << job.log;
+      return job;
+    }
+    const auto sent = Clock::now();
+    ::kill(rankZero, signal);
+    job.signalled = true;
+    job.gone = secondsUntilGone(ranks, sent, timeoutSeconds);
+    job.exitCode = reap(run.pid, timeoutSeconds);
+    job.log = readFile(run.log);
+    return job;
+  }
 };
 
 TEST_F(InterruptedRender, SigintToRankZeroStopsEveryRankAndSavesTheFinishedTilesExactly) {
@@ -179,19 +212,14 @@ TEST_F(InterruptedRender, SigintToRankZeroStopsEveryRankAndSavesTheFinishedTiles
   ASSERT_EQ(full.exitCode, 0) << full.output;
   const ImageRgb reference = readImage(path("full.exr"));
 
-  Spawned run = spawn(mpiexec() + " render " + kQuick + " -o " + path("frame.exr") +
-                          " --save-partial --status-file " + path("status"),
-                      path("log"));
-  ASSERT_TRUE(waitForTiles(path("status"), 2, 60.0)) << readFile(run.log);
-  const std::vector<pid_t> ranks = childrenOf(run.pid);
-  ASSERT_EQ(ranks.size(), 3u);
-  const pid_t rankZero = rankZeroOf(ranks);
-  ASSERT_GT(rankZero, 0);
-  const auto signalled = Clock::now();
-  ::kill(rankZero, SIGINT);
-  const double gone = secondsUntilGone(ranks, signalled, 10.0);
-  const int exitCode = reap(run.pid, 10.0);
-  const std::string log = readFile(run.log);
+  const Spawned run = spawn(mpiexec() + " render " + kQuick + " -o " + path("frame.exr") +
+                                " --save-partial --status-file " + path("status"),
+                            path("log"));
+  const SignalledJob job = signalRankZero(run, SIGINT, 10.0);
+  ASSERT_TRUE(job.signalled);
+  const double gone = job.gone;
+  const int exitCode = job.exitCode;
+  const std::string& log = job.log;
   std::printf("every rank gone %.3f s after SIGINT to rank 0\n", gone);
   EXPECT_GE(gone, 0.0) << log;
   // About 0.05 s alone and 0.14-0.25 s beside builds (docs/reliability.md); once in a full
@@ -273,26 +301,19 @@ TEST_F(InterruptedRender, WithoutSavePartialNothingIsWrittenAndTheExistingFrameI
 // rank: each slave must notice on its own (rank 0's doorbell no longer answers) and end within
 // a few heartbeats, not after its 600 s master timeout.
 TEST_F(InterruptedRender, SlavesEndOnTheirOwnWhenRankZeroIsKilled) {
-  Spawned run = spawn("mpiexec -n 3 --oversubscribe --enable-recovery " + prism() + " render " +
-                          kSlow + " -o " + path("frame.exr") + " --status-file " + path("status"),
-                      path("log"));
-  ASSERT_TRUE(waitForTiles(path("status"), 2, 60.0)) << readFile(run.log);
-  const std::vector<pid_t> ranks = childrenOf(run.pid);
-  ASSERT_EQ(ranks.size(), 3u);
-  const pid_t rankZero = rankZeroOf(ranks);
-  ASSERT_GT(rankZero, 0);
-  const auto killed = Clock::now();
-  ::kill(rankZero, SIGKILL);
-  const double gone = secondsUntilGone(ranks, killed, 20.0);
-  const int exitCode = reap(run.pid, 20.0);
-  const std::string log = readFile(run.log);
-  std::printf("every rank gone %.3f s after SIGKILL to rank 0\n", gone);
-  EXPECT_GE(gone, 0.0) << log;
-  EXPECT_LT(gone, 5.0) << log;  // a heartbeat is 0.5 s
+  const Spawned run =
+      spawn("mpiexec -n 3 --oversubscribe --enable-recovery " + prism() + " render " + kSlow +
+                " -o " + path("frame.exr") + " --status-file " + path("status"),
+            path("log"));
+  const SignalledJob job = signalRankZero(run, SIGKILL, 20.0);
+  ASSERT_TRUE(job.signalled);
+  std::printf("every rank gone %.3f s after SIGKILL to rank 0\n", job.gone);
+  EXPECT_GE(job.gone, 0.0) << job.log;
+  EXPECT_LT(job.gone, 5.0) << job.log;  // a heartbeat is 0.5 s
   // Under --enable-recovery Open MPI's mpiexec exits with 0 here (measured), whatever the
   // ranks' own exit codes: the missing frame and the slaves' lines are what tell.
-  EXPECT_GE(exitCode, 0) << log;
-  EXPECT_NE(log.find("rank 0 is gone, stopping"), std::string::npos) << log;
+  EXPECT_GE(job.exitCode, 0) << job.log;
+  EXPECT_NE(job.log.find("rank 0 is gone, stopping"), std::string::npos) << job.log;
   EXPECT_FALSE(fs::exists(path("frame.exr")));
 }
 
