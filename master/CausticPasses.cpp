@@ -57,6 +57,16 @@ ImageRgb progressiveImage(const ImageRgb& direct, const ImageRgb& causticSum, in
   return image;
 }
 
+// The gather of a pass (each photon's radius, the disc tree), its time counted.
+std::shared_ptr<const PhotonGather> timedGather(std::shared_ptr<const PhotonMap> map,
+                                                const PhotonGatherSettings& gather, int threads,
+                                                CausticRunStats& stats) {
+  const auto start = SteadyClock::now();
+  auto made = std::make_shared<const PhotonGather>(std::move(map), gather, threads);
+  stats.radiiSeconds += secondsSince(start);
+  return made;
+}
+
 }  // namespace
 
 std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
@@ -139,7 +149,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
     addPhotonStats(stats, sent);
     stats.firstRadius = stats.lastRadius = maxRadius;
     auto pass = std::make_shared<const RenderPass>(
-        RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather, threads)});
+        RenderPass{0, true, timedGather(map, gather, threads, stats)});
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
     out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
@@ -180,8 +190,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
     sendPhotonMap(*map, static_cast<uint32_t>(i), gather, link, sent);
     addPhotonStats(stats, sent);
     auto pass = std::make_shared<const RenderPass>(
-        RenderPass{static_cast<uint32_t>(i), false,
-                   std::make_shared<const PhotonGather>(map, gather, threads)});
+        RenderPass{static_cast<uint32_t>(i), false, timedGather(map, gather, threads, stats)});
     FrameResult f = frame(pass, label);
     if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
       out.frames.interrupted = true;

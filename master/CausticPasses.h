@@ -35,6 +35,7 @@ struct CausticRunStats {
   PhotonTraceStats trace;
   double traceSeconds = 0.0, buildSeconds = 0.0, distributeSeconds = 0.0;
   double gatherRenderSeconds = 0.0;  // frames that gathered photons
+  double radiiSeconds = 0.0;         // each photon's k-NN radius and the disc tree, rank 0
   size_t mapBytes = 0;               // largest photon map (photons + kd-tree)
   size_t sentBytes = 0;              // photon maps sent to slaves
   int k = 0;

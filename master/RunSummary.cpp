@@ -116,6 +116,7 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
     out << "each photon over its " << c.k << "-NN radius within " << fixed(c.firstRadius, 4);
   }
   out << "; trace " << milliseconds(c.traceSeconds) << ", kd-tree " << milliseconds(c.buildSeconds);
+  if (c.radiiSeconds > 0.0) out << ", photon radii " << milliseconds(c.radiiSeconds);
   if (c.sentBytes > 0) {
     out << ", maps sent " << formatBytes(static_cast<double>(c.sentBytes)) << " in "
         << milliseconds(c.distributeSeconds);

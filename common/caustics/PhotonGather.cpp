@@ -10,8 +10,10 @@ namespace prism {
 std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, int threads) {
   std::vector<float> radii(map.size());
   const float maxRadius2 = maxRadius * maxRadius;
-  parallelFor(map.size(), threads, [&](uint64_t i) {
+  const std::vector<uint32_t> order = map.spatialOrder();
+  parallelFor(order.size(), threads, [&](uint64_t n) {
     thread_local std::vector<PhotonNeighbour> neighbours;
+    const uint32_t i = order[n];
     radii[i] = std::sqrt(map.nearest(map.photons()[i].position, k, maxRadius2, neighbours));
   });
   return radii;

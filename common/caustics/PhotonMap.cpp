@@ -92,6 +92,18 @@ float PhotonMap::nearest(const Vec3& p, int k, float maxRadius2,
   return result.full() ? out.back().distance2 : maxRadius2;
 }
 
+std::vector<uint32_t> PhotonMap::spatialOrder() const {
+  if (!index_) return {};
+    // nanoflann keeps the photons' indices permuted into leaf order once the tree is built (a
+    // public member; renamed vAcc_ in 1.5).
+#if NANOFLANN_VERSION >= 0x150
+  const auto& order = index_->tree.vAcc_;
+#else
+  const auto& order = index_->tree.vAcc;
+#endif
+  return std::vector<uint32_t>(order.begin(), order.end());
+}
+
 void PhotonMap::within(const Vec3& p, float radius2, std::vector<PhotonNeighbour>& out) const {
   WithinRadius result(radius2, out);
   if (index_) index_->tree.findNeighbors(result, &p.x, nanoflann::SearchParams());
