@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace prism {
@@ -86,6 +87,22 @@ TEST_F(PhotonMapTest, NearestStopsAtTheMaximumRadius) {
     EXPECT_EQ(r2, maxRadius2);  // fewer than k found: the radius is the cap
     for (size_t i = 0; i < inReach; ++i) EXPECT_EQ(out[i].index, expected[i].index);
   }
+}
+
+// The order photonRadii queries in: every photon once, and neighbours close together (the
+// mean distance between successive photons far below a random order's).
+TEST_F(PhotonMapTest, SpatialOrderIsAPermutationThatKeepsNeighboursTogether) {
+  std::vector<uint32_t> order = map_.spatialOrder();
+  ASSERT_EQ(order.size(), photons_.size());
+  double ordered = 0.0, stored = 0.0;
+  for (size_t i = 1; i < order.size(); ++i) {
+    ordered += std::sqrt(distance2(photons_[order[i]].position, photons_[order[i - 1]].position));
+    stored += std::sqrt(distance2(photons_[i].position, photons_[i - 1].position));
+  }
+  EXPECT_LT(ordered, 0.25 * stored);
+  std::sort(order.begin(), order.end());
+  for (uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i);
+  EXPECT_TRUE(PhotonMap({}).spatialOrder().empty());
 }
 
 TEST_F(PhotonMapTest, WithinEqualsTheBruteForceSet) {
