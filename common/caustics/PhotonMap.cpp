@@ -63,6 +63,16 @@ class WithinRadius {
   std::vector<PhotonNeighbour>& out_;
 };
 
+// nanoflann keeps the photons' indices permuted into leaf order once the tree is built (a public
+// member, named vAcc_ from nanoflann 1.5 on).
+const auto& leafOrder(const KdTree& tree) {
+#if NANOFLANN_VERSION >= 0x150
+  return tree.vAcc_;
+#else
+  return tree.vAcc;
+#endif
+}
+
 }  // namespace
 
 struct PhotonMap::Index {
@@ -94,13 +104,7 @@ float PhotonMap::nearest(const Vec3& p, int k, float maxRadius2,
 
 std::vector<uint32_t> PhotonMap::spatialOrder() const {
   if (!index_) return {};
-    // nanoflann keeps the photons' indices permuted into leaf order once the tree is built (a
-    // public member; renamed vAcc_ in 1.5).
-#if NANOFLANN_VERSION >= 0x150
-  const auto& order = index_->tree.vAcc_;
-#else
-  const auto& order = index_->tree.vAcc;
-#endif
+  const auto& order = leafOrder(index_->tree);
   return std::vector<uint32_t>(order.begin(), order.end());
 }
 
