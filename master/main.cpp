@@ -3,6 +3,7 @@
 // launcher, every rank runs this: rank 0 becomes the master and runs the command, the others
 // slaves, whatever the command. MPI and Qt are modules loaded only when used (MpiModule.h,
 // ViewerModule.h), so a process pays at start-up only for the libraries it needs.
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
                                                 prism::memoryLimitOrPhysical(command.memoryLimit));
     // Without rank 0, MPI_Finalize (in the session's destructor) would wait for it forever.
     if (end.masterLost) {
-      std::cerr.flush();
+      std::fflush(nullptr);
       std::_Exit(end.exitCode);
     }
     return end.exitCode;

@@ -66,8 +66,10 @@ def main():
     variants = [parse_variant(v) for v in args.variant]
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     out = "/tmp/prism-job-efficiency-%d.exr" % os.getpid()
-    render = ["render", args.scene, "--threads", "1", "-W", str(args.W), "-H", str(args.H),
-              "--spp", str(args.spp), "-q", "--overwrite", "-o", out]
+    def render_args(threads):
+        return ["render", args.scene, "--threads", str(threads), "-W", str(args.W), "-H",
+                str(args.H), "--spp", str(args.spp), "-q", "--overwrite", "-o", out]
+    render = render_args(1)
     mpirun = ["mpirun", "-np", "2"] + (["--bind-to", args.bind_to] if args.bind_to else [])
     serial = []
     ceiling = "one process, 2 threads (no MPI)"
@@ -83,9 +85,7 @@ def main():
         times = {}
         for name, spec in steps:
             if name == ceiling:
-                two = [a if a != "1" or i != render.index("--threads") + 1 else "2"
-                       for i, a in enumerate(render)]
-                times[name] = timed([variants[0][1]] + two, env)
+                times[name] = timed([variants[0][1]] + render_args(2), env)
             elif spec is None:
                 times[name] = timed([variants[0][1]] + render, env)
             else:

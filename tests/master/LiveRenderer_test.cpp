@@ -18,11 +18,11 @@
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/PhotonPass.h"
+#include "master/RealSlave.h"
 #include "master/ScriptedSlave.h"
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "render/TileRenderer.h"
-#include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
 
 namespace prism {
@@ -663,12 +663,7 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread([&network, &slaveExit] {
-    DistributionOptions slave;
-    slave.threads = 1;
-    slave.masterTimeoutSeconds = 30.0;
-    slaveExit = runSlave(network.endpoint(1), slave).exitCode;
-  });
+  std::thread slaveThread = test::startRealSlave(network, 1, &slaveExit);
   std::vector<uint8_t> bytes = wire::encodeScene(d);
   network.endpoint(0).broadcast(bytes, 10.0);
   LiveOptions options;

@@ -18,11 +18,11 @@
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/PhotonPass.h"
+#include "master/RealSlave.h"
 #include "master/ScriptedSlave.h"
 #include "master/SlaveShutdown.h"
 #include "master/TilePlan.h"
 #include "parse/SceneLoader.h"
-#include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
 
 namespace prism {
@@ -260,12 +260,7 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   std::vector<std::thread> slaves;
   std::vector<int> exitCodes(3, -1);
   for (int r = 1; r < 3; ++r) {
-    slaves.emplace_back([&network, &exitCodes, r] {
-      DistributionOptions slave;
-      slave.threads = 1;
-      slave.masterTimeoutSeconds = 30.0;
-      exitCodes[static_cast<size_t>(r)] = runSlave(network.endpoint(r), slave).exitCode;
-    });
+    slaves.push_back(test::startRealSlave(network, r, &exitCodes[static_cast<size_t>(r)]));
   }
   std::vector<uint8_t> bytes = wire::encodeScene(d);
   network.endpoint(0).broadcast(bytes, 10.0);
@@ -285,8 +280,8 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_EQ(f.frames.workers[1].tiles + f.frames.workers[2].tiles, f.frames.tileCount);
 }
 
-// A camera move cancels rank 0's photon pass; the slaves tracing their shares of it are told to
-// stop (PhotonCancel), and only those whose share is still out.
+// A camera move cancels rank 0's photon pass; a slave still tracing its share of it is told to
+// stop (PhotonCancel) with the pass's number.
 TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   const Scene scene(smallCausticScene());
   TwoRanks job(scene);
@@ -333,12 +328,7 @@ TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
   const SceneDescription d = smallCausticScene();
   LoopbackNetwork network(2);
   int exitCode = -1;
-  std::thread slave([&network, &exitCode] {
-    DistributionOptions o;
-    o.threads = 1;
-    o.masterTimeoutSeconds = 30.0;
-    exitCode = runSlave(network.endpoint(1), o).exitCode;
-  });
+  std::thread slave = test::startRealSlave(network, 1, &exitCode);
   Transport& master = network.endpoint(0);
   std::vector<uint8_t> bytes = wire::encodeScene(d);
   master.broadcast(bytes, 10.0);
