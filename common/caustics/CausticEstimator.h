@@ -3,6 +3,7 @@
 // answers it behind the same interface, so either can be switched in.
 #pragma once
 
+#include "geometry/HitRecord.h"
 #include "math/Vec.h"
 
 namespace prism {
@@ -12,6 +13,11 @@ class CausticEstimator {
   virtual ~CausticEstimator() = default;
   // Irradiance in W/m² per channel arriving at position on the side normal faces (unit normal).
   virtual Color irradiance(const Vec3& position, const Vec3& normal) const = 0;
+  // The same at a surface point the renderer computed, whose rounding s.positionError bounds:
+  // estimators that trace rays from the point start them outside it (math/RayOffset.h).
+  virtual Color irradianceAt(const SurfaceHit& s) const {
+    return irradiance(s.position, s.geometricNormal);
+  }
 };
 
 }  // namespace prism

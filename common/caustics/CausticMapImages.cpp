@@ -28,6 +28,10 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
     }
   }
   const Vec3 span = glm::max(hi - lo, Vec3(1e-6f));
+  // Positions map into [1/32, 1] so that only empty texels are black: a texel at the box's
+  // lowest corner (exact on a y = 0 floor) would otherwise look empty.
+  constexpr float kDarkest = 1.0f / 32.0f;
+  const auto shade = [&](const Vec3& p) { return kDarkest + (1.0f - kDarkest) * (p - lo) / span; };
   // White at the 99.5th percentile of the lit texels, not the brightest: a focus a few texels
   // wide would otherwise leave the rest of the caustic too dark to see.
   float white = 0.0f;
@@ -45,10 +49,10 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
         // Row j = 0 is the bottom of the light's grid; images run top down.
         const size_t px = static_cast<size_t>(n - 1 - j) * (n * views) + v * n + i;
         const ReceiverTexel& r = map.receivers().at(v, i, j);
-        if (r.valid) out[0].image.pixels[px] = (r.position - lo) / span;
+        if (r.valid) out[0].image.pixels[px] = shade(r.position);
         const CasterTexel& c = map.casters()[k];
         if (c.valid) {
-          out[1].image.pixels[px] = (c.position - lo) / span;
+          out[1].image.pixels[px] = shade(c.position);
           out[2].image.pixels[px] = 0.5f * c.normal + 0.5f;
         }
         if (white > 0.0f) out[3].image.pixels[px] = map.irradianceMap()[k] / white;

@@ -97,7 +97,16 @@ bool MirrorCausticEstimator::unblocked(const Vec3& origin, const Vec3& mirrorPoi
   return !scene_.occluded(ray);
 }
 
-Color MirrorCausticEstimator::irradiance(const Vec3& p, const Vec3& n) const {
+Color MirrorCausticEstimator::irradiance(const Vec3& position, const Vec3& normal) const {
+  return irradianceWithin(position, Vec3(0.0f), normal);
+}
+
+Color MirrorCausticEstimator::irradianceAt(const SurfaceHit& s) const {
+  return irradianceWithin(s.position, s.positionError, s.geometricNormal);
+}
+
+Color MirrorCausticEstimator::irradianceWithin(const Vec3& p, const Vec3& pError,
+                                               const Vec3& n) const {
   Color total(0.0f);
   for (const PointLightDesc& light : lights_) {
     for (const Facet& f : facets_) {
@@ -116,7 +125,7 @@ Color MirrorCausticEstimator::irradiance(const Vec3& p, const Vec3& n) const {
       if (!(cosine > 0.0f)) continue;
       const float lightToMirror = glm::length(m - light.position);
       const float path = lightToMirror + toMirrorLength;
-      const Vec3 receiverOrigin = offsetRayOrigin(p, n, toMirror / toMirrorLength);
+      const Vec3 receiverOrigin = offsetRayOrigin(p, pError, n, toMirror / toMirrorLength);
       if (!unblocked(receiverOrigin, m) || !unblocked(light.position, m)) continue;
       total += f.reflectance * light.intensity *
                (falloffRelativeToInverseSquare(light.attenuation, lightToMirror) * cosine /

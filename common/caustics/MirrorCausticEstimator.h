@@ -23,7 +23,9 @@ class MirrorCausticEstimator : public CausticEstimator {
   // scene must outlive the estimator (shadow rays go through it).
   MirrorCausticEstimator(const SceneDescription& description, const Scene& scene);
 
+  // position is taken as exact (a point given, not computed).
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
+  Color irradianceAt(const SurfaceHit& s) const override;
 
   size_t facetCount() const { return facets_.size(); }
 
@@ -36,6 +38,7 @@ class MirrorCausticEstimator : public CausticEstimator {
     Color reflectance;
   };
 
+  Color irradianceWithin(const Vec3& position, const Vec3& positionError, const Vec3& normal) const;
   bool insideFacet(const Facet& facet, const Vec3& point) const;
   // Whether nothing lies between origin and a point on a mirror.
   bool unblocked(const Vec3& origin, const Vec3& mirrorPoint) const;

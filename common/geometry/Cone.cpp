@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "math/RayOffset.h"
+
 namespace prism {
 
 Cone::Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius,
@@ -85,6 +87,22 @@ bool Cone::intersect(const Ray& ray, float tMax, float& tHit) const {
     return true;
   }
   return false;
+}
+
+Vec3 Cone::surfacePoint(const Vec3& q, Vec3& error) const {
+  const Vec3 rel = q - base_;
+  const float z = glm::dot(rel, axis_);
+  const Vec3 alongAxis = z * axis_;
+  const Vec3 radial = rel - alongAxis;
+  const float length = glm::length(radial);
+  const float radius = baseRadius_ + slope_ * z;
+  // Each step rounds a few times; the radial part keeps a trace of the axis (of the size of
+  // those roundings of rel), which the slope turns into a distance from the surface. The bound
+  // takes the largest coordinate, as those errors need not follow rel's axes.
+  const float size = maxAbsComponent(rel) + std::fabs(radius);
+  error = glm::abs(base_) * gamma(2) + Vec3(gamma(12) * (1.0f + std::fabs(slope_)) * size);
+  if (!(length > 0.0f) || !(radius > 0.0f)) return q;  // on the axis or a pointed tip: as hit
+  return base_ + (alongAxis + radial * (radius / length));
 }
 
 Vec3 Cone::normalAt(const Vec3& p) const {

@@ -23,6 +23,9 @@ class Cone {
   bool intersect(const Ray& ray, float tMax, float& tHit) const;
   // Outward normal (pointing away from the axis) at a point on the surface.
   Vec3 normalAt(const Vec3& p) const;
+  // The hit point q = ray.at(t) moved onto the surface across the axis, and the bound on that
+  // point's rounding per axis (independent of the ray's length, as for the sphere).
+  Vec3 surfacePoint(const Vec3& q, Vec3& error) const;
 
   MaterialId material() const { return material_; }
   float height() const { return height_; }

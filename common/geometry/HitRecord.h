@@ -22,6 +22,7 @@ struct HitRecord {
 
 struct SurfaceHit {
   Vec3 position{0.0f};
+  Vec3 positionError{0.0f};    // bound on |position − the true surface point| per axis
   Vec3 geometricNormal{0.0f};  // unit, facing the incoming ray
   Vec3 shadingNormal{0.0f};    // unit, interpolated for smooth meshes, same side as geometricNormal
   bool frontFace = true;       // the ray arrived from the side the surface normal points to

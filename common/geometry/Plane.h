@@ -3,6 +3,7 @@
 
 #include "geometry/MaterialId.h"
 #include "math/Ray.h"
+#include "math/RayOffset.h"
 
 namespace prism {
 
@@ -18,6 +19,17 @@ struct Plane {
     if (!(t > ray.tMin && t < tMax)) return false;
     tHit = t;
     return true;
+  }
+
+  // The hit point q = ray.at(t) projected onto the plane, and the bound on that point's distance
+  // from it per axis: the signed distance carries 4 roundings of the terms of dot(n, q) − offset,
+  // subtracting it from q one more per coordinate.
+  Vec3 surfacePoint(const Vec3& q, Vec3& error) const {
+    const float distance = glm::dot(normal, q) - offset;
+    const Vec3 p = q - distance * normal;
+    const float termSize = glm::dot(glm::abs(normal), glm::abs(q)) + std::fabs(offset);
+    error = gamma(5) * glm::abs(p) + Vec3(gamma(4) * termSize + gamma(2) * std::fabs(distance));
+    return p;
   }
 };
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "math/Aabb.h"
+#include "math/RayOffset.h"
 
 namespace prism {
 
@@ -19,6 +20,15 @@ struct Triangle {
 
   Vec3 edge1() const { return v1 - v0; }
   Vec3 edge2() const { return v2 - v0; }
+
+  // The point at barycentric coordinates (u, v) and the bound on its rounding per axis (pbrt-v4,
+  // section 6.8.5): whatever u and v are, the sum lies in the triangle's plane up to that bound,
+  // however far the ray came from.
+  Vec3 pointAt(float u, float v, Vec3& error) const {
+    const Vec3 p0 = (1.0f - u - v) * v0, p1 = u * v1, p2 = v * v2;
+    error = gamma(7) * (glm::abs(p0) + glm::abs(p1) + glm::abs(p2));
+    return p0 + p1 + p2;
+  }
 
   Aabb bounds() const {
     Aabb box;

@@ -1,12 +1,12 @@
 #include "render/WhittedIntegrator.h"
 
+#include "math/RayOffset.h"
 #include "shading/LightFalloff.h"
 #include "shading/MaterialEval.h"
 #include "shading/Optics.h"
 #include "shading/SpecularSplit.h"
 
 namespace prism {
-namespace {}  // namespace
 
 Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc& m,
                                         const Color& albedo, const Vec3& toViewer,
@@ -24,9 +24,9 @@ Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc&
     if (cosTheta <= 0.0f) continue;
 
     Ray shadow;
-    shadow.origin = offsetRayOrigin(s.position, s.geometricNormal, l);
+    shadow.origin = offsetRayOrigin(s.position, s.positionError, s.geometricNormal, l);
     shadow.direction = l;
-    shadow.tMax = glm::length(light.position - shadow.origin) * (1.0f - 1e-5f);
+    shadow.tMax = shadowRayLength(glm::length(light.position - shadow.origin));
     ++counters.shadow;
     if (scene_.occluded(shadow)) continue;
 
@@ -62,7 +62,7 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
     }
   }
   if (terms_.caustics && (s.caustic & kReceivesCaustics) && !isBlack(albedo)) {
-    result += albedo * kInvPi * terms_.caustics->irradiance(s.position, s.geometricNormal);
+    result += albedo * kInvPi * terms_.caustics->irradianceAt(s);
   }
 
   const RenderSettings& settings = scene_.settings();
@@ -73,14 +73,16 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
   const Color reflectContribution = weight * reflectWeight;
   if (maxComponent(reflectContribution) > settings.minContribution) {
     const Vec3 direction = reflectedDirection(s, ray.direction);
-    Ray reflected{offsetRayOrigin(s.position, s.geometricNormal, direction), direction};
+    Ray reflected{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, direction),
+                  direction};
     ++counters.secondary;
     result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters);
   }
 
   const Color transmitContribution = weight * transmitWeight;
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
-    Ray transmitted{offsetRayOrigin(s.position, s.geometricNormal, *refracted), *refracted};
+    Ray transmitted{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, *refracted),
+                    *refracted};
     ++counters.secondary;
     result += transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters);
   }

@@ -472,13 +472,16 @@ void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
 
 SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   SurfaceHit s;
-  s.position = ray.at(hit.t);
+  // Each kind puts the point back on its surface with a bound on the rounding (math/RayOffset.h):
+  // rays leaving it start just outside that bound, however far the incoming ray travelled.
+  const Vec3 alongRay = ray.at(hit.t);
   const uint32_t index = PrimitiveRef::index(hit.primitive);
   Vec3 geometric, shading;
   switch (PrimitiveRef::kind(hit.primitive)) {
     case PrimitiveKind::Triangle: {
       const Triangle tri = triangle(index);
       const MeshShading& mesh = meshes_[tri.mesh];
+      s.position = tri.pointAt(hit.u, hit.v, s.positionError);
       geometric = glm::normalize(glm::cross(tri.edge1(), tri.edge2()));
       shading = geometric;
       if (!mesh.normals.empty()) {
@@ -495,16 +498,19 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
       break;
     }
     case PrimitiveKind::Sphere:
+      s.position = spheres_[index].surfacePoint(alongRay, s.positionError);
       geometric = shading = spheres_[index].normalAt(s.position);
       s.material = spheres_[index].material;
       s.caustic = sphereCaustic_[index];
       break;
     case PrimitiveKind::Cone:
+      s.position = cones_[index].surfacePoint(alongRay, s.positionError);
       geometric = shading = cones_[index].normalAt(s.position);
       s.material = cones_[index].material();
       s.caustic = coneCaustic_[index];
       break;
     case PrimitiveKind::Plane:
+      s.position = planes_[index].surfacePoint(alongRay, s.positionError);
       geometric = shading = planes_[index].normal;
       s.material = planes_[index].material;
       s.caustic = planeCaustic_[index];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "math/Random.h"
+#include "math/RayOffset.h"
 
 namespace prism {
 namespace {
@@ -90,7 +91,8 @@ TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
     const Ray primary{eye, glm::normalize(target - eye)};
     float t;
     if (!cone.intersect(primary, 1e30f, t)) continue;
-    const Vec3 p = primary.at(t);
+    Vec3 error;
+    const Vec3 p = cone.surfacePoint(primary.at(t), error);
     const Vec3 n = cone.normalAt(p);
     // Only the outside: from the inside the opposite wall may rightly block the light.
     if (glm::dot(n, primary.direction) > 0.0f) continue;
@@ -99,7 +101,7 @@ TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
     Vec3 l = glm::normalize(
         Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
     if (glm::dot(l, n) < 0.0f) l = -l;
-    const Ray shadow{offsetRayOrigin(p, n, l), l, 0.0f, 100.0f};
+    const Ray shadow{offsetRayOrigin(p, error, n, l), l, 0.0f, 100.0f};
     if (cone.intersect(shadow, shadow.tMax, t)) ++selfShadowed;
   }
   EXPECT_GT(hits, 5000);
