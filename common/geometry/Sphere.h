@@ -42,14 +42,13 @@ struct Sphere {
 
   Vec3 normalAt(const Vec3& p) const { return glm::normalize(p - center); }
 
-  // The hit point q = ray.at(t) moved onto the sphere along its radius, and the bound on that
-  // point's rounding per axis: reprojected, its error no longer grows with the ray's length.
-  Vec3 surfacePoint(const Vec3& q, Vec3& error) const {
-    Vec3 fromCenter = q - center;
-    const float length = glm::length(fromCenter);
-    if (length > 0.0f) fromCenter *= radius / length;
-    // Rescaling: 5 roundings (pbrt-v4, section 6.8.5); adding the centre back: one more.
-    error = gamma(6) * glm::abs(fromCenter) + gamma(1) * glm::abs(center);
+  // The surface point in the direction of unit normal n from the centre (the hit q = ray.at(t)
+  // reprojected, with n = normalAt(q)), and the bound on its rounding per axis: n carries about
+  // 5 roundings, scaling by the radius and adding the centre one each. Unlike q's, this error
+  // does not grow with the ray's length.
+  Vec3 pointAlong(const Vec3& n, Vec3& error) const {
+    const Vec3 fromCenter = radius * n;
+    error = gamma(7) * glm::abs(fromCenter) + gamma(1) * glm::abs(center);
     return center + fromCenter;
   }
 };

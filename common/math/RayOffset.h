@@ -5,9 +5,8 @@
 // Rendering", 4th ed., section 6.8), with gamma(n) the bound of n float roundings.
 #pragma once
 
-#include <bit>
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 #include "math/Vec.h"
@@ -20,42 +19,22 @@ constexpr float gamma(int n) {
   return (static_cast<float>(n) * kUnitRoundoff) / (1.0f - static_cast<float>(n) * kUnitRoundoff);
 }
 
-// The next float above (direction > 0) or below v; infinities and NaN stay. Bit arithmetic,
-// inline: std::nextafter is a library call, and every shadow and secondary ray makes three.
-inline float nextFloatToward(float v, float direction) {
-  if (!std::isfinite(v)) return v;
-  if (v == 0.0f) v = 0.0f;  // -0 and +0 step alike
-  uint32_t bits = std::bit_cast<uint32_t>(v);
-  // Positive floats grow with their bits, negative ones shrink.
-  if ((direction > 0.0f) == (v >= 0.0f)) {
-    ++bits;
-  } else if (v == 0.0f) {
-    bits = 0x80000001u;  // the negative float nearest zero
-  } else {
-    --bits;
-  }
-  return std::bit_cast<float>(bits);
-}
-
 // The origin for a ray leaving surface point p (each coordinate within positionError of the
-// true point) in direction w; n is the surface's geometric normal. The origin moves along n, to
-// the side w goes, as far as the error box reaches along n, and each coordinate the normal
-// moves is then stepped one float further so that rounding the sum cannot bring it back.
+// true point) in direction w; n is the surface's unit geometric normal. The origin moves along n,
+// to the side w goes, beyond the error box around p (pbrt-v4, section 6.8.6). Where pbrt then
+// steps each coordinate one float further, the reach here also covers the rounding of the move
+// itself (computing the reach, scaling n, adding to p: γ(8) of it, and one rounding of p's
+// coordinates along n): a few multiplies instead of three bit-steps with branches, on every
+// shadow and secondary ray. Never less than the smallest normal float: an exact point still
+// moves off its surface, and the origin never becomes subnormal (a microcode assist in every
+// later test of the ray).
 inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& positionError, const Vec3& n,
                             const Vec3& w) {
   const Vec3 away = glm::dot(w, n) < 0.0f ? -n : n;
-  const float reach = glm::dot(glm::abs(n), positionError);
-  Vec3 origin = p + reach * away;
-  for (int a = 0; a < 3; ++a) {
-    if (away[a] == 0.0f) continue;
-    origin[a] = nextFloatToward(origin[a], away[a]);
-    // A step off zero lands on a subnormal, and subnormal operands cost a microcode assist in
-    // every later test of the ray: step to the smallest normal float instead.
-    if (std::fabs(origin[a]) < std::numeric_limits<float>::min()) {
-      origin[a] = std::copysign(std::numeric_limits<float>::min(), away[a]);
-    }
-  }
-  return origin;
+  const Vec3 absN = glm::abs(n);
+  const float reach =
+      (1.0f + gamma(8)) * glm::dot(absN, positionError) + gamma(3) * glm::dot(absN, glm::abs(p));
+  return p + std::max(reach, std::numeric_limits<float>::min()) * away;
 }
 
 // The length of a shadow ray to a point light at `distance` (computed in float): it stops short

@@ -498,8 +498,8 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
       break;
     }
     case PrimitiveKind::Sphere:
-      s.position = spheres_[index].surfacePoint(alongRay, s.positionError);
-      geometric = shading = spheres_[index].normalAt(s.position);
+      geometric = shading = spheres_[index].normalAt(alongRay);
+      s.position = spheres_[index].pointAlong(geometric, s.positionError);
       s.material = spheres_[index].material;
       s.caustic = sphereCaustic_[index];
       break;

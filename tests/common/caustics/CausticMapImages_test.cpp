@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "tests/common/caustics/BallOverFloorScene.h"
 
 namespace prism {
@@ -42,8 +45,20 @@ TEST(CausticMapImages, OnePixelPerTexelWithTheCausticWhiteAtThePercentile) {
     }
   }
   ASSERT_GT(lit, 1000u);
-  // The texels at or above the percentile: 0.5 % of the lit ones, within one texel's rounding.
-  EXPECT_NEAR(static_cast<double>(white), (1.0 - kCausticWhitePercentile) * lit, 1.5);
+  // The texels at or above the percentile: 0.5 % of the lit ones, within one texel's rounding,
+  // and give or take the texels tied with the one at the percentile (a symmetric caustic has
+  // groups of texels equal to a few units in the last place).
+  std::vector<float> sorted;
+  for (const Color& e : map.irradianceMap()) {
+    if (maxComponent(e) > 0.0f) sorted.push_back(maxComponent(e));
+  }
+  std::sort(sorted.begin(), sorted.end());
+  const float atPercentile = sorted[static_cast<size_t>(kCausticWhitePercentile * sorted.size())];
+  const auto ties = std::count_if(sorted.begin(), sorted.end(), [&](float e) {
+    return std::fabs(e - atPercentile) <= 1e-6f * atPercentile;
+  });
+  EXPECT_NEAR(static_cast<double>(white), (1.0 - kCausticWhitePercentile) * lit,
+              1.5 + static_cast<double>(ties - 1));
 }
 
 }  // namespace
