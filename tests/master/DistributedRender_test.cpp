@@ -308,11 +308,15 @@ TEST_F(DistributedRender, CrashedSlaveUnderEnableRecoveryIsRetiredAndTheFrameCom
 TEST_F(DistributedRender, CrashedSlaveWithoutRecoveryEndsTheJobPromptly) {
   const CrashedJobLock alone;
   const test::ProcessRun run =
-      test::runPrismMpi(3, "render " + kScene + " -o " + path("crash.png") +
+      test::runPrismMpi(3, "render " + kScene + " -o " + path("crash.exr") +
                                " --schedule static --inject-fault crash:1");
   EXPECT_NE(run.exitCode, 0) << run.output;
   EXPECT_NE(run.exitCode, 124) << "timed out:\n" << run.output;  // `timeout` exit code
-  EXPECT_FALSE(std::filesystem::exists(path("crash.png")));
+  // mpirun ends the job; rank 0 may have re-issued the dead slave's tiles and finished the small
+  // frame before that (docs/distributed.md). Then the image must be whole and right.
+  if (std::filesystem::exists(path("crash.exr"))) {
+    EXPECT_TRUE(samePixels(readImage(path("crash.exr")), singleProcessReference())) << run.output;
+  }
 }
 
 TEST_F(DistributedRender, BadSceneEndsEveryRankWithOneErrorFromRankZero) {
