@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "math/RayOffset.h"
 #include "shading/LightFalloff.h"
 #include "shading/SpecularSplit.h"
 #include "util/Parallel.h"
@@ -60,8 +59,7 @@ class TexelTransport {
     if (settings_.mapPaths == CausticMapPaths::Traced) {
       // The exact next surface: another caster (the sphere's back, a second object) takes the
       // light on; anything else ends the path, whose receiver the iteration estimates.
-      const Ray ray{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, direction),
-                    direction};
+      const Ray ray{s.rayOrigin(direction), direction};
       HitRecord hit;
       if (scene_.intersect(ray, hit)) {
         const SurfaceHit next = scene_.surface(ray, hit);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "math/RayOffset.h"
+
 #include "shading/LightFalloff.h"
 
 namespace prism {
@@ -98,15 +100,14 @@ bool MirrorCausticEstimator::unblocked(const Vec3& origin, const Vec3& mirrorPoi
 }
 
 Color MirrorCausticEstimator::irradiance(const Vec3& position, const Vec3& normal) const {
-  return irradianceWithin(position, Vec3(0.0f), normal);
+  return irradianceWithin(position, normal, leavingDistance(position, Vec3(0.0f), normal));
 }
 
 Color MirrorCausticEstimator::irradianceAt(const SurfaceHit& s) const {
-  return irradianceWithin(s.position, s.positionError, s.geometricNormal);
+  return irradianceWithin(s.position, s.geometricNormal, s.leavingDistance);
 }
 
-Color MirrorCausticEstimator::irradianceWithin(const Vec3& p, const Vec3& pError,
-                                               const Vec3& n) const {
+Color MirrorCausticEstimator::irradianceWithin(const Vec3& p, const Vec3& n, float leaving) const {
   Color total(0.0f);
   for (const PointLightDesc& light : lights_) {
     for (const Facet& f : facets_) {
@@ -125,7 +126,7 @@ Color MirrorCausticEstimator::irradianceWithin(const Vec3& p, const Vec3& pError
       if (!(cosine > 0.0f)) continue;
       const float lightToMirror = glm::length(m - light.position);
       const float path = lightToMirror + toMirrorLength;
-      const Vec3 receiverOrigin = offsetRayOrigin(p, pError, n, toMirror / toMirrorLength);
+      const Vec3 receiverOrigin = leavingOrigin(p, n, leaving, toMirror / toMirrorLength);
       if (!unblocked(receiverOrigin, m) || !unblocked(light.position, m)) continue;
       total += f.reflectance * light.intensity *
                (falloffRelativeToInverseSquare(light.attenuation, lightToMirror) * cosine /

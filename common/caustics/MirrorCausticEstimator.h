@@ -38,7 +38,8 @@ class MirrorCausticEstimator : public CausticEstimator {
     Color reflectance;
   };
 
-  Color irradianceWithin(const Vec3& position, const Vec3& positionError, const Vec3& normal) const;
+  // leaving: how far rays from position start off the surface (SurfaceHit::leavingDistance).
+  Color irradianceWithin(const Vec3& position, const Vec3& normal, float leaving) const;
   bool insideFacet(const Facet& facet, const Vec3& point) const;
   // Whether nothing lies between origin and a point on a mirror.
   bool unblocked(const Vec3& origin, const Vec3& mirrorPoint) const;

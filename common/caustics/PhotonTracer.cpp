@@ -5,7 +5,6 @@
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
-#include "math/RayOffset.h"
 #include "shading/LightFalloff.h"
 #include "shading/MaterialEval.h"
 #include "shading/SpecularSplit.h"
@@ -132,8 +131,7 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
       ++stats.absorbed;  // by roulette, at a caster
       return;
     }
-    ray =
-        Ray{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, direction), direction};
+    ray = Ray{s.rayOrigin(direction), direction};
   }
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "math/RayOffset.h"
 #include "util/Parallel.h"
 
 namespace prism {
@@ -31,7 +30,7 @@ ReceiverMap::ReceiverMap(const Scene& scene, const LightFrustum& frustum, int th
           break;
         }
         if (!(s.caustic & kCastsCaustics)) break;  // caustics off: it blocks the light
-        ray.origin = offsetRayOrigin(s.position, s.positionError, s.geometricNormal, ray.direction);
+        ray.origin = s.rayOrigin(ray.direction);
       }
     }
   });

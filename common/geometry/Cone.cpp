@@ -14,6 +14,7 @@ Cone::Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadiu
   axis_ = along / height_;
   orthonormalBasis(axis_, side1_, side2_);
   slope_ = (apexRadius_ - baseRadius_) / height_;
+  normalScale_ = 1.0f / std::sqrt(1.0f + slope_ * slope_);
   zHigh_ = height_;
 }
 
@@ -89,7 +90,7 @@ bool Cone::intersect(const Ray& ray, float tMax, float& tHit) const {
   return false;
 }
 
-Vec3 Cone::surfacePoint(const Vec3& q, Vec3& error) const {
+Vec3 Cone::surfacePoint(const Vec3& q, Vec3& error, Vec3& normal) const {
   const Vec3 rel = q - base_;
   const float z = glm::dot(rel, axis_);
   const Vec3 alongAxis = z * axis_;
@@ -101,8 +102,13 @@ Vec3 Cone::surfacePoint(const Vec3& q, Vec3& error) const {
   // takes the largest coordinate, as those errors need not follow rel's axes.
   const float size = maxAbsComponent(rel) + std::fabs(radius);
   error = glm::abs(base_) * gamma(2) + Vec3(gamma(12) * (1.0f + std::fabs(slope_)) * size);
-  if (!(length > 0.0f) || !(radius > 0.0f)) return q;  // on the axis or a pointed tip: as hit
-  return base_ + (alongAxis + radial * (radius / length));
+  if (!(length > 0.0f) || !(radius > 0.0f)) {  // on the axis or a pointed tip: as hit
+    normal = normalAt(q);
+    return q;
+  }
+  const Vec3 outward = radial / length;
+  normal = (outward - slope_ * axis_) * normalScale_;
+  return base_ + (alongAxis + radius * outward);
 }
 
 Vec3 Cone::normalAt(const Vec3& p) const {

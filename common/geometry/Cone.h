@@ -23,9 +23,10 @@ class Cone {
   bool intersect(const Ray& ray, float tMax, float& tHit) const;
   // Outward normal (pointing away from the axis) at a point on the surface.
   Vec3 normalAt(const Vec3& p) const;
-  // The hit point q = ray.at(t) moved onto the surface across the axis, and the bound on that
-  // point's rounding per axis (independent of the ray's length, as for the sphere).
-  Vec3 surfacePoint(const Vec3& q, Vec3& error) const;
+  // The hit point q = ray.at(t) moved onto the surface across the axis, the bound on that
+  // point's rounding per axis (independent of the ray's length, as for the sphere), and the
+  // outward normal there (normalAt's, from the same radial direction).
+  Vec3 surfacePoint(const Vec3& q, Vec3& error, Vec3& normal) const;
 
   MaterialId material() const { return material_; }
   float height() const { return height_; }
@@ -36,7 +37,8 @@ class Cone {
   Vec3 side1_, side2_;
   float height_;
   float baseRadius_;
-  float slope_;  // radius change per unit of height
+  float slope_;        // radius change per unit of height
+  float normalScale_;  // 1 / sqrt(1 + slope²): normalises (radial unit − slope · axis)
   float apexRadius_;
   // The segment this cone stands for: hits with zLow_ ≤ z ≤ zHigh_ (the whole cone: 0, height_).
   float zLow_ = 0.0f, zHigh_;

@@ -19,22 +19,29 @@ constexpr float gamma(int n) {
   return (static_cast<float>(n) * kUnitRoundoff) / (1.0f - static_cast<float>(n) * kUnitRoundoff);
 }
 
-// The origin for a ray leaving surface point p (each coordinate within positionError of the
-// true point) in direction w; n is the surface's unit geometric normal. The origin moves along n,
-// to the side w goes, beyond the error box around p (pbrt-v4, section 6.8.6). Where pbrt then
-// steps each coordinate one float further, the reach here also covers the rounding of the move
-// itself (computing the reach, scaling n, adding to p: γ(8) of it, and one rounding of p's
-// coordinates along n): a few multiplies instead of three bit-steps with branches, on every
-// shadow and secondary ray. Never less than the smallest normal float: an exact point still
-// moves off its surface, and the origin never becomes subnormal (a microcode assist in every
-// later test of the ray).
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& positionError, const Vec3& n,
-                            const Vec3& w) {
-  const Vec3 away = glm::dot(w, n) < 0.0f ? -n : n;
+// How far a ray leaving surface point p (each coordinate within positionError of the true
+// point) must start from it along the surface's unit geometric normal n: beyond the error box
+// around p (pbrt-v4, section 6.8.6). Where pbrt then steps each coordinate one float further, the
+// distance here also covers the rounding of the move itself (computing it, scaling n, adding to
+// p: γ(8) of it, and one rounding of p's coordinates along n): a few multiplies instead of three
+// bit-steps with branches. Never less than the smallest normal float: an exact point still moves
+// off its surface, and an origin never becomes subnormal (a microcode assist in every later test
+// of the ray). It does not depend on the ray: SurfaceHit keeps it for all rays leaving a hit.
+inline float leavingDistance(const Vec3& p, const Vec3& positionError, const Vec3& n) {
   const Vec3 absN = glm::abs(n);
   const float reach =
       (1.0f + gamma(8)) * glm::dot(absN, positionError) + gamma(3) * glm::dot(absN, glm::abs(p));
-  return p + std::max(reach, std::numeric_limits<float>::min()) * away;
+  return std::max(reach, std::numeric_limits<float>::min());
+}
+
+// The origin for a ray leaving p in direction w: `distance` along n, to the side w goes.
+inline Vec3 leavingOrigin(const Vec3& p, const Vec3& n, float distance, const Vec3& w) {
+  return p + (glm::dot(w, n) < 0.0f ? -distance : distance) * n;
+}
+
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& positionError, const Vec3& n,
+                            const Vec3& w) {
+  return leavingOrigin(p, n, leavingDistance(p, positionError, n), w);
 }
 
 // The length of a shadow ray to a point light at `distance` (computed in float): it stops short

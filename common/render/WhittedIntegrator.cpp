@@ -24,7 +24,7 @@ Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc&
     if (cosTheta <= 0.0f) continue;
 
     Ray shadow;
-    shadow.origin = offsetRayOrigin(s.position, s.positionError, s.geometricNormal, l);
+    shadow.origin = s.rayOrigin(l);
     shadow.direction = l;
     shadow.tMax = shadowRayLength(glm::length(light.position - shadow.origin));
     ++counters.shadow;
@@ -73,16 +73,14 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
   const Color reflectContribution = weight * reflectWeight;
   if (maxComponent(reflectContribution) > settings.minContribution) {
     const Vec3 direction = reflectedDirection(s, ray.direction);
-    Ray reflected{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, direction),
-                  direction};
+    Ray reflected{s.rayOrigin(direction), direction};
     ++counters.secondary;
     result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters);
   }
 
   const Color transmitContribution = weight * transmitWeight;
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
-    Ray transmitted{offsetRayOrigin(s.position, s.positionError, s.geometricNormal, *refracted),
-                    *refracted};
+    Ray transmitted{s.rayOrigin(*refracted), *refracted};
     ++counters.secondary;
     result += transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters);
   }

@@ -504,8 +504,8 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
       s.caustic = sphereCaustic_[index];
       break;
     case PrimitiveKind::Cone:
-      s.position = cones_[index].surfacePoint(alongRay, s.positionError);
-      geometric = shading = cones_[index].normalAt(s.position);
+      s.position = cones_[index].surfacePoint(alongRay, s.positionError, geometric);
+      shading = geometric;
       s.material = cones_[index].material();
       s.caustic = coneCaustic_[index];
       break;
@@ -527,6 +527,7 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   if (glm::dot(shading, geometric) < 0.0f) shading = geometric;
   s.geometricNormal = geometric;
   s.shadingNormal = shading;
+  s.leavingDistance = leavingDistance(s.position, s.positionError, geometric);
   return s;
 }
 

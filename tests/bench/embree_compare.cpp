@@ -30,7 +30,6 @@
 
 #include "accel/Simd.h"
 #include "math/Random.h"
-#include "math/RayOffset.h"
 #include "parse/ObjLoader.h"
 #include "scene/Scene.h"
 #include "tests/common/geometry/TestMeshes.h"
@@ -153,7 +152,7 @@ std::vector<Ray> incoherentRays(const Scene& scene, const std::vector<Ray>& prim
       const float radius = std::sqrt(std::max(0.0f, 1.0f - z * z));
       Vec3 d(radius * std::cos(phi), radius * std::sin(phi), z);
       if (glm::dot(d, s.geometricNormal) < 0.0f) d = -d;
-      r = {offsetRayOrigin(s.position, s.positionError, s.geometricNormal, d), d};
+      r = {s.rayOrigin(d), d};
     }
     rays.push_back(r);
   }
@@ -176,7 +175,7 @@ std::vector<Ray> shadowRays(const Scene& scene, const std::vector<Ray>& primary,
       const Vec3 toLight = light - s.position;
       const float distance = glm::length(toLight);
       r.direction = toLight / distance;
-      r.origin = offsetRayOrigin(s.position, s.positionError, s.geometricNormal, r.direction);
+      r.origin = s.rayOrigin(r.direction);
       r.tMax = distance;
     }
     rays.push_back(r);

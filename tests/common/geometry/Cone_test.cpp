@@ -22,6 +22,33 @@ TEST(Cone, CylinderHitFromTheSide) {
   EXPECT_NEAR(n.y, 0.0f, 1e-6f);
 }
 
+TEST(Cone, SurfacePointLiesOnTheSurfaceWithNormalAtsNormal) {
+  // A slanted cone; points pushed off its surface come back onto it, within their error bound.
+  const Vec3 base{3.0f, -1.0f, 2.0f}, apex{3.4f, 4.0f, 2.3f};
+  const Cone cone = makeCone(base, 0.9f, apex, 0.3f);
+  const Vec3 axis = glm::normalize(apex - base);
+  Pcg32 rng(5, 1);
+  for (int i = 0; i < 1000; ++i) {
+    const Ray ray{Vec3(20.0f * rng.nextFloat() - 10.0f, 1.5f, 12.0f),
+                  glm::normalize(Vec3(0.0f, 0.0f, 0.0f) + base + 5.0f * rng.nextFloat() * axis -
+                                 Vec3(20.0f * rng.nextFloat() - 10.0f, 1.5f, 12.0f))};
+    float t;
+    if (!cone.intersect(ray, 1e30f, t)) continue;
+    Vec3 error, normal;
+    const Vec3 p = cone.surfacePoint(ray.at(t), error, normal);
+    const Vec3 expected = cone.normalAt(p);
+    EXPECT_NEAR(glm::length(normal - expected), 0.0f, 4e-6f) << i;  // a few roundings
+    // Distance from the surface, in double: radial distance minus the radius at that height.
+    const glm::dvec3 rel = glm::dvec3(p) - glm::dvec3(base);
+    const double z = glm::dot(rel, glm::dvec3(axis));
+    const double radial = glm::length(rel - z * glm::dvec3(axis));
+    const double radius = 0.9 + (0.3 - 0.9) * z / glm::length(glm::dvec3(apex) - glm::dvec3(base));
+    EXPECT_LE(std::fabs(radial - radius) * glm::length(glm::dvec3(normal)),
+              static_cast<double>(glm::length(error)) + 1e-9)
+        << i;
+  }
+}
+
 TEST(Cone, OpenEndsLetAxialRaysThrough) {
   const Cone c = makeCone({0, 0, 0}, 1.0f, {0, 2, 0}, 1.0f);
   float t;
@@ -91,9 +118,8 @@ TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
     const Ray primary{eye, glm::normalize(target - eye)};
     float t;
     if (!cone.intersect(primary, 1e30f, t)) continue;
-    Vec3 error;
-    const Vec3 p = cone.surfacePoint(primary.at(t), error);
-    const Vec3 n = cone.normalAt(p);
+    Vec3 error, n;
+    const Vec3 p = cone.surfacePoint(primary.at(t), error, n);
     // Only the outside: from the inside the opposite wall may rightly block the light.
     if (glm::dot(n, primary.direction) > 0.0f) continue;
     ++hits;
