@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -177,10 +178,31 @@ std::string caseName(const ScaleCase& c) {
 
 class LeavingSurfaces : public testing::TestWithParam<ScaleCase> {};
 
+// The case's floor of one material, and a point light if `light` is given.
+SceneDescription floorScene(const ScaleCase& c, const Frame& f, float scale,
+                            const MaterialDesc& material, std::optional<Vec3> light) {
+  SceneDescription d;
+  d.render.triangleTest = c.test;
+  d.materials.push_back(material);
+  addFloor(d, c.kind, f, scale, 0);
+  if (light) {
+    PointLightDesc l;
+    l.position = *light;
+    d.lights.push_back(l);
+  }
+  return d;
+}
+
+MaterialDesc whiteDiffuse() {
+  MaterialDesc m;
+  m.diffuse = Color(1.0f);
+  return m;
+}
+
 constexpr float kScales[] = {1e-3f, 1.0f, 1e3f, 1e5f};
 
 TEST_P(LeavingSurfaces, NoAcneForEyeRaysFromNearAndFar) {
-  const auto [kind, test] = GetParam();
+  const FloorKind kind = GetParam().kind;
   for (const float scale : kScales) {
     const Frame f = floorFrame(scale);
     for (const float distance : {10.0f, 1e3f, 1e4f}) {
@@ -191,16 +213,9 @@ TEST_P(LeavingSurfaces, NoAcneForEyeRaysFromNearAndFar) {
         return target + distance * scale * glm::normalize(from);
       };
       {  // Shadow rays: lit from above, every hit must receive light.
-        SceneDescription d;
-        d.render.triangleTest = test;
-        MaterialDesc diffuse;
-        diffuse.diffuse = Color(1.0f);
-        d.materials.push_back(diffuse);
-        addFloor(d, kind, f, scale, 0);
-        PointLightDesc light;
-        light.position = f.top + 3.0f * scale * glm::normalize(f.normal + 0.5f * f.across1);
-        d.lights.push_back(light);
-        const Scene scene(d);
+        const Scene scene(
+            floorScene(GetParam(), f, scale, whiteDiffuse(),
+                       f.top + 3.0f * scale * glm::normalize(f.normal + 0.5f * f.across1)));
         const Counts c =
             shoot(scene, f, scale, 2000, eye, [](const Color& L) { return L.x > 0.0f; });
         std::printf("acne  %-20s scale %-6g eye %-6g sizes: %4d of %4d shadow rays blocked\n",
@@ -211,14 +226,11 @@ TEST_P(LeavingSurfaces, NoAcneForEyeRaysFromNearAndFar) {
                               << " sizes: " << c.wrong << " of " << c.hits << " hits self-shadowed";
       }
       {  // Reflected rays: a half mirror under a uniform sky reflects it once, exactly.
-        SceneDescription d;
-        d.render.triangleTest = test;
         MaterialDesc mirror;
         mirror.diffuse = Color(0.0f);
         mirror.reflectance = Color(0.5f);
-        d.materials.push_back(mirror);
+        SceneDescription d = floorScene(GetParam(), f, scale, mirror, std::nullopt);
         d.background = Color(1.0f);
-        addFloor(d, kind, f, scale, 0);
         const Scene scene(d);
         const Counts c =
             shoot(scene, f, scale, 2000, eye, [](const Color& L) { return L.x == 0.5f; });
@@ -233,20 +245,13 @@ TEST_P(LeavingSurfaces, NoAcneForEyeRaysFromNearAndFar) {
 }
 
 TEST_P(LeavingSurfaces, NoLightLeaksUnderASheetCloseAboveTheSurface) {
-  const auto [kind, test] = GetParam();
+  const FloorKind kind = GetParam().kind;
   for (const float scale : kScales) {
     const Frame f = floorFrame(scale);
     const float gap = 1e-4f * scale;
-    SceneDescription d;
-    d.render.triangleTest = test;
-    MaterialDesc diffuse;
-    diffuse.diffuse = Color(1.0f);
-    d.materials.push_back(diffuse);
-    addFloor(d, kind, f, scale, 0);
+    SceneDescription d =
+        floorScene(GetParam(), f, scale, whiteDiffuse(), f.top + 3.0f * scale * f.normal);
     d.meshes.push_back(quad(f.top + gap * f.normal, f.across1, f.across2, 0.5f * scale, 0));
-    PointLightDesc light;
-    light.position = f.top + 3.0f * scale * f.normal;
-    d.lights.push_back(light);
     const Scene scene(d);
     // Eyes inside the gap, looking down at the floor under the sheet.
     const auto insideGap = [&](std::mt19937& rng, const Vec3& target) {
@@ -271,9 +276,7 @@ TEST(LeavingSurfaces, ALightSetIntoASurfaceIsNotShadowedByIt) {
     for (const bool triangles : {false, true}) {
       const Frame f = floorFrame(scale);
       SceneDescription d;
-      MaterialDesc diffuse;
-      diffuse.diffuse = Color(1.0f);
-      d.materials.push_back(diffuse);
+      d.materials.push_back(whiteDiffuse());
       d.planes.push_back({f.top, f.normal, 0, {}});
       const Vec3 ceilingPoint = f.top + 2.0f * scale * f.normal;
       const Vec3 tilted = glm::normalize(f.normal + 0.4f * f.across2);
