@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "math/RayOffset.h"
-
 #include "shading/LightFalloff.h"
 
 namespace prism {
