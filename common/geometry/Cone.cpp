@@ -101,7 +101,8 @@ Vec3 Cone::surfacePoint(const Vec3& q, Vec3& error, Vec3& normal) const {
   // those roundings of rel), which the slope turns into a distance from the surface. The bound
   // takes the largest coordinate, as those errors need not follow rel's axes.
   const float size = maxAbsComponent(rel) + std::fabs(radius);
-  error = glm::abs(base_) * gamma(2) + Vec3(gamma(12) * (1.0f + std::fabs(slope_)) * size);
+  error =
+      glm::abs(base_) * gammaBound(2) + Vec3(gammaBound(12) * (1.0f + std::fabs(slope_)) * size);
   if (!(length > 0.0f) || !(radius > 0.0f)) {  // on the axis or a pointed tip: as hit
     normal = normalAt(q);
     return q;

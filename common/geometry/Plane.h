@@ -28,7 +28,8 @@ struct Plane {
     const float distance = glm::dot(normal, q) - offset;
     const Vec3 p = q - distance * normal;
     const float termSize = glm::dot(glm::abs(normal), glm::abs(q)) + std::fabs(offset);
-    error = gamma(5) * glm::abs(p) + Vec3(gamma(4) * termSize + gamma(2) * std::fabs(distance));
+    error = gammaBound(5) * glm::abs(p) +
+            Vec3(gammaBound(4) * termSize + gammaBound(2) * std::fabs(distance));
     return p;
   }
 };

@@ -2,22 +2,17 @@
 // point, so it can neither hit the surface it leaves (shadow acne) nor start beyond a nearby
 // surface (light leaks). The error bounds come from each primitive's own arithmetic
 // (Scene::surface); the method is pbrt-v4's (Pharr, Jakob & Humphreys, "Physically Based
-// Rendering", 4th ed., section 6.8), with gamma(n) the bound of n float roundings.
+// Rendering", 4th ed., section 6.8), with γ(n) = gammaBound(n) (math/FloatError.h).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "math/FloatError.h"
 #include "math/Vec.h"
 
 namespace prism {
-
-// Bound on the relative error of n successive float roundings: nε / (1 − nε), ε = 2⁻²⁴.
-constexpr float gamma(int n) {
-  constexpr float kUnitRoundoff = std::numeric_limits<float>::epsilon() * 0.5f;
-  return (static_cast<float>(n) * kUnitRoundoff) / (1.0f - static_cast<float>(n) * kUnitRoundoff);
-}
 
 // How far a ray leaving surface point p (each coordinate within positionError of the true
 // point) must start from it along the surface's unit geometric normal n: beyond the error box
@@ -29,8 +24,8 @@ constexpr float gamma(int n) {
 // of the ray). It does not depend on the ray: SurfaceHit keeps it for all rays leaving a hit.
 inline float leavingDistance(const Vec3& p, const Vec3& positionError, const Vec3& n) {
   const Vec3 absN = glm::abs(n);
-  const float reach =
-      (1.0f + gamma(8)) * glm::dot(absN, positionError) + gamma(3) * glm::dot(absN, glm::abs(p));
+  const float reach = (1.0f + gammaBound(8)) * glm::dot(absN, positionError) +
+                      gammaBound(3) * glm::dot(absN, glm::abs(p));
   return std::max(reach, std::numeric_limits<float>::min());
 }
 
@@ -50,7 +45,7 @@ inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& positionError, const Vec3
 // Measured (LeavingSurfaces.ALightSetIntoASurface...): stopping γ(4) short still left up to 5 of
 // 2000 floor points dark, γ(8) none; γ(16) keeps a factor of two.
 inline float shadowRayLength(float distance) {
-  return distance * (1.0f - gamma(16));
+  return distance * (1.0f - gammaBound(16));
 }
 
 }  // namespace prism

@@ -23,7 +23,7 @@ TEST(RayOffset, TheOriginLeavesTheErrorBoxOnTheSideTheRayGoes) {
   for (int i = 0; i < 200000; ++i) {
     const float magnitude = std::pow(10.0f, exponent(rng));
     const Vec3 p = magnitude * Vec3(unit(rng), unit(rng), unit(rng));
-    const Vec3 error = gamma(7) * magnitude * glm::abs(Vec3(unit(rng), unit(rng), unit(rng)));
+    const Vec3 error = gammaBound(7) * magnitude * glm::abs(Vec3(unit(rng), unit(rng), unit(rng)));
     const Vec3 n = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
     const Vec3 w = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
     if (!std::isfinite(n.x) || !std::isfinite(w.x)) continue;
@@ -53,10 +53,7 @@ TEST(RayOffset, AnExactPointStillMovesOffTheSurfaceButNeverToASubnormal) {
   EXPECT_EQ(below.y, -std::numeric_limits<float>::min());
 }
 
-TEST(RayOffset, GammaBoundsNRoundings) {
-  EXPECT_EQ(gamma(0), 0.0f);
-  EXPECT_GT(gamma(1), 0.5f * std::numeric_limits<float>::epsilon());
-  EXPECT_LT(gamma(3), 3.0001f * 0.5f * std::numeric_limits<float>::epsilon());
+TEST(RayOffset, AShadowRayStopsAMillionthShortOfTheLight) {
   EXPECT_LT(shadowRayLength(10.0f), 10.0f);
   EXPECT_GT(shadowRayLength(10.0f), 10.0f * (1.0f - 1e-5f));
 }
