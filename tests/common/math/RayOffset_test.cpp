@@ -102,10 +102,11 @@ MeshDesc quad(const Vec3& centre, const Vec3& a, const Vec3& b, float halfSize, 
   MeshDesc mesh;
   mesh.source = "quad";
   for (const float sa : {-1.0f, 1.0f}) {
-    for (const float sb : {-1.0f, 1.0f})
+    for (const float sb : {-1.0f, 1.0f}) {
       mesh.positions.push_back(centre + halfSize * (sa * a + sb * b));
+    }
   }
-  mesh.indices = {0, 1, 3, 0, 3, 2};
+  mesh.indices = {0, 1, 3, 0, 3, 2};  // the shared edge runs through the centre
   mesh.material = m;
   return mesh;
 }
