@@ -13,8 +13,8 @@ class CausticEstimator {
   virtual ~CausticEstimator() = default;
   // Irradiance in W/m² per channel arriving at position on the side normal faces (unit normal).
   virtual Color irradiance(const Vec3& position, const Vec3& normal) const = 0;
-  // The same at a surface point the renderer computed, whose rounding s.positionError bounds:
-  // estimators that trace rays from the point start them outside it (math/RayOffset.h).
+  // The same at a surface point the renderer computed: estimators that trace rays from the point
+  // start them s.leavingDistance off the surface (math/RayOffset.h).
   virtual Color irradianceAt(const SurfaceHit& s) const {
     return irradiance(s.position, s.geometricNormal);
   }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "math/RayOffset.h"
+#include "math/FloatError.h"
 
 namespace prism {
 

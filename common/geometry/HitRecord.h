@@ -23,11 +23,12 @@ struct HitRecord {
 
 struct SurfaceHit {
   Vec3 position{0.0f};
-  Vec3 positionError{0.0f};      // bound on |position − the true surface point| per axis
-  float leavingDistance = 0.0f;  // how far rays leaving it start along the normal (RayOffset.h)
-  Vec3 geometricNormal{0.0f};    // unit, facing the incoming ray
-  Vec3 shadingNormal{0.0f};  // unit, interpolated for smooth meshes, same side as geometricNormal
-  bool frontFace = true;     // the ray arrived from the side the surface normal points to
+  // How far rays leaving it start along the normal: beyond the rounding of position
+  // (math/RayOffset.h, Scene::surface).
+  float leavingDistance = 0.0f;
+  Vec3 geometricNormal{0.0f};  // unit, facing the incoming ray
+  Vec3 shadingNormal{0.0f};    // unit, interpolated for smooth meshes, same side as geometricNormal
+  bool frontFace = true;       // the ray arrived from the side the surface normal points to
   MaterialId material = 0;
   uint8_t caustic = 0;  // kCastsCaustics | kReceivesCaustics, resolved per object
 

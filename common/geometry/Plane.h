@@ -2,8 +2,8 @@
 #pragma once
 
 #include "geometry/MaterialId.h"
+#include "math/FloatError.h"
 #include "math/Ray.h"
-#include "math/RayOffset.h"
 
 namespace prism {
 

@@ -3,7 +3,7 @@
 
 #include "geometry/MaterialId.h"
 #include "math/Aabb.h"
-#include "math/RayOffset.h"
+#include "math/FloatError.h"
 
 namespace prism {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "math/Aabb.h"
-#include "math/RayOffset.h"
+#include "math/FloatError.h"
 
 namespace prism {
 

@@ -34,11 +34,6 @@ inline Vec3 leavingOrigin(const Vec3& p, const Vec3& n, float distance, const Ve
   return p + (glm::dot(w, n) < 0.0f ? -distance : distance) * n;
 }
 
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& positionError, const Vec3& n,
-                            const Vec3& w) {
-  return leavingOrigin(p, n, leavingDistance(p, positionError, n), w);
-}
-
 // The length of a shadow ray to a point light at `distance` (computed in float): it stops short
 // of the light by more than the rounding of that distance and of an occluder's t, so a light set
 // into a surface (a bulb in a ceiling, an NFF light on a wall) is not shadowed by that surface.

@@ -472,16 +472,17 @@ void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
 
 SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   SurfaceHit s;
-  // Each kind puts the point back on its surface with a bound on the rounding (math/RayOffset.h):
-  // rays leaving it start just outside that bound, however far the incoming ray travelled.
-  const Vec3 alongRay = ray.at(hit.t);
+  // Each kind puts the point back on its surface with a bound on the rounding per axis
+  // (math/RayOffset.h): rays leaving it start just outside that bound, however far the incoming
+  // ray travelled.
+  Vec3 positionError;
   const uint32_t index = PrimitiveRef::index(hit.primitive);
   Vec3 geometric, shading;
   switch (PrimitiveRef::kind(hit.primitive)) {
     case PrimitiveKind::Triangle: {
       const Triangle tri = triangle(index);
       const MeshShading& mesh = meshes_[tri.mesh];
-      s.position = tri.pointAt(hit.u, hit.v, s.positionError);
+      s.position = tri.pointAt(hit.u, hit.v, positionError);
       geometric = glm::normalize(glm::cross(tri.edge1(), tri.edge2()));
       shading = geometric;
       if (!mesh.normals.empty()) {
@@ -498,19 +499,19 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
       break;
     }
     case PrimitiveKind::Sphere:
-      geometric = shading = spheres_[index].normalAt(alongRay);
-      s.position = spheres_[index].pointAlong(geometric, s.positionError);
+      geometric = shading = spheres_[index].normalAt(ray.at(hit.t));
+      s.position = spheres_[index].pointAlong(geometric, positionError);
       s.material = spheres_[index].material;
       s.caustic = sphereCaustic_[index];
       break;
     case PrimitiveKind::Cone:
-      s.position = cones_[index].surfacePoint(alongRay, s.positionError, geometric);
+      s.position = cones_[index].surfacePoint(ray.at(hit.t), positionError, geometric);
       shading = geometric;
       s.material = cones_[index].material();
       s.caustic = coneCaustic_[index];
       break;
     case PrimitiveKind::Plane:
-      s.position = planes_[index].surfacePoint(alongRay, s.positionError);
+      s.position = planes_[index].surfacePoint(ray.at(hit.t), positionError);
       geometric = shading = planes_[index].normal;
       s.material = planes_[index].material;
       s.caustic = planeCaustic_[index];
@@ -527,7 +528,7 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   if (glm::dot(shading, geometric) < 0.0f) shading = geometric;
   s.geometricNormal = geometric;
   s.shadingNormal = shading;
-  s.leavingDistance = leavingDistance(s.position, s.positionError, geometric);
+  s.leavingDistance = leavingDistance(s.position, positionError, geometric);
   return s;
 }
 

@@ -127,7 +127,7 @@ TEST(Cone, DistantRaysLandOnTheSurfaceSoShadowRaysDoNotSelfIntersect) {
     Vec3 l = glm::normalize(
         Vec3(rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f, rng.nextFloat() - 0.5f));
     if (glm::dot(l, n) < 0.0f) l = -l;
-    const Ray shadow{offsetRayOrigin(p, error, n, l), l, 0.0f, 100.0f};
+    const Ray shadow{leavingOrigin(p, n, leavingDistance(p, error, n), l), l, 0.0f, 100.0f};
     if (cone.intersect(shadow, shadow.tMax, t)) ++selfShadowed;
   }
   EXPECT_GT(hits, 5000);

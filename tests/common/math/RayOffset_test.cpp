@@ -27,7 +27,7 @@ TEST(RayOffset, TheOriginLeavesTheErrorBoxOnTheSideTheRayGoes) {
     const Vec3 n = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
     const Vec3 w = glm::normalize(Vec3(unit(rng), unit(rng), unit(rng)));
     if (!std::isfinite(n.x) || !std::isfinite(w.x)) continue;
-    const Vec3 origin = offsetRayOrigin(p, error, n, w);
+    const Vec3 origin = leavingOrigin(p, n, leavingDistance(p, error, n), w);
     const double side = glm::dot(w, n) < 0.0f ? -1.0 : 1.0;
     double along = 0.0, reach = 0.0;
     for (int a = 0; a < 3; ++a) {
@@ -43,13 +43,14 @@ TEST(RayOffset, TheOriginLeavesTheErrorBoxOnTheSideTheRayGoes) {
 TEST(RayOffset, AnExactPointStillMovesOffTheSurfaceButNeverToASubnormal) {
   // A point computed without error (the y = 0 floor) moves by the smallest normal float: the
   // surface's own test then puts the ray's start behind it.
-  const Vec3 origin = offsetRayOrigin(Vec3(2.0f, 0.0f, -1.0f), Vec3(0.0f), Vec3(0, 1, 0),
-                                      glm::normalize(Vec3(0.2f, 1.0f, 0.0f)));
+  const Vec3 p(2.0f, 0.0f, -1.0f), up(0.0f, 1.0f, 0.0f);
+  const float distance = leavingDistance(p, Vec3(0.0f), up);
+  EXPECT_EQ(distance, std::numeric_limits<float>::min());
+  const Vec3 origin = leavingOrigin(p, up, distance, glm::normalize(Vec3(0.2f, 1.0f, 0.0f)));
   EXPECT_EQ(origin.y, std::numeric_limits<float>::min());
   EXPECT_EQ(origin.x, 2.0f);
   EXPECT_EQ(origin.z, -1.0f);
-  const Vec3 below =
-      offsetRayOrigin(Vec3(2.0f, 0.0f, -1.0f), Vec3(0.0f), Vec3(0, 1, 0), Vec3(0.0f, -1.0f, 0.0f));
+  const Vec3 below = leavingOrigin(p, up, distance, -up);
   EXPECT_EQ(below.y, -std::numeric_limits<float>::min());
 }
 
