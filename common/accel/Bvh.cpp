@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "accel/Simd.h"
+#include "util/HugePages.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -129,7 +130,7 @@ struct Builder {
   uint32_t buildHalvesInParallel(uint32_t begin, uint32_t middle, uint32_t end,
                                  const NodeExtent& left, const NodeExtent& right, size_t depth) {
     std::vector<BvhNode> rightNodes;
-    rightNodes.reserve(2 * (end - middle));
+    reserveOnHugePages(rightNodes, 2 * (end - middle));
     BvhBuildStats rightStats;
     Builder rightBuilder{boxes, order,          rightNodes, rightStats,
                          block, parallelLevels, blockShift, threads};
@@ -327,6 +328,8 @@ struct Builder {
 void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options) {
   const auto start = SteadyClock::now();
   nodes_.clear();
+  order_.clear();
+  reserveOnHugePages(order_, primitiveBounds.size());
   order_.resize(primitiveBounds.size());
   stats_ = {};
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
@@ -336,6 +339,7 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions&
     // The builder's copy of the boxes and the root's extent, in two halves on two cores,
     // merged in a fixed order (min and max give the same extent either way).
     const std::unique_ptr<BuildBox[]> boxes(new BuildBox[count]);  // filled below, not zeroed
+    preferHugePages(boxes.get(), count * sizeof(BuildBox));
     NodeExtent halves[2];
     const uint32_t middle = count / 2;
     parallelFor(2, count >= kParallelBinningMinPrimitives ? std::min(threads, 2u) : 1,
@@ -361,7 +365,7 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions&
     const uint32_t block = std::max(1u, options.primitiveBlock);
     const int blockShift = (block & (block - 1)) == 0 ? __builtin_ctz(block) : -1;
     Builder builder{boxes.get(), order_.data(), nodes_, stats_, block, levels, blockShift, threads};
-    nodes_.reserve(2 * primitiveBounds.size());
+    reserveOnHugePages(nodes_, 2 * primitiveBounds.size());
     builder.build(0, count, root, 0);
     nodes_.shrink_to_fit();
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "util/HugePages.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -44,7 +45,7 @@ void WideBvh::build(const Bvh& binary) {
   stats_ = {};
   const std::vector<BvhNode>& bin = binary.nodes();
   if (!bin.empty()) {
-    nodes_.reserve(bin.size() / 4 + 1);
+    reserveOnHugePages(nodes_, bin.size() / 4 + 1);
     // Work list of (binary node, wide node index) pairs still to be filled.
     std::vector<std::pair<uint32_t, uint32_t>> work{{0, 0}};
     nodes_.emplace_back();

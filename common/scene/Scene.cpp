@@ -10,6 +10,7 @@
 #include "geometry/TrianglePlaneInside.h"
 #include "geometry/TriangleWatertight4.h"
 #include "scene/PrimitiveRef.h"
+#include "util/HugePages.h"
 
 namespace prism {
 namespace {
@@ -69,9 +70,9 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   std::vector<uint32_t> refs;
   std::vector<uint8_t> sphereCaustic, coneCaustic;
   const size_t bounded = d.spheres.size() + d.cones.size() + d.triangleCount();
-  triangles.reserve(d.triangleCount());
-  bounds.reserve(bounded);
-  refs.reserve(bounded);
+  reserveOnHugePages(triangles, d.triangleCount());
+  reserveOnHugePages(bounds, bounded);
+  reserveOnHugePages(refs, bounded);
   const auto materialOf = [&](MaterialId id) -> const MaterialDesc& {
     return materials_[id < materials_.size() ? id : 0];
   };
@@ -140,8 +141,8 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   std::vector<Aabb>().swap(bounds);
   // Packed triangles go straight from the gathered array into their packs: their leaf entries
   // point into it, and it is freed once the packs are built.
-  leafRefs_.reserve(refs.size());
-  if (!packed) triangles_.reserve(triangles.size());
+  reserveOnHugePages(leafRefs_, refs.size());
+  if (!packed) reserveOnHugePages(triangles_, triangles.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
     const uint32_t ref = refs[original];
     const uint32_t index = PrimitiveRef::index(ref);
@@ -215,7 +216,7 @@ void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
       packCount += std::max(1u, (leafTriangles + 3) / 4);
     }
   }
-  packs_.reserve(packCount);
+  reserveOnHugePages(packs_, packCount);
   // Leaves are relabelled to (first pack, pack count).
   wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
     const uint32_t firstPack = static_cast<uint32_t>(packs_.size());

@@ -2,7 +2,7 @@
 // same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
 //
 //   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
-//                                    [mesh.obj ...]
+//                                    [--build-only] [mesh.obj ...]
 //
 // Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
 // coherent primary rays from a camera (1024 × 768, in 4 × 4 pixel tiles), incoherent rays
@@ -14,6 +14,7 @@
 // path prefers here). Times are CPU seconds of the tracing threads (CLOCK_THREAD_CPUTIME_ID), and
 // every number is the median of
 // --runs rounds in which all contenders run one after another, in a rotating order.
+// --build-only stops after the build and memory lines (many rounds of the build in seconds).
 #include <embree3/rtcore.h>
 #include <time.h>
 
@@ -323,6 +324,7 @@ struct Options {
   std::vector<int> threads = {1, 2};
   std::vector<std::string> objs;
   bool withVariants = true;  // also time the intermediate Prism traversals
+  bool buildOnly = false;    // only the build and memory lines
 };
 
 struct Agreement {
@@ -389,11 +391,6 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   }
   const Scene& prism = *prismScene;
   const EmbreeScene& embree = *embreeScene;
-  SceneDescription watertightDescription = d;
-  watertightDescription.render.triangleTest = TriangleTest::Watertight;
-  const Scene prismWatertight(watertightDescription, Traversal::WideSimd);
-  const Scene prismLeaves(d, Traversal::WideScalarLeaves);
-  const Scene prismBinary(d, Traversal::BinaryScalar);
   const SceneBuildStats& st = prism.buildStats();
   std::printf(
       "build (wall s, all cores, median of %d alternating): Prism scene %.3f (binary SAH %.3f, "
@@ -408,6 +405,13 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
       st.heldBytes() / 1048576.0, (st.binaryBvhReleased ? 0 : st.bvh.memoryBytes) / 1048576.0,
       st.wideBvh.memoryBytes / 1048576.0, st.packBytes / 1048576.0, st.geometryBytes / 1048576.0,
       embree.bytes / 1048576.0, static_cast<double>(st.heldBytes()) / embree.bytes);
+  if (options.buildOnly) return;
+
+  SceneDescription watertightDescription = d;
+  watertightDescription.render.triangleTest = TriangleTest::Watertight;
+  const Scene prismWatertight(watertightDescription, Traversal::WideSimd);
+  const Scene prismLeaves(d, Traversal::WideScalarLeaves);
+  const Scene prismBinary(d, Traversal::BinaryScalar);
 
   const Aabb bounds = meshBounds(mesh);
   const int width = options.quick ? 256 : 1024, height = options.quick ? 192 : 768;
@@ -578,6 +582,8 @@ int run(int argc, char** argv) {
       options.runs = std::max(1, std::atoi(argv[++i]));
     } else if (arg == "--quick") {
       options.quick = true;
+    } else if (arg == "--build-only") {
+      options.buildOnly = true;
     } else if (arg == "--no-variants") {
       options.withVariants = false;
     } else if (arg == "--threads" && i + 1 < argc) {
@@ -589,8 +595,10 @@ int run(int argc, char** argv) {
         at = comma + 1;
       }
     } else if (arg == "--help" || arg == "-h") {
-      std::printf("usage: %s [--runs N] [--quick] [--no-variants] [--threads 1,2] [mesh.obj ...]\n",
-                  argv[0]);
+      std::printf(
+          "usage: %s [--runs N] [--quick] [--no-variants] [--threads 1,2] [--build-only] "
+          "[mesh.obj ...]\n",
+          argv[0]);
       return 0;
     } else {
       options.objs.push_back(arg);
