@@ -19,8 +19,9 @@ constexpr uint32_t kMaxLeafSize = 8;
 // SAH costs relative to one primitive test; a node visit costs about one box test.
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
-// Subtrees below this size are not worth a thread.
-constexpr uint32_t kParallelMinPrimitives = 32768;
+// Subtrees below this size are not worth a thread (starting one costs tens of microseconds; a
+// 4096-primitive half takes about a millisecond).
+constexpr uint32_t kParallelMinPrimitives = 4096;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // A box as two SIMD registers (x, y, z, unused). extend() keeps Aabb::extend's operand order,
