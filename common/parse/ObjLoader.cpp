@@ -13,13 +13,17 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <istream>
 #include <regex>
+#include <sstream>
+#include <streambuf>
 #include <string_view>
 #include <unordered_map>
 
 #include "parse/PolygonTriangulator.h"
 #include "parse/PrintableText.h"
 #include "scene/MeshBudget.h"
+#include "util/HugePages.h"
 
 namespace prism {
 
@@ -41,6 +45,15 @@ std::string readObjFile(const std::string& path, const FileLoc& referencedFrom,
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file) fail(errno);
   std::string text;
+  // One allocation of the file's size, read into directly: growing the string by appending
+  // copied a 75 MB file about twice over and faulted in every copy (0.86 s of a 2 M-triangle
+  // parse). A file whose size is unknown (a pipe) is read in chunks after what its size said.
+  if (!ec && size > 0) {
+    text.reserve(size);
+    preferHugePages(text.data(), size);
+    text.resize(size);
+    text.resize(std::fread(text.data(), 1, size, file));
+  }
   char buffer[1 << 16];
   size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
@@ -50,6 +63,16 @@ std::string readObjFile(const std::string& path, const FileLoc& referencedFrom,
   if (failed) fail(error);
   return text;
 }
+
+// A read-only stream buffer over text that stays where it is.
+class TextInPlace : public std::streambuf {
+ public:
+  explicit TextInPlace(const std::string& text) {
+    // The get area only: nothing is ever written through these pointers.
+    char* begin = const_cast<char*>(text.data());
+    setg(begin, begin, begin + text.size());
+  }
+};
 
 // Where the vertex and face statements are, so errors found after tinyobjloader has read the file
 // can name a line. tinyobjloader keeps them in file order and drops nothing that passes the checks
@@ -67,8 +90,9 @@ struct Word {
   int column = 0;
 };
 
-std::vector<Word> splitWords(std::string_view line) {
-  std::vector<Word> words;
+// Into `words`, reused from line to line (an allocation per line was a third of the scan).
+void splitWords(std::string_view line, std::vector<Word>& words) {
+  words.clear();
   size_t i = 0;
   while (i < line.size()) {
     const size_t begin = line.find_first_not_of(" \t", i);
@@ -78,7 +102,6 @@ std::vector<Word> splitWords(std::string_view line) {
     words.push_back({line.substr(begin, end - begin), static_cast<int>(begin) + 1});
     i = end;
   }
-  return words;
 }
 
 // tinyobjloader reads a malformed or non-finite coordinate as 0 without a word, so vertex lines
@@ -87,12 +110,13 @@ ObjLines scanObjLines(const std::string& text, const std::string& path) {
   ObjLines lines;
   int lineNumber = 0;
   size_t start = 0;
+  std::vector<Word> words;
   while (start < text.size()) {
     // Lines end in \n, \r\n or a lone \r, as tinyobjloader counts them.
     size_t end = text.find_first_of("\r\n", start);
     if (end == std::string::npos) end = text.size();
     ++lineNumber;
-    const std::vector<Word> words = splitWords(std::string_view(text).substr(start, end - start));
+    splitWords(std::string_view(text).substr(start, end - start), words);
     start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     if (words.empty()) continue;
     auto loc = [&](const Word& word) { return FileLoc{path, lineNumber, word.column}; };
@@ -178,18 +202,23 @@ MeshDesc parseObjMesh(const std::string& text, const std::string& path,
                       needed, limit, "simplify the mesh or raise --memory-limit"));
   }
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // see the note at the top of this file
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  // From a string: the scene assigns the material, so a missing or broken .mtl is no error.
-  if (!reader.ParseFromString(text, "", config) || !reader.Error().empty()) {
-    const std::string& error = reader.Error();
+  // Read in place (ObjReader::ParseFromString copies the text into a string buffer first), with
+  // no material library: the scene assigns the material, so a missing .mtl is no error.
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  TextInPlace objText(text);
+  std::istream objStream(&objText);
+  std::istringstream noMaterialText;
+  tinyobj::MaterialStreamReader noMaterials(noMaterialText);
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &objStream, &noMaterials,
+                        /*triangulate=*/false, /*default_vcols_fallback=*/false) ||
+      !error.empty()) {
     throw SceneError(locFromMessage(path, error),
                      "invalid OBJ data: " + (error.empty() ? "unreadable" : firstLine(error)));
   }
 
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const size_t vertexCount = attrib.vertices.size() / 3;
   const size_t normalCount = attrib.normals.size() / 3;
   for (size_t i = 0; i < vertexCount; ++i) {
@@ -211,29 +240,32 @@ MeshDesc parseObjMesh(const std::string& text, const std::string& path,
   // First pass: check every face's indices and decide whether the mesh keeps vertex normals.
   bool smooth = true;
   size_t face = 0;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
     size_t first = 0;
     for (unsigned char corners : mesh.num_face_vertices) {
-      const FileLoc loc = lineLoc(path, lines.faceLines, face);
+      // Made only for a message: a FileLoc copies the path, once per face otherwise.
+      const auto loc = [&] { return lineLoc(path, lines.faceLines, face); };
       if (corners < 3 || first + corners > mesh.indices.size()) {
         // tinyobjloader counts a face's vertices in a byte.
-        throw SceneError(loc, "face has fewer than 3 or more than 255 vertices");
+        throw SceneError(loc(), "face has fewer than 3 or more than 255 vertices");
       }
       for (size_t k = first; k < first + corners; ++k) {
         const tinyobj::index_t& index = mesh.indices[k];
         if (index.vertex_index < 0 || static_cast<size_t>(index.vertex_index) >= vertexCount) {
-          throw SceneError(loc, "face refers to vertex " + std::to_string(index.vertex_index + 1) +
-                                    " but the file has " + std::to_string(vertexCount));
+          throw SceneError(loc(), "face refers to vertex " +
+                                      std::to_string(index.vertex_index + 1) +
+                                      " but the file has " + std::to_string(vertexCount));
         }
         if (index.normal_index < 0) {
           smooth = false;  // a face without normals: the whole mesh is shaded flat
         } else if (static_cast<size_t>(index.normal_index) >= normalCount) {
-          throw SceneError(loc, "face refers to normal " + std::to_string(index.normal_index + 1) +
-                                    " but the file has " + std::to_string(normalCount));
+          throw SceneError(loc(), "face refers to normal " +
+                                      std::to_string(index.normal_index + 1) +
+                                      " but the file has " + std::to_string(normalCount));
         } else {
           const Vec3 n = normal(index.normal_index);
-          if (!isFinite(n)) throw SceneError(loc, "face uses a non-finite normal");
+          if (!isFinite(n)) throw SceneError(loc(), "face uses a non-finite normal");
           // A zero normal cannot be interpolated; exporters write them for degenerate faces.
           if (maxAbsComponent(n) == 0.0f) smooth = false;
         }
@@ -245,8 +277,7 @@ MeshDesc parseObjMesh(const std::string& text, const std::string& path,
       throw SceneError(fileLoc, "a face has more than 255 vertices");
     }
   }
-  if (!reader.Warning().empty() && isBadDataWarning(reader.Warning())) {
-    const std::string& warning = reader.Warning();
+  if (!warning.empty() && isBadDataWarning(warning)) {
     throw SceneError(locFromMessage(path, warning), "invalid OBJ data: " + firstLine(warning));
   }
 
@@ -256,6 +287,10 @@ MeshDesc parseObjMesh(const std::string& text, const std::string& path,
   result.source = path;
   result.loc = referencedFrom;
   std::unordered_map<uint64_t, uint32_t> vertexOf;
+  vertexOf.reserve(vertexCount);
+  result.positions.reserve(vertexCount);
+  if (smooth) result.normals.reserve(vertexCount);
+  reserveOnHugePages(result.indices, 3 * lines.triangles);
   auto outputVertex = [&](const tinyobj::index_t& index) {
     const uint32_t normalKey = smooth ? static_cast<uint32_t>(index.normal_index) : 0xffffffffu;
     const uint64_t key = (uint64_t(uint32_t(index.vertex_index)) << 32) | normalKey;
@@ -267,7 +302,7 @@ MeshDesc parseObjMesh(const std::string& text, const std::string& path,
     return it->second;
   };
   std::vector<Vec3> polygon;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& mesh = shape.mesh;
     size_t first = 0;
     for (unsigned char corners : mesh.num_face_vertices) {
