@@ -49,6 +49,7 @@ class ByteWriter {
 
  private:
   void writeLittleEndian(uint64_t v, int byteCount);
+  void appendRaw(const void* data, size_t size);  // bytes as they are in memory
 
   std::vector<uint8_t> bytes_;
 };
