@@ -490,6 +490,28 @@ TEST(YamlSceneParser, ErrorTextIsFileLineColumnMessage) {
             dataPath("scenes/inline.yaml") + ":2:41: 'radius' must be greater than 0, found 0");
 }
 
+// The faces are read at once; whichever finishes first, the error names the first failing face in
+// the file's order, at its line.
+TEST(YamlSceneParser, TheFirstUnreadableCubeMapFaceInOrderIsReported) {
+  const std::string sky = "../../../scenes/assets/sky/";
+  for (int run = 0; run < 5; ++run) {
+    const SceneError e =
+        parseError("environment:\n  cubemap:\n    px: " + sky + "px.png\n    nx: " + sky +
+                   "nx.png\n    py: " + sky + "py.png\n    ny: missing-ny.png\n" +
+                   "    pz: " + sky + "pz.png\n    nz: missing-nz.png\n");
+    EXPECT_EQ(e.loc().line, 6);
+    EXPECT_NE(e.message().find("cube-map face 'ny': cannot read image"), std::string::npos)
+        << e.message();
+  }
+  const SceneDescription s =
+      parse("environment:\n  cubemap: {px: " + sky + "px.png, nx: " + sky + "nx.png, py: " + sky +
+            "py.png, ny: " + sky + "ny.png, pz: " + sky + "pz.png, nz: " + sky + "nz.png}\n");
+  ASSERT_TRUE(s.environment.has_value());
+  for (const ImageRgb& face : s.environment->faces)
+    EXPECT_EQ(face.width, s.environment->faces[0].width);
+  EXPECT_GT(s.environment->faces[5].width, 0);
+}
+
 TEST(YamlSceneParser, UnknownMaterialWithNoneDefined) {
   const SceneError e = parseError("objects: [sphere: {center: [0, 0, 0], radius: 1, material: x}]");
   EXPECT_EQ(e.message(), "unknown material 'x' (no materials are defined)");
