@@ -133,32 +133,29 @@ size_t ByteReader::readCount(size_t minElementBytes) {
   return static_cast<size_t>(count);
 }
 
-std::vector<Vec3> ByteReader::readVec3s() {
-  const size_t count = readCount(12);
-  std::vector<Vec3> v;
+// count (checked against what is left), then count elements of T's size: copied in one go where
+// the wire order is the machine's, else read one by one.
+template <typename T, typename ReadOne>
+std::vector<T> ByteReader::readArray(ReadOne readOne) {
+  const size_t count = readCount(sizeof(T));
+  std::vector<T> v;
   reserveOnHugePages(v, count);
   if constexpr (kWireOrderIsNative) {
     v.resize(count);
-    std::memcpy(v.data(), data_ + offset_, count * sizeof(Vec3));
-    offset_ += count * sizeof(Vec3);
+    std::memcpy(v.data(), data_ + offset_, count * sizeof(T));
+    offset_ += count * sizeof(T);
   } else {
-    for (size_t i = 0; i < count; ++i) v.push_back(readVec3());
+    for (size_t i = 0; i < count; ++i) v.push_back(readOne());
   }
   return v;
 }
 
+std::vector<Vec3> ByteReader::readVec3s() {
+  return readArray<Vec3>([this] { return readVec3(); });
+}
+
 std::vector<uint32_t> ByteReader::readU32s() {
-  const size_t count = readCount(4);
-  std::vector<uint32_t> v;
-  reserveOnHugePages(v, count);
-  if constexpr (kWireOrderIsNative) {
-    v.resize(count);
-    std::memcpy(v.data(), data_ + offset_, count * sizeof(uint32_t));
-    offset_ += count * sizeof(uint32_t);
-  } else {
-    for (size_t i = 0; i < count; ++i) v.push_back(readU32());
-  }
-  return v;
+  return readArray<uint32_t>([this] { return readU32(); });
 }
 
 void ByteReader::expectEnd() const {

@@ -93,6 +93,8 @@ class ByteReader {
  private:
   // Throws WireError unless n more bytes are available.
   void need(size_t n) const;
+  template <typename T, typename ReadOne>
+  std::vector<T> readArray(ReadOne readOne);
   uint64_t readLittleEndian(int byteCount);
 
   const uint8_t* data_;
