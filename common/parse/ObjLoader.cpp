@@ -47,7 +47,7 @@ std::string readObjFile(const std::string& path, const FileLoc& referencedFrom,
   std::string text;
   // One allocation of the file's size, read into directly: growing the string by appending
   // copied a 75 MB file about twice over and faulted in every copy (0.86 s of a 2 M-triangle
-  // parse). A file whose size is unknown (a pipe) is read in chunks after what its size said.
+  // parse). What the size did not cover (a pipe reports none) is appended in chunks below.
   if (!ec && size > 0) {
     text.reserve(size);
     preferHugePages(text.data(), size);
