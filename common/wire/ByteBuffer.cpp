@@ -46,6 +46,7 @@ static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floa
 }  // namespace
 
 void ByteWriter::appendRaw(const void* data, size_t size) {
+  if (size == 0) return;  // an empty vector's data() may be null, which memcpy must not see
   const size_t at = bytes_.size();
   if (bytes_.capacity() < at + size) {
     bytes_.reserve(std::max(at + size, 2 * bytes_.capacity()));
@@ -141,6 +142,7 @@ std::vector<T> ByteReader::readArray(ReadOne readOne) {
   std::vector<T> v;
   reserveOnHugePages(v, count);
   if constexpr (kWireOrderIsNative) {
+    if (count == 0) return v;  // nothing to copy, and memcpy must not see a null pointer
     v.resize(count);
     std::memcpy(v.data(), data_ + offset_, count * sizeof(T));
     offset_ += count * sizeof(T);
