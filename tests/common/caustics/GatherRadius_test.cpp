@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "tests/common/caustics/BallOverFloorScene.h"
 
@@ -37,6 +40,58 @@ TEST(GatherRadius, PhotonRadiiAreTheKthNeighbourDistanceCapped) {
   EXPECT_FLOAT_EQ(radii[150], 1.0f);
   EXPECT_FLOAT_EQ(radii[299], 2.0f);
   EXPECT_FLOAT_EQ(photonRadii(map, 3, 1.5f, 2)[0], 1.5f);  // capped
+}
+
+// Every radius equals a brute-force k-th nearest distance (squared as the kd-tree squares it,
+// capped at maxRadius), bit for bit: dense clusters, a sparse field where fewer than k photons
+// lie within maxRadius, a line, and a pile of identical photons, for several k and thread counts.
+TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> tight(0.0f, 0.002f);
+  std::uniform_real_distribution<float> wide(-3.0f, 3.0f);
+  std::vector<Photon> photons;
+  for (int cluster = 0; cluster < 6; ++cluster) {
+    const Vec3 centre(wide(rng), 0.0f, wide(rng));
+    for (int i = 0; i < 400; ++i) photons.push_back({centre + Vec3(tight(rng), 0, tight(rng))});
+  }
+  for (int i = 0; i < 300; ++i) photons.push_back({Vec3(wide(rng), wide(rng) * 0.01f, wide(rng))});
+  for (int i = 0; i < 200; ++i) photons.push_back({Vec3(5.0f + 1e-4f * i, 1.0f, -2.0f)});
+  for (int i = 0; i < 40; ++i) photons.push_back({Vec3(-4.0f, 0.5f, 4.0f)});
+  std::vector<Vec3> positions;
+  for (const Photon& p : photons) positions.push_back(p.position);
+  const PhotonMap map(std::move(photons));
+  const float maxRadius = 0.05f, maxRadius2 = maxRadius * maxRadius;
+  for (int k : {1, 7, 50}) {
+    std::vector<float> expected(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+      std::vector<float> within;
+      for (const Vec3& q : positions) {
+        float d2 = 0.0f;
+        for (int a = 0; a < 3; ++a) {
+          const float diff = positions[i][a] - q[a];
+          d2 += diff * diff;
+        }
+        if (d2 < maxRadius2) within.push_back(d2);
+      }
+      if (within.size() < static_cast<size_t>(k)) {
+        expected[i] = maxRadius;
+        continue;
+      }
+      std::nth_element(within.begin(), within.begin() + (k - 1), within.end());
+      expected[i] = std::sqrt(within[k - 1]);
+    }
+    for (int threads : {1, 2}) {
+      const std::vector<float> radii = photonRadii(map, k, maxRadius, threads);
+      size_t capped = 0, wrong = 0;
+      for (size_t i = 0; i < radii.size(); ++i) {
+        capped += expected[i] == maxRadius;
+        wrong += radii[i] != expected[i];
+      }
+      EXPECT_EQ(wrong, 0u) << "k " << k << ", threads " << threads;
+      if (k > 1) EXPECT_GT(capped, 0u) << "k " << k;  // the sparse field is capped
+      EXPECT_LT(capped, radii.size()) << "k " << k;
+    }
+  }
 }
 
 // The progressive schedule: r²(i) = r²(i−1)·(i − 1 + α)/i, applied to the one fixed radius when
