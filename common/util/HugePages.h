@@ -10,8 +10,8 @@
 namespace prism {
 
 // Asks the kernel to back [data, data + bytes) with huge pages where it can. Only whole, aligned
-// 2 MiB spans inside the range qualify; ranges under a few MiB are left alone (they gain
-// nothing), as is everything on systems without transparent huge pages. Never fails.
+// 2 MiB spans inside the range qualify; ranges under 4 MiB are left alone (they may hold no such
+// span), as is everything on systems without transparent huge pages. Never fails.
 void preferHugePages(const void* data, size_t bytes);
 
 // v.reserve(n), with the reserved storage on huge pages before anything is written to it.
