@@ -50,7 +50,9 @@ struct Box4 {
 };
 
 // A primitive's box during the build, 32 bytes, moved by the partitions (the index travels in
-// the order array beside it): the binning reads it without an indirection.
+// the order array beside it): the binning reads it without an indirection. The lower corner's
+// unused fourth lane is 1 for a primitive tested on its own (kSingle), 0 for one tested in blocks.
+constexpr float kSingle = 1.0f;
 struct alignas(16) BuildBox {
   Float4 lower;
   Float4 upper;
@@ -63,10 +65,12 @@ struct NodeExtent {
   Box4 centers;
 };
 
-// Boxes and primitive counts of every bin on every axis.
+// Boxes and primitive counts of every bin on every axis; `singles` of the counts are tested on
+// their own.
 struct Bins {
   Box4 boxes[3][kBinCount];
   uint32_t counts[3][kBinCount] = {};
+  uint32_t singles[3][kBinCount] = {};
 
   // Min/max and sums: merging bins filled apart gives the bins filled together.
   void merge(const Bins& other) {
@@ -74,6 +78,7 @@ struct Bins {
       for (int k = 0; k < kBinCount; ++k) {
         boxes[a][k].extend(other.boxes[a][k]);
         counts[a][k] += other.counts[a][k];
+        singles[a][k] += other.singles[a][k];
       }
     }
   }
@@ -95,6 +100,10 @@ struct Builder {
   float blocks(uint32_t count) const {
     const uint32_t rounded = count + block - 1;
     return static_cast<float>(blockShift >= 0 ? rounded >> blockShift : rounded / block);
+  }
+  // Tests a leaf of `count` primitives costs, `singles` of them tested on their own.
+  float tests(uint32_t count, uint32_t singles) const {
+    return blocks(count - singles) + static_cast<float>(singles);
   }
 
   uint32_t build(uint32_t begin, uint32_t end, const NodeExtent& extent, size_t depth) {
@@ -171,11 +180,13 @@ struct Builder {
     for (uint32_t i = begin; i < end; ++i) {
       const BuildBox& b = boxes[i];
       const Int4 bin = binsOf(b.center(), lower, scale);
+      const uint32_t single = b.lower[3] == kSingle;
       for (int a = 0; a < 3; ++a) {
         Box4& target = bins.boxes[a][bin[a]];
         target.lower = simd::minLanes(b.lower, target.lower);
         target.upper = simd::maxLanes(b.upper, target.upper);
         ++bins.counts[a][bin[a]];
+        bins.singles[a][bin[a]] += single;
       }
     }
   }
@@ -187,7 +198,7 @@ struct Builder {
   void chooseSplit(uint32_t begin, uint32_t end, const NodeExtent& node, size_t depth, int& axis,
                    uint32_t& middle, NodeExtent& leftOut, NodeExtent& rightOut) {
     const uint32_t count = end - begin;
-    const float leafCost = kIntersectionCost * blocks(count);
+    float leafCost = kInf;  // known once binned: a split is only weighed against it then
     const Aabb centerBox = node.centers.aabb();
     const Vec3 extent = centerBox.extent();
     const Float4 lower = node.centers.lower;
@@ -222,8 +233,14 @@ struct Builder {
       }
       const auto& binBoxes = bins.boxes;
       const auto& binCounts = bins.counts;
+      const auto& binSingles = bins.singles;
       for (int a = 0; a < 3; ++a) {
         if (!(extent[a] > 0.0f)) continue;
+        if (leafCost == kInf) {
+          uint32_t singles = 0;
+          for (int b = 0; b < kBinCount; ++b) singles += binSingles[a][b];
+          leafCost = kIntersectionCost * tests(count, singles);
+        }
         // Only splits just above an occupied bin are candidates: a split above an empty bin
         // divides the primitives as the one below it does, costs the same, and the first of
         // equal costs is the one taken, so skipping those changes nothing.
@@ -235,22 +252,24 @@ struct Builder {
         // Sweep from the right for the area and count of every right-hand side: rightArea[j]
         // for the primitives in occupied[j..].
         float rightArea[kBinCount];
-        uint32_t rightCount[kBinCount];
+        float rightTests[kBinCount];
         Box4 accumulated;
-        uint32_t accumulatedCount = 0;
+        uint32_t accumulatedCount = 0, accumulatedSingles = 0;
         for (int j = used - 1; j > 0; --j) {
           accumulated.extend(binBoxes[a][occupied[j]]);
           accumulatedCount += binCounts[a][occupied[j]];
+          accumulatedSingles += binSingles[a][occupied[j]];
           rightArea[j] = accumulated.surfaceArea();
-          rightCount[j] = accumulatedCount;
+          rightTests[j] = tests(accumulatedCount, accumulatedSingles);
         }
         Box4 left;
-        uint32_t leftCount = 0;
+        uint32_t leftCount = 0, leftSingles = 0;
         for (int j = 0; j + 1 < used; ++j) {
           left.extend(binBoxes[a][occupied[j]]);
           leftCount += binCounts[a][occupied[j]];
-          const float cost =
-              left.surfaceArea() * blocks(leftCount) + rightArea[j + 1] * blocks(rightCount[j + 1]);
+          leftSingles += binSingles[a][occupied[j]];
+          const float cost = left.surfaceArea() * tests(leftCount, leftSingles) +
+                             rightArea[j + 1] * rightTests[j + 1];
           if (cost < bestCost) {
             bestCost = cost;
             bestAxis = a;
@@ -350,7 +369,8 @@ void Bvh::build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions&
                   for (uint32_t i = begin; i < end; ++i) {
                     const Aabb& b = primitiveBounds[i];
                     BuildBox& box = boxes[i];
-                    box.lower = Float4{b.lower.x, b.lower.y, b.lower.z, 0.0f};
+                    const float single = i < options.blockedFrom ? kSingle : 0.0f;
+                    box.lower = Float4{b.lower.x, b.lower.y, b.lower.z, single};
                     box.upper = Float4{b.upper.x, b.upper.y, b.upper.z, 0.0f};
                     e.box.lower = simd::minLanes(box.lower, e.box.lower);
                     e.box.upper = simd::maxLanes(box.upper, e.box.upper);

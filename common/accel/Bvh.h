@@ -29,9 +29,11 @@ static_assert(sizeof(BvhNode) == 32);
 
 // How the SAH counts the cost of intersecting primitives. A leaf tested `primitiveBlock`
 // primitives at a time (SIMD packs) costs the number of blocks, not of primitives, so the
-// builder fills blocks instead of making leaves of one or two.
+// builder fills blocks instead of making leaves of one or two. Primitives below `blockedFrom`
+// (the caller lists them first) are tested one at a time whatever the block: each costs one.
 struct BvhBuildOptions {
   uint32_t primitiveBlock = 1;
+  uint32_t blockedFrom = 0;
   // Threads the build may use; the tree is the same for any number.
   unsigned threads = static_cast<unsigned>(availableCores());
 };

@@ -132,11 +132,13 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   }
   for (const Aabb& b : bounds) bounds_.extend(b);
 
-  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs.
+  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs. Spheres and
+  // cones, gathered before the triangles, are tested one at a time.
   const bool packed =
       traversal_ == Traversal::WideSimd && settings_.triangleTest != TriangleTest::PlaneThenInside;
   BvhBuildOptions buildOptions;
   buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
+  buildOptions.blockedFrom = static_cast<uint32_t>(spheres.size() + cones.size());
   bvh_.build(bounds, buildOptions);
   std::vector<Aabb>().swap(bounds);
   // Packed triangles go straight from the gathered array into their packs: their leaf entries
@@ -234,6 +236,7 @@ void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
         packs_.emplace_back();
         lane = 0;
       }
+      packs_[firstPack].hasTriangles = true;
       const Triangle& tri = triangles[PrimitiveRef::index(ref)];
       packs_.back().triangles.set(lane++, tri, meshes_[tri.mesh].firstTriangle + tri.face);
     }
@@ -294,8 +297,9 @@ template <bool kAnyHit>
 bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
                                 uint32_t packCount, float& tMax, HitRecord& hit) const {
   const bool watertight = settings_.triangleTest == TriangleTest::Watertight;
+  const LeafPack& leaf = packs_[firstPack];
   bool found = false;
-  for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
+  for (uint32_t p = firstPack; leaf.hasTriangles && p < firstPack + packCount; ++p) {
     const TrianglePack4& pack = packs_[p].triangles;
     simd::Float4 t, u, v;
     const uint32_t mask = watertight ? intersectWatertight4(ray, sheared, pack, tMax, t, u, v)
@@ -313,7 +317,6 @@ bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, ui
       }
     }
   }
-  const LeafPack& leaf = packs_[firstPack];
   if (leaf.hasOtherKinds) {
     found |= intersectLeaf<kAnyHit>(ray, sheared, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
   }

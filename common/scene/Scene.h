@@ -110,11 +110,13 @@ class Scene {
 
   // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH
   // points at the first. The leaf's primitive entries are kept for the other kinds it holds.
+  // The leaf's fields come first, in the cache line a ray reads before it tests any triangle.
   struct alignas(16) LeafPack {
-    TrianglePack4 triangles;
     uint32_t leafFirst = 0;
     uint16_t leafCount = 0;
+    bool hasTriangles = false;   // a leaf of spheres and cones only skips the empty pack's test
     bool hasOtherKinds = false;  // spheres or cones share the leaf
+    TrianglePack4 triangles;
   };
 
   template <bool kAnyHit>

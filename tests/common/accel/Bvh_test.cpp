@@ -131,5 +131,53 @@ TEST(Bvh, ParallelBuildGivesTheSerialTree) {
   EXPECT_EQ(a.stats().maxDepth, b.stats().maxDepth);
 }
 
+bool sameTree(const Bvh& a, const Bvh& b) {
+  if (a.nodes().size() != b.nodes().size() || a.primitiveOrder() != b.primitiveOrder()) {
+    return false;
+  }
+  return std::memcmp(a.nodes().data(), b.nodes().data(), a.nodes().size() * sizeof(BvhNode)) == 0;
+}
+
+// Spheres and cones share leaves with packed triangles but are tested one by one: the SAH must
+// charge each of them a full test, or it packs them four to a leaf as if they came at once.
+TEST(Bvh, PrimitivesTestedAloneCostOneTestEachWhateverTheBlock) {
+  const auto spheres = randomSpheres(20000, 9);
+  std::vector<Aabb> bounds;
+  for (const Sphere& s : spheres) bounds.push_back(s.bounds());
+  BvhBuildOptions single, blocked, allAlone, half;
+  blocked.primitiveBlock = allAlone.primitiveBlock = half.primitiveBlock = 4;
+  allAlone.blockedFrom = static_cast<uint32_t>(bounds.size());
+  half.blockedFrom = static_cast<uint32_t>(bounds.size() / 2);
+  Bvh bySingle, byBlocked, byAllAlone, byHalf;
+  bySingle.build(bounds, single);
+  byBlocked.build(bounds, blocked);
+  byAllAlone.build(bounds, allAlone);
+  byHalf.build(bounds, half);
+  EXPECT_TRUE(sameTree(bySingle, byAllAlone));
+  EXPECT_FALSE(sameTree(bySingle, byBlocked));
+
+  // With both kinds, leaves of lone-tested primitives stay smaller than leaves of blocked ones.
+  size_t aloneLeaves = 0, aloneCount = 0, blockedLeaves = 0, blockedCount = 0;
+  for (const BvhNode& n : byHalf.nodes()) {
+    if (!n.isLeaf()) continue;
+    uint32_t alone = 0;
+    for (uint32_t i = n.offset; i < n.offset + n.count; ++i) {
+      alone += byHalf.primitiveOrder()[i] < half.blockedFrom;
+    }
+    if (alone == n.count) {
+      ++aloneLeaves;
+      aloneCount += n.count;
+    } else if (alone == 0) {
+      ++blockedLeaves;
+      blockedCount += n.count;
+    }
+  }
+  ASSERT_GT(aloneLeaves, 100u);
+  ASSERT_GT(blockedLeaves, 100u);
+  const double aloneMean = static_cast<double>(aloneCount) / aloneLeaves;
+  const double blockedMean = static_cast<double>(blockedCount) / blockedLeaves;
+  EXPECT_LT(aloneMean, 0.75 * blockedMean) << aloneMean << " vs " << blockedMean;
+}
+
 }  // namespace
 }  // namespace prism
