@@ -2,7 +2,7 @@
 // same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
 //
 //   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
-//                                    [--build-only] [mesh.obj ...]
+//                                    [--build-only] [--embree-config CFG] [mesh.obj ...]
 //
 // Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
 // coherent primary rays from a camera (1024 × 768, in 4 × 4 pixel tiles), incoherent rays
@@ -15,6 +15,8 @@
 // every number is the median of
 // --runs rounds in which all contenders run one after another, in a rotating order.
 // --build-only stops after the build and memory lines (many rounds of the build in seconds).
+// --embree-config passes its string to rtcNewDevice: "isa=sse2" holds Embree to the instruction
+// set of Prism's default build (Embree otherwise picks the widest the CPU has, AVX2 or AVX-512).
 #include <embree3/rtcore.h>
 #include <time.h>
 
@@ -25,6 +27,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -200,8 +203,10 @@ struct EmbreeScene {
   double buildCpuSeconds = 0.0;  // every thread of the process, Embree's workers included
   size_t bytes = 0;
 
-  explicit EmbreeScene(const MeshDesc& mesh) {
-    device = rtcNewDevice(nullptr);  // builds on every core, as Prism's does
+  EmbreeScene(const MeshDesc& mesh, const std::string& config) {
+    // Builds on every core, as Prism's does.
+    device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
+    if (device == nullptr) throw std::runtime_error("Embree refused the device config: " + config);
     rtcSetDeviceMemoryMonitorFunction(device, countEmbreeMemory, nullptr);
     const ssize_t before = embreeBytes;
     scene = rtcNewScene(device);
@@ -325,6 +330,7 @@ struct Options {
   std::vector<std::string> objs;
   bool withVariants = true;  // also time the intermediate Prism traversals
   bool buildOnly = false;    // only the build and memory lines
+  std::string embreeConfig;  // rtcNewDevice's configuration string, e.g. "isa=sse2"
 };
 
 struct Agreement {
@@ -385,7 +391,7 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
     prismBvh.push_back(prismScene->buildStats().bvh.seconds);
     prismCollapse.push_back(prismScene->buildStats().wideBvh.seconds);
     embreeScene.reset();
-    embreeScene = std::make_unique<EmbreeScene>(mesh);
+    embreeScene = std::make_unique<EmbreeScene>(mesh, options.embreeConfig);
     embreeCpu.push_back(embreeScene->buildCpuSeconds);
     embreeBuilds.push_back(embreeScene->buildSeconds);
   }
@@ -584,6 +590,8 @@ int run(int argc, char** argv) {
       options.quick = true;
     } else if (arg == "--build-only") {
       options.buildOnly = true;
+    } else if (arg == "--embree-config" && i + 1 < argc) {
+      options.embreeConfig = argv[++i];
     } else if (arg == "--no-variants") {
       options.withVariants = false;
     } else if (arg == "--threads" && i + 1 < argc) {
@@ -597,16 +605,18 @@ int run(int argc, char** argv) {
     } else if (arg == "--help" || arg == "-h") {
       std::printf(
           "usage: %s [--runs N] [--quick] [--no-variants] [--threads 1,2] [--build-only] "
-          "[mesh.obj ...]\n",
+          "[--embree-config CFG, e.g. isa=sse2] [mesh.obj ...]\n",
           argv[0]);
       return 0;
     } else {
       options.objs.push_back(arg);
     }
   }
-  std::printf("# Prism (%s kernels) against Embree %d.%d.%d; %d rounds, medians\n",
-              simd::compiledInstructionSet(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR,
-              RTC_VERSION_PATCH, options.runs);
+  std::printf(
+      "# Prism (%s kernels) against Embree %d.%d.%d (device config \"%s\"); %d rounds, "
+      "medians\n",
+      simd::compiledInstructionSet(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
+      options.embreeConfig.c_str(), options.runs);
   std::vector<MeshDesc> meshes;
   meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
   meshes.push_back(displacedGrid(options.quick ? 100 : 708));
@@ -619,5 +629,10 @@ int run(int argc, char** argv) {
 }  // namespace prism
 
 int main(int argc, char** argv) {
-  return prism::run(argc, argv);
+  try {
+    return prism::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "prism_embree_compare: %s\n", e.what());
+    return 1;
+  }
 }
