@@ -184,6 +184,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   }
   if (packed) {
     buildTrianglePacks(triangles);
+    packed_ = true;
     // The packs hold every triangle's vertices and source: the triangles and, unless spheres
     // or cones share the leaves, the leaf entries are no longer read.
     std::vector<Triangle>().swap(triangles);
@@ -206,21 +207,28 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
 }
 
 void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
-  // Every leaf gets at least one pack, if only to carry its entries for the spheres and cones.
+  const auto trianglesIn = [&](uint32_t first, uint32_t count) {
+    uint32_t n = 0;
+    for (uint32_t k = first; k < first + count; ++k) {
+      n += PrimitiveRef::kind(leafRefs_[k]) == PrimitiveKind::Triangle;
+    }
+    return n;
+  };
   size_t packCount = 0;
   for (const WideBvhNode& node : wideBvh_.nodes()) {
     for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-      if (node.count[i] == 0) continue;
-      uint32_t leafTriangles = 0;
-      for (uint32_t k = node.child[i]; k < node.child[i] + node.count[i]; ++k) {
-        leafTriangles += PrimitiveRef::kind(leafRefs_[k]) == PrimitiveKind::Triangle;
-      }
-      packCount += std::max(1u, (leafTriangles + 3) / 4);
+      if (node.count[i] != 0) packCount += (trianglesIn(node.child[i], node.count[i]) + 3) / 4;
     }
   }
+  if (leafRefs_.size() >= kPacklessLeaf) {
+    throw std::length_error("too many primitives for the BVH's leaf numbering");
+  }
   reserveOnHugePages(packs_, packCount);
-  // Leaves are relabelled to (first pack, pack count).
+  // Leaves are relabelled to (first pack, pack count), or to their entries if they hold no
+  // triangle.
   wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
+    if (trianglesIn(first, count) == 0)
+      return std::pair<uint32_t, uint32_t>(first | kPacklessLeaf, count);
     const uint32_t firstPack = static_cast<uint32_t>(packs_.size());
     packs_.emplace_back();
     packs_.back().leafFirst = first;
@@ -236,7 +244,6 @@ void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
         packs_.emplace_back();
         lane = 0;
       }
-      packs_[firstPack].hasTriangles = true;
       const Triangle& tri = triangles[PrimitiveRef::index(ref)];
       packs_.back().triangles.set(lane++, tri, meshes_[tri.mesh].firstTriangle + tri.face);
     }
@@ -296,10 +303,13 @@ bool Scene::intersectLeafPacked(const Ray& ray, uint32_t firstPack, uint32_t pac
 template <bool kAnyHit>
 bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
                                 uint32_t packCount, float& tMax, HitRecord& hit) const {
+  if (firstPack & kPacklessLeaf) {
+    return intersectLeaf<kAnyHit>(ray, sheared, firstPack & ~kPacklessLeaf, packCount, true, tMax,
+                                  hit);
+  }
   const bool watertight = settings_.triangleTest == TriangleTest::Watertight;
-  const LeafPack& leaf = packs_[firstPack];
   bool found = false;
-  for (uint32_t p = firstPack; leaf.hasTriangles && p < firstPack + packCount; ++p) {
+  for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
     const TrianglePack4& pack = packs_[p].triangles;
     simd::Float4 t, u, v;
     const uint32_t mask = watertight ? intersectWatertight4(ray, sheared, pack, tMax, t, u, v)
@@ -317,6 +327,7 @@ bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, ui
       }
     }
   }
+  const LeafPack& leaf = packs_[firstPack];
   if (leaf.hasOtherKinds) {
     found |= intersectLeaf<kAnyHit>(ray, sheared, leaf.leafFirst, leaf.leafCount, true, tMax, hit);
   }
@@ -336,7 +347,7 @@ bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const 
       return intersectLeaf<kAnyHit>(ray, sheared, first, count, false, leafTMax, hit);
     });
   }
-  if (packs_.empty()) {
+  if (!packed_) {
     return wideBvh_.traverse<kAnyHit>(ray, tMax, [&](uint32_t first, uint32_t count, float& t) {
       return intersectLeaf<kAnyHit>(ray, sheared, first, count, false, t, hit);
     });
@@ -347,7 +358,7 @@ bool Scene::intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const 
 }
 
 Triangle Scene::triangle(uint32_t index) const {
-  if (packs_.empty()) return triangles_[index];
+  if (!packed_) return triangles_[index];
   const TrianglePack4& pack = packs_[index / TrianglePack4::kWidth].triangles;
   const int lane = static_cast<int>(index % TrianglePack4::kWidth);
   Triangle tri;
@@ -407,7 +418,7 @@ uint32_t liveRays(const Ray* rays, int count) {
 void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
   const uint32_t live = liveRays(rays, count);
   for (int i = 0; i < count; ++i) found[i] = false;
-  if (packs_.empty()) {  // no packed wide walk: one ray at a time
+  if (!packed_) {  // no packed wide walk: one ray at a time
     for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
     return;
   }
@@ -447,7 +458,7 @@ void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found)
 void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
   const uint32_t live = liveRays(rays, count);
   for (int i = 0; i < count; ++i) blocked[i] = false;
-  if (packs_.empty() || !planes_.empty()) {  // planes first, as occluded() does: one at a time
+  if (!packed_ || !planes_.empty()) {  // planes first, as occluded() does: one at a time
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
   }

@@ -110,14 +110,16 @@ class Scene {
 
   // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH
   // points at the first. The leaf's primitive entries are kept for the other kinds it holds.
-  // The leaf's fields come first, in the cache line a ray reads before it tests any triangle.
   struct alignas(16) LeafPack {
+    TrianglePack4 triangles;
     uint32_t leafFirst = 0;
     uint16_t leafCount = 0;
-    bool hasTriangles = false;   // a leaf of spheres and cones only skips the empty pack's test
     bool hasOtherKinds = false;  // spheres or cones share the leaf
-    TrianglePack4 triangles;
   };
+  // A wide-BVH leaf without triangles has no pack: its child field is its first leaf entry with
+  // this bit set, its count the entries' count (a pack of four empty lanes per sphere or cone
+  // leaf would take 176 bytes and a wasted test).
+  static constexpr uint32_t kPacklessLeaf = 1u << 31;
 
   template <bool kAnyHit>
   bool intersectBounded(const Ray& ray, float& tMax, HitRecord& hit) const;
@@ -159,6 +161,7 @@ class Scene {
   Traversal traversal_;
   WideBvh wideBvh_;
   std::vector<LeafPack> packs_;
+  bool packed_ = false;  // the wide walk's leaves point at packs (or are packless)
   SceneBuildStats stats_;
 };
 

@@ -88,7 +88,9 @@ TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
         wrong += radii[i] != expected[i];
       }
       EXPECT_EQ(wrong, 0u) << "k " << k << ", threads " << threads;
-      if (k > 1) EXPECT_GT(capped, 0u) << "k " << k;  // the sparse field is capped
+      if (k > 1) {
+        EXPECT_GT(capped, 0u) << "k " << k;  // the sparse field is capped
+      }
       EXPECT_LT(capped, radii.size()) << "k " << k;
     }
   }

@@ -142,6 +142,55 @@ TEST(Scene, PackedScenesKeepOnlyTheWideTreeAndThePacks) {
   }
 }
 
+// Leaves of spheres and cones only take no triangle pack (the wide BVH points at their entries),
+// and the packed walk still answers every ray as the binary walk does, in leaves with and
+// without triangles.
+TEST(Scene, LeavesWithoutTrianglesTakeNoPackAndAnswerAsTheBinaryWalk) {
+  SceneDescription d;
+  Pcg32 rng(7, 3);
+  const auto inBox = [&] {
+    return Vec3(rng.nextFloat() * 10 - 5, rng.nextFloat() * 10 - 5, rng.nextFloat() * 10 - 5);
+  };
+  for (int i = 0; i < 300; ++i) {
+    SphereDesc sphere;
+    sphere.center = inBox();
+    sphere.radius = 0.1f + 0.2f * rng.nextFloat();
+    d.spheres.push_back(sphere);
+  }
+  for (int i = 0; i < 150; ++i) {
+    ConeDesc cone;
+    cone.base = inBox();
+    cone.baseRadius = 0.1f;
+    cone.apex = cone.base + 2.0f * (inBox() / 5.0f);
+    cone.apexRadius = 0.05f;
+    d.cones.push_back(cone);
+  }
+  const Scene alone(d, Traversal::WideSimd);
+  EXPECT_EQ(alone.buildStats().packBytes, 0u);
+
+  const test::TestMesh ball = test::icosphere(2, Vec3(0.0f), 2.0f);
+  MeshDesc mesh;
+  mesh.positions = ball.positions;
+  mesh.indices = ball.indices;
+  d.meshes.push_back(mesh);
+  const Scene mixed(d, Traversal::WideSimd), binary(d, Traversal::BinaryScalar);
+  EXPECT_GT(mixed.buildStats().packBytes, 0u);
+  size_t hits[3] = {};
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 origin = 1.6f * inBox();
+    const Ray ray{origin, glm::normalize(inBox() - origin)};
+    HitRecord a, b;
+    const bool hit = mixed.intersect(ray, a);
+    ASSERT_EQ(hit, binary.intersect(ray, b)) << i;
+    ASSERT_EQ(mixed.occluded(ray), binary.occluded(ray)) << i;
+    if (!hit) continue;
+    ASSERT_EQ(a.t, b.t) << i;
+    ASSERT_EQ(PrimitiveRef::kind(a.primitive), PrimitiveRef::kind(b.primitive)) << i;
+    ++hits[static_cast<int>(PrimitiveRef::kind(a.primitive)) % 3];
+  }
+  for (size_t h : hits) EXPECT_GT(h, 100u);  // every kind was hit
+}
+
 // ---- caustic roles -------------------------------------------------------------------------
 
 // Materials for the role tests: 0 glass (no diffuse), 1 diffuse, 2 mirror with some diffuse,
