@@ -255,7 +255,7 @@ TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
   EXPECT_NE(run.exitCode, 0) << run.output;
   const std::string refusal =
       "rank 1: cannot build the scene: the scene's geometry (9600 triangles) needs 23.6 MiB "
-      "(24730624 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
+      "(24731392 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
   const size_t first = run.output.find(refusal);
   ASSERT_NE(first, std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(refusal, first + 1), std::string::npos) << run.output;
