@@ -46,6 +46,11 @@ void WideBvh::build(const Bvh& binary) {
   const std::vector<BvhNode>& bin = binary.nodes();
   if (!bin.empty()) {
     reserveOnHugePages(nodes_, bin.size() / 4 + 1);
+    // Leaves under each binary node (a node's children come after it in the array).
+    std::vector<uint32_t> leaves(bin.size());
+    for (size_t i = bin.size(); i-- > 0;) {
+      leaves[i] = bin[i].isLeaf() ? 1 : leaves[i + 1] + leaves[bin[i].offset];
+    }
     // Work list of (binary node, wide node index) pairs still to be filled.
     std::vector<std::pair<uint32_t, uint32_t>> work{{0, 0}};
     nodes_.emplace_back();
@@ -61,11 +66,16 @@ void WideBvh::build(const Bvh& binary) {
         slots[used++] = {first, bin[first].bounds.surfaceArea()};
         slots[used++] = {second, bin[second].bounds.surfaceArea()};
       }
-      // Open the largest interior slot until the node is full or only leaves remain.
+      // Open the largest interior slot until the node is full or only leaves remain. A subtree
+      // of at most kWidth leaves is opened only if all of them fit here: otherwise it becomes one
+      // full node of its own instead of several half-empty ones.
       while (used < WideBvhNode::kWidth) {
         int largest = -1;
         for (int i = 0; i < used; ++i) {
-          if (bin[slots[i].binaryNode].isLeaf()) continue;
+          const uint32_t node = slots[i].binaryNode;
+          if (bin[node].isLeaf()) continue;
+          const bool small = leaves[node] <= WideBvhNode::kWidth;
+          if (small && used - 1 + static_cast<int>(leaves[node]) > WideBvhNode::kWidth) continue;
           if (largest < 0 || slots[i].area > slots[largest].area) largest = i;
         }
         if (largest < 0) break;

@@ -5,7 +5,9 @@
 //
 // Collapsing: starting from a binary node, the child with the largest surface area that is not a
 // leaf is replaced by its two children until eight slots are used (after Wald et al., "Getting
-// Rid of Packets", 2008, and Embree's BVH8 built the same way from a binary SAH build).
+// Rid of Packets", 2008, and Embree's BVH8 built the same way from a binary SAH build). A child
+// with at most eight leaves below it is opened only if all of them fit in the node; otherwise
+// it becomes one node of its own, rather than several half-empty ones.
 #pragma once
 
 #include <cmath>

@@ -198,8 +198,11 @@ TEST(LiveRenderer, ANewViewEndsARefinementPassAndItsLateTilesAreDropped) {
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
-  // The view's first frame is 1 spp; its pass 1, 64 spp, takes about a second.
-  renderer.setView({d.camera, 64, DebugView::Image});
+  // The view's first frame is 1 spp; its pass 1, 2048 spp, would take seconds (an 8-pixel tile
+  // tens of milliseconds), so both threads are mid-tile when the view changes and those tiles
+  // come back after the change has been seen. (At 64 spp a tile took under a millisecond, and
+  // on a loaded machine both could return before the coordinator saw the new view.)
+  renderer.setView({d.camera, 2048, DebugView::Image});
   ASSERT_TRUE(recorder.waitForPass(1, 0));
   ASSERT_TRUE(recorder.waitForPasses(2));
   const size_t tilesBefore = recorder.passes()[0].tiles.size();
@@ -224,7 +227,7 @@ TEST(LiveRenderer, ANewViewEndsARefinementPassAndItsLateTilesAreDropped) {
   EXPECT_EQ(passes[0].view->samplesPerPixel, 1);
   EXPECT_EQ(passes[1].pass, 1);
   EXPECT_FALSE(passes[1].firstOfView);
-  EXPECT_EQ(passes[1].view->samplesPerPixel, 64);
+  EXPECT_EQ(passes[1].view->samplesPerPixel, 2048);
   EXPECT_EQ(passes[2].view->camera.position, moved.position);
   EXPECT_EQ(passes[2].view->debugView, DebugView::Normals);
   EXPECT_EQ(passes[2].pass, 1);

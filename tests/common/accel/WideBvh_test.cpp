@@ -59,6 +59,30 @@ TEST(WideBvh, KeepsEveryLeafOfTheBinaryBvh) {
   EXPECT_EQ(wide.stats().memoryBytes, wide.nodes().size() * sizeof(WideBvhNode));
 }
 
+// Two far-apart rows of eight unit boxes: the SAH gives each box its own leaf, so each row is a
+// subtree of eight leaves. Each row must become one full node; opening the rows into the root
+// (as a plain largest-first collapse does) would leave eight nodes of two leaves below it.
+TEST(WideBvh, ASubtreeOfAtMostEightLeavesBecomesOneNode) {
+  std::vector<Aabb> boxes;
+  for (int row = 0; row < 2; ++row) {
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 lower(1000.0f * row + 2.0f * i, 0.0f, 0.0f);
+      boxes.push_back({lower, lower + Vec3(1.0f)});
+    }
+  }
+  Bvh binary;
+  binary.build(boxes);
+  size_t binaryLeaves = 0;
+  for (const BvhNode& n : binary.nodes()) binaryLeaves += n.isLeaf();
+  ASSERT_EQ(binaryLeaves, 16u);
+  WideBvh wide;
+  wide.build(binary);
+  ASSERT_EQ(wide.nodes().size(), 3u);
+  for (int node = 1; node < 3; ++node) {
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) EXPECT_EQ(wide.nodes()[node].count[i], 1);
+  }
+}
+
 TEST(WideBvh, EmptyBvhIsNeverHit) {
   Bvh binary;
   binary.build({});
