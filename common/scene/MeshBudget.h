@@ -27,7 +27,7 @@ inline constexpr uint64_t kBytesPerVertex = 64;
 // (36), up to two 32-byte binary nodes and the parallel build's copy of them (96), its share of
 // the wide nodes (about 80: spheres and cones get leaves of their own, one test each), the
 // Scene's copy (20 for a sphere, 72 for a cone part) and leaf entry, with room for 2 MiB pages
-// rounding up. Measured (docs/reliability.md): 325–400 per sphere, 335 per cone part.
+// rounding up. Measured (docs/reliability.md): 323–354 per sphere, 312 per cone part.
 inline constexpr uint64_t kBytesPerOtherPrimitive = 448;
 
 inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {
