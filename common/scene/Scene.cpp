@@ -1,5 +1,6 @@
 #include "scene/Scene.h"
 
+#include <stdexcept>
 #include <utility>
 
 #include "accel/WideBvhPacket.h"
