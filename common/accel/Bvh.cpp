@@ -198,7 +198,7 @@ struct Builder {
   void chooseSplit(uint32_t begin, uint32_t end, const NodeExtent& node, size_t depth, int& axis,
                    uint32_t& middle, NodeExtent& leftOut, NodeExtent& rightOut) {
     const uint32_t count = end - begin;
-    float leafCost = kInf;  // known once binned: a split is only weighed against it then
+    uint32_t singles = 0;  // primitives tested on their own, counted by the binning
     const Aabb centerBox = node.centers.aabb();
     const Vec3 extent = centerBox.extent();
     const Float4 lower = node.centers.lower;
@@ -234,13 +234,9 @@ struct Builder {
       const auto& binBoxes = bins.boxes;
       const auto& binCounts = bins.counts;
       const auto& binSingles = bins.singles;
+      for (int b = 0; b < kBinCount; ++b) singles += binSingles[0][b];  // each axis bins them all
       for (int a = 0; a < 3; ++a) {
         if (!(extent[a] > 0.0f)) continue;
-        if (leafCost == kInf) {
-          uint32_t singles = 0;
-          for (int b = 0; b < kBinCount; ++b) singles += binSingles[a][b];
-          leafCost = kIntersectionCost * tests(count, singles);
-        }
         // Only splits just above an occupied bin are candidates: a split above an empty bin
         // divides the primitives as the one below it does, costs the same, and the first of
         // equal costs is the one taken, so skipping those changes nothing.
@@ -291,6 +287,7 @@ struct Builder {
     }
     const float parentArea = std::max(node.box.surfaceArea(), 1e-30f);
     const float splitCost = kTraversalCost + kIntersectionCost * bestCost / parentArea;
+    const float leafCost = kIntersectionCost * tests(count, singles);
     if (count <= kMaxLeafSize && splitCost >= leafCost) return;
     axis = bestAxis;
     middle = partition(begin, end, bestAxis, bestBin, lower, scale, leftOut, rightOut);
