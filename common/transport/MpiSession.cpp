@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "transport/LoopbackNoDelay.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -74,6 +75,9 @@ MpiSession::MpiSession(int* argc, char*** argv) {
   const auto initStart = Clock::now();
   MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
   initSeconds_ = secondsSince(initStart);
+  // MPI_Init opened the connection to the launcher's PMIx server; without this, MPI_Finalize
+  // stalls 40 ms on Nagle's algorithm (LoopbackNoDelay.h).
+  disableNagleOnLoopbackConnections();
   if (provided < MPI_THREAD_SERIALIZED) {
     MPI_Finalize();
     throw TransportError("the MPI library does not allow threads (MPI_THREAD_SERIALIZED)");
