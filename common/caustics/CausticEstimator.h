@@ -4,6 +4,7 @@
 #pragma once
 
 #include "geometry/HitRecord.h"
+#include "math/RayDifferential.h"
 #include "math/Vec.h"
 
 namespace prism {
@@ -14,8 +15,11 @@ class CausticEstimator {
   // Irradiance in W/m² per channel arriving at position on the side normal faces (unit normal).
   virtual Color irradiance(const Vec3& position, const Vec3& normal) const = 0;
   // The same at a surface point the renderer computed: estimators that trace rays from the point
-  // start them s.leavingDistance off the surface (math/RayOffset.h).
-  virtual Color irradianceAt(const SurfaceHit& s) const {
+  // start them s.leavingDistance off the surface (math/RayOffset.h). footprint is the pixel's
+  // area around the point (math/RayDifferential.h), when known: estimators that average over an
+  // area give the average over it, the others ignore it.
+  virtual Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const {
+    (void)footprint;
     return irradiance(s.position, s.geometricNormal);
   }
 };

@@ -102,7 +102,7 @@ Color MirrorCausticEstimator::irradiance(const Vec3& position, const Vec3& norma
   return irradianceWithin(position, normal, leavingDistance(position, Vec3(0.0f), normal));
 }
 
-Color MirrorCausticEstimator::irradianceAt(const SurfaceHit& s) const {
+Color MirrorCausticEstimator::irradianceAt(const SurfaceHit& s, const PixelFootprint&) const {
   return irradianceWithin(s.position, s.geometricNormal, s.leavingDistance);
 }
 

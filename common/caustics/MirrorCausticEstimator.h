@@ -25,7 +25,8 @@ class MirrorCausticEstimator : public CausticEstimator {
 
   // position is taken as exact (a point given, not computed).
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
-  Color irradianceAt(const SurfaceHit& s) const override;
+  // Exact at the point: the footprint is not used.
+  Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
 
   size_t facetCount() const { return facets_.size(); }
 

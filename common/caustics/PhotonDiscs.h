@@ -18,9 +18,13 @@ class PhotonDiscs {
   PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii);
 
   // Calls visit(photon index, squared distance, squared radius) for every photon whose disc
-  // covers x (distance < radius), in tree order.
+  // covers x (distance < radius), or that lies within reach of x, in tree order.
   template <class Visit>
-  void covering(const Vec3& x, Visit&& visit) const;
+  void covering(const Vec3& x, float reach, Visit&& visit) const;
+  template <class Visit>
+  void covering(const Vec3& x, Visit&& visit) const {
+    covering(x, 0.0f, visit);
+  }
 
   size_t bytes() const;
 
@@ -39,21 +43,23 @@ class PhotonDiscs {
 };
 
 template <class Visit>
-void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
+void PhotonDiscs::covering(const Vec3& x, float reach, Visit&& visit) const {
   if (nodes_.empty()) return;
+  const float reach2 = reach * reach;
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (x.x < n.lo.x || x.y < n.lo.y || x.z < n.lo.z || x.x > n.hi.x || x.y > n.hi.y ||
-        x.z > n.hi.z)
+    // The discs' boxes grown by reach hold every centre within reach of x.
+    if (x.x < n.lo.x - reach || x.y < n.lo.y - reach || x.z < n.lo.z - reach ||
+        x.x > n.hi.x + reach || x.y > n.hi.y + reach || x.z > n.hi.z + reach)
       continue;
     if (n.count > 0) {
       for (uint32_t s = n.first; s < n.first + n.count; ++s) {
         const Vec3 d = x - centre_[s];
         const float d2 = glm::dot(d, d);
-        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
+        if (d2 < radius2_[s] || d2 < reach2) visit(index_[s], d2, radius2_[s]);
       }
     } else {
       const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());

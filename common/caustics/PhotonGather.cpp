@@ -1,5 +1,6 @@
 #include "caustics/PhotonGather.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "caustics/DensityKernel.h"
@@ -29,25 +30,42 @@ PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
 }
 
 Color PhotonGather::irradiance(const Vec3& position, const Vec3& normal) const {
+  return irradianceWithin(position, normal, {});
+}
+
+Color PhotonGather::irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint) const {
+  return irradianceWithin(s.position, s.geometricNormal, footprint);
+}
+
+Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
+                                     const PixelFootprint& footprint) const {
   const std::vector<Photon>& photons = map_->photons();
+  // A photon whose kernel covers less than the footprint's area counts in the footprint.
+  const float reach = footprint.valid ? footprint.reach() : 0.0f;
+  const float area = footprint.valid ? footprint.area() : 0.0f;
+  const float narrow2 = area * kInvPi;  // the squared radius of a disc of that area
   Color sum(0.0f);
+  const auto add = [&](const Photon& p, float distance2, float radius2) {
+    if (glm::dot(p.directionVector(), normal) >= 0.0f) return;  // arrived from behind
+    if (radius2 > narrow2) {
+      // Gathered out to the footprint's reach, beyond the photon's own kernel.
+      if (footprint.valid && !(distance2 < radius2)) return;
+      sum += p.power * densityKernel(settings_.filter, distance2, radius2);
+    } else if (footprint.contains(p.position - position, normal)) {
+      sum += p.power / area;
+    }
+  };
   if (!settings_.fixedRadius) {
     if (!discs_) return sum;
-    discs_->covering(position, [&](uint32_t index, float distance2, float radius2) {
-      const Photon& p = photons[index];
-      if (glm::dot(p.directionVector(), normal) >= 0.0f) return;  // arrived from behind
-      sum += p.power * densityKernel(settings_.filter, distance2, radius2);
+    discs_->covering(position, reach, [&](uint32_t index, float distance2, float radius2) {
+      add(photons[index], distance2, radius2);
     });
     return sum;
   }
   thread_local std::vector<PhotonNeighbour> neighbours;
   const float radius2 = settings_.radius * settings_.radius;
-  map_->within(position, radius2, neighbours);
-  for (const PhotonNeighbour& n : neighbours) {
-    const Photon& p = photons[n.index];
-    if (glm::dot(p.directionVector(), normal) >= 0.0f) continue;  // arrived from behind
-    sum += p.power * densityKernel(settings_.filter, n.distance2, radius2);
-  }
+  map_->within(position, std::max(radius2, reach * reach), neighbours);
+  for (const PhotonNeighbour& n : neighbours) add(photons[n.index], n.distance2, radius2);
   return sum;
 }
 

@@ -29,12 +29,20 @@ class PhotonGather : public CausticEstimator {
                int threads = 0);
 
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
+  // With the pixel's footprint: a photon whose kernel is narrower than the footprint counts
+  // its power over the footprint's area if it lies in it, and nothing otherwise, so a focus
+  // narrower than a pixel gives that pixel its average, not the value at one point of it; wider
+  // photons keep their kernel.
+  Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
 
   const PhotonMap& map() const { return *map_; }
   const PhotonGatherSettings& settings() const { return settings_; }
 
  private:
   std::shared_ptr<const PhotonMap> map_;
+  Color irradianceWithin(const Vec3& position, const Vec3& normal,
+                         const PixelFootprint& footprint) const;
+
   PhotonGatherSettings settings_;
   std::unique_ptr<const PhotonDiscs> discs_;  // per-photon radii only
 };

@@ -1,6 +1,7 @@
 #include "render/WhittedIntegrator.h"
 
 #include "math/RayOffset.h"
+#include "scene/PrimitiveRef.h"
 #include "shading/LightFalloff.h"
 #include "shading/MaterialEval.h"
 #include "shading/Optics.h"
@@ -43,7 +44,8 @@ Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc&
 }
 
 Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
-                                  RayCounters& counters) const {
+                                  RayCounters& counters,
+                                  const RayDifferential& differential) const {
   HitRecord hit;
   if (!scene_.intersect(ray, hit)) {
     return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
@@ -61,12 +63,21 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
       result += directLighting(s, m, albedo, toViewer, counters);
     }
   }
+  const PixelFootprint footprint = differential.footprint(ray.direction, hit.t, s.geometricNormal);
   if (terms_.caustics && (s.caustic & kReceivesCaustics) && !isBlack(albedo)) {
-    result += albedo * kInvPi * terms_.caustics->irradianceAt(s);
+    result += albedo * kInvPi * terms_.caustics->irradianceAt(s, footprint);
   }
 
   const RenderSettings& settings = scene_.settings();
   if (depth >= settings.maxDepth) return result;
+  // A flat mirror passes the pixel's footprint on; refraction and curved surfaces (a lens, a
+  // convex mirror) would need the surface's curvature and the index, so the footprint ends there
+  // and estimates past them are taken at the point.
+  const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
+  const bool flat = kind == PrimitiveKind::Plane ||
+                    (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
+  const RayDifferential mirrored =
+      flat ? differential.reflected(footprint, s.geometricNormal) : RayDifferential{};
 
   const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
 
@@ -75,7 +86,8 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
     const Vec3 direction = reflectedDirection(s, ray.direction);
     Ray reflected{s.rayOrigin(direction), direction};
     ++counters.secondary;
-    result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters);
+    result +=
+        reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters, mirrored);
   }
 
   const Color transmitContribution = weight * transmitWeight;

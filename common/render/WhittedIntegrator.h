@@ -5,6 +5,7 @@
 #pragma once
 
 #include "caustics/CausticEstimator.h"
+#include "math/RayDifferential.h"
 #include "render/LightTerms.h"
 #include "render/RayCounters.h"
 #include "scene/Scene.h"
@@ -18,7 +19,11 @@ class WhittedIntegrator {
 
   // Radiance arriving along ray (unit direction). depth counts bounces so far; weight is the
   // product of reflection/transmission weights that scales this ray's contribution to the pixel.
-  Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters) const;
+  // differential is how the ray changes per pixel (Camera::pixelDifferential): the caustic
+  // estimate averages over the pixel's footprint where it meets a receiver. Without one (the
+  // default) the estimate is taken at the point.
+  Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
+                 const RayDifferential& differential = {}) const;
 
  private:
   Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,

@@ -38,6 +38,25 @@ Ray Camera::generateRay(float x, float y) const {
   return ray;
 }
 
+RayDifferential Camera::pixelDifferential(const Ray& ray) const {
+  // generateRay's image-plane point moves by these per pixel.
+  const Vec3 stepX = (2.0f * halfWidth_ * invWidth_) * right_;
+  const Vec3 stepY = (-2.0f * halfHeight_ * invHeight_) * up_;
+  RayDifferential d;
+  d.valid = true;
+  if (projection_ != Projection::Perspective) {
+    d.dOdx = stepX;
+    d.dOdy = stepY;
+    return d;
+  }
+  // The direction is normalize(u) with u·forward = 1: dD = (du − D(D·du)) / |u|.
+  const Vec3& D = ray.direction;
+  const float invLength = glm::dot(D, forward_);
+  d.dDdx = (stepX - D * glm::dot(D, stepX)) * invLength;
+  d.dDdy = (stepY - D * glm::dot(D, stepY)) * invLength;
+  return d;
+}
+
 std::optional<Vec2> Camera::project(const Vec3& p) const {
   const Vec3 d = p - position_;
   float sx = glm::dot(d, right_), sy = glm::dot(d, up_);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "math/Ray.h"
+#include "math/RayDifferential.h"
 #include "scene/SceneDescription.h"
 
 namespace prism {
@@ -15,6 +16,10 @@ class Camera {
 
   // A unit-direction ray through the image-plane point (x, y), in pixels.
   Ray generateRay(float x, float y) const;
+  // How ray (from generateRay) changes per pixel step in x and in y: the pixel's own footprint
+  // for every sample of it, not a 1/spp share (with shares a focus narrower than a pixel could
+  // fall between its samples' footprints or into a neighbour's: docs/accuracy.md).
+  RayDifferential pixelDifferential(const Ray& ray) const;
   // The image-plane point, in pixels, that world point p projects to; nothing when p lies
   // behind the camera.
   std::optional<Vec2> project(const Vec3& p) const;

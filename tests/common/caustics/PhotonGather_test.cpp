@@ -119,5 +119,52 @@ TEST(PhotonGather, NoPhotonsNoLight) {
   EXPECT_EQ(far.irradiance({5, 0, 5}, {0, 1, 0}), Color(0.0f));
 }
 
+// A focus narrower than the pixel's footprint (a 0.01 square on the plane): four photons within
+// 1e-4 of each other, their own radii that small. A pixel whose footprint holds the focus sees
+// their power over the footprint's area, wherever in it the focus lies; a pixel whose footprint
+// misses it sees nothing, however close; without a footprint the estimate is taken at the point.
+TEST(PhotonGather, AFocusNarrowerThanThePixelCountsInThePixelWhoseFootprintHoldsIt) {
+  std::vector<Photon> photons;
+  for (int i = 0; i < 4; ++i) {
+    Photon p;
+    p.position = {1e-4f * float(i % 2), 0.0f, 1e-4f * float(i / 2)};
+    p.power = kPower;
+    p.setDirection(glm::normalize(fromAbove(i)));
+    photons.push_back(p);
+  }
+  const PhotonGather gather(std::make_shared<const PhotonMap>(std::move(photons)),
+                            {false, 2, 0.1f, PhotonFilter::Cone});
+  const PixelFootprint pixel{true, {0.01f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.01f}};
+  const Color expected = 4.0f * kPower / 1e-4f;
+  const auto at = [](float x, float z) {
+    SurfaceHit s;
+    s.position = {x, 0.0f, z};
+    s.geometricNormal = {0, 1, 0};
+    return s;
+  };
+  for (const Vec3 centre : {Vec3(0, 0, 0), Vec3(0.003f, 0, -0.002f), Vec3(-0.0048f, 0, 0.0048f)}) {
+    const Color e = gather.irradianceAt(at(centre.x, centre.z), pixel);
+    EXPECT_NEAR(e.y, expected.y, 1e-4f * expected.y)
+        << "pixel centre " << centre.x << ", " << centre.z;
+  }
+  // The neighbouring pixels: the focus lies just beyond their edge.
+  EXPECT_EQ(gather.irradianceAt(at(0.0052f, 0.0f), pixel), Color(0.0f));
+  EXPECT_EQ(gather.irradianceAt(at(-0.0052f, 0.0052f), pixel), Color(0.0f));
+  EXPECT_EQ(gather.irradianceAt(at(0.003f, 0.0f)), Color(0.0f));  // the point sees no disc
+}
+
+// Photons wider than the footprint keep their own kernel: the uniform field gives its
+// irradiance through a pixel footprint smaller than the photons' discs as at the point.
+TEST(PhotonGather, PhotonsWiderThanThePixelKeepTheirKernel) {
+  const PhotonGather gather(uniformField(fromAbove), {false, 300, 0.2f, PhotonFilter::Cone});
+  const PixelFootprint pixel{true, {0.02f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.03f}};
+  for (const Vec3& p : queryPoints()) {
+    SurfaceHit s;
+    s.position = p;
+    s.geometricNormal = {0, 1, 0};
+    EXPECT_EQ(gather.irradianceAt(s, pixel), gather.irradiance(p, {0, 1, 0}));
+  }
+}
+
 }  // namespace
 }  // namespace prism

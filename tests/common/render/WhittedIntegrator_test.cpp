@@ -167,5 +167,73 @@ TEST(WhittedIntegrator, DepthLimitStopsRecursionBetweenFacingMirrors) {
   EXPECT_FLOAT_EQ(c.x, 0.0f);  // every path ends on a black mirror, never escapes
 }
 
+// Records the footprints the integrator asks the caustic estimate for.
+class FootprintProbe : public CausticEstimator {
+ public:
+  Color irradiance(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  Color irradianceAt(const SurfaceHit&, const PixelFootprint& footprint) const override {
+    footprints.push_back(footprint);
+    return Color(0.0f);
+  }
+  mutable std::vector<PixelFootprint> footprints;
+};
+
+void expectNear(const Vec3& got, const Vec3& expected, float tolerance) {
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], expected[i], tolerance) << "component " << i;
+}
+
+// The pixel's footprint where its ray meets a receiver, through a flat mirror: each pixel step
+// turns the ray by 0.01 rad, so after 4 units of path (1 down to the mirror, 3 up to the
+// ceiling) the footprint's sides are 0.04 long; at 60° from the normal the side in the plane of
+// incidence is twice as long (8 units of path: 0.08 across, 0.16 along).
+TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughFlatMirrors) {
+  SceneDescription d;
+  d.camera.position = {0, 1, 0};
+  d.camera.lookAt = {0, 0, 0};
+  d.camera.up = {0, 0, -1};
+  d.render.width = d.render.height = 9;
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.0f);
+  mirror.reflectance = Color(1.0f);
+  d.materials.push_back(mirror);
+  d.materials.push_back(lambert(Color(0.5f)));
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});  // a mirror floor 1 below the camera
+  d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // a receiving ceiling 3 above the floor
+  const Scene scene(d);
+  FootprintProbe probe;
+  const WhittedIntegrator integrator(scene, {true, &probe});
+  RayCounters rays;
+  RayDifferential turn;
+  turn.valid = true;
+  turn.dDdx = {0.01f, 0.0f, 0.0f};
+  turn.dDdy = {0.0f, 0.0f, 0.01f};
+  integrator.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
+  ASSERT_EQ(probe.footprints.size(), 1u);  // the ceiling; the mirror receives no caustic
+  ASSERT_TRUE(probe.footprints[0].valid);
+  expectNear(probe.footprints[0].a, {0.04f, 0, 0}, 1e-6f);
+  expectNear(probe.footprints[0].b, {0, 0, 0.04f}, 1e-6f);
+
+  probe.footprints.clear();
+  const Vec3 slanted = glm::normalize(Vec3(std::sqrt(3.0f), -1.0f, 0.0f));
+  RayDifferential slantedTurn = turn;
+  slantedTurn.dDdx = 0.01f * glm::normalize(Vec3(0.5f, std::sqrt(3.0f) * 0.5f, 0.0f));
+  integrator.radiance(Ray{{0, 1, 0}, slanted}, 0, Color(1.0f), rays, slantedTurn);
+  ASSERT_EQ(probe.footprints.size(), 1u);
+  EXPECT_NEAR(glm::length(probe.footprints[0].a), 0.16f, 1e-5f);
+  EXPECT_NEAR(glm::length(probe.footprints[0].b), 0.08f, 1e-5f);
+  EXPECT_NEAR(probe.footprints[0].area(), 0.0128f, 1e-6f);
+
+  // A curved mirror focuses the pixel's rays, which the integrator does not model: past it the
+  // estimate is taken at the point. The same path with the floor's top replaced by a sphere's.
+  d.planes.erase(d.planes.begin());
+  d.spheres.push_back({{0, -10, 0}, 10.0f, 0, {}, CausticRole::Auto});
+  const Scene curved(d);
+  const WhittedIntegrator throughSphere(curved, {true, &probe});
+  probe.footprints.clear();
+  throughSphere.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
+  ASSERT_EQ(probe.footprints.size(), 1u);
+  EXPECT_FALSE(probe.footprints[0].valid);
+}
+
 }  // namespace
 }  // namespace prism

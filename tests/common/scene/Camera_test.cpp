@@ -57,5 +57,36 @@ TEST(Camera, NearClipIsMeasuredAlongTheViewAxis) {
   EXPECT_NEAR(-corner.at(corner.tMin).z, 2.0f, 1e-5f);
 }
 
+// A pixel step turns the centre ray by the pixel's angle (image plane at distance 1: 2·tan 45° /
+// 100 per pixel), along the camera's right and down; the footprint on a wall 3 away is a square
+// of 0.06. An orthographic pixel step moves the origin by the pixel's width instead.
+TEST(Camera, APixelStepTurnsTheRayByThePixelAngleOrMovesItByThePixelWidth) {
+  CameraDesc d;
+  d.position = {0, 0, 0};
+  d.lookAt = {0, 0, -1};
+  d.fovDegrees = 90.0f;
+  const Camera camera(d, 200, 100);
+  const Ray centre = camera.generateRay(100.0f, 50.0f);
+  const RayDifferential step = camera.pixelDifferential(centre);
+  ASSERT_TRUE(step.valid);
+  EXPECT_NEAR(glm::distance(step.dDdx, Vec3(0.02f, 0, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(step.dDdy, Vec3(0, -0.02f, 0)), 0.0f, 1e-6f);
+  const PixelFootprint wall = step.footprint(centre.direction, 3.0f, {0, 0, 1});
+  EXPECT_NEAR(wall.area(), 0.06f * 0.06f, 1e-7f);
+  // Off axis, the unit direction's change matches a finite difference of generateRay.
+  const Ray corner = camera.generateRay(10.0f, 10.0f);
+  const Ray nextX = camera.generateRay(10.01f, 10.0f);
+  const Vec3 finite = (nextX.direction - corner.direction) / 0.01f;
+  EXPECT_NEAR(glm::distance(camera.pixelDifferential(corner).dDdx, finite), 0.0f, 2e-4f);
+
+  d.projection = Projection::Orthographic;
+  d.width = 4.0f;
+  const Camera orthographic(d, 40, 20);
+  const RayDifferential flat = orthographic.pixelDifferential(orthographic.generateRay(3.0f, 7.0f));
+  EXPECT_NEAR(glm::distance(flat.dOdx, Vec3(0.1f, 0, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(flat.dOdy, Vec3(0, -0.1f, 0)), 0.0f, 1e-6f);
+  EXPECT_EQ(flat.dDdx, Vec3(0.0f));
+}
+
 }  // namespace
 }  // namespace prism

@@ -1,0 +1,68 @@
+// How a ray moves when its pixel sample moves by one pixel in x or in y (Igehy 1999, "ray
+// differentials"), carried along a traced path so that at a hit it gives the pixel's footprint
+// on the surface: the parallelogram whose average the pixel measures. A density estimate (a
+// photon gather) can then give a pixel the average over its footprint, not the value at one
+// point: a focus narrower than a pixel is counted once, in the pixel it falls in. Flat mirrors
+// pass the differentials on; refraction and curved surfaces (a lens, a convex mirror) end them,
+// and the estimate past them is taken at the point.
+#pragma once
+
+#include <cmath>
+
+#include "math/Vec.h"
+
+namespace prism {
+
+// The pixel's footprint on a surface: the parallelogram centre ± a/2 ± b/2 (a and b are the hit
+// point's changes per pixel in x and y). An invalid footprint asks for the estimate at a point.
+struct PixelFootprint {
+  bool valid = false;
+  Vec3 a{0.0f}, b{0.0f};
+
+  float area() const { return glm::length(glm::cross(a, b)); }
+  // No point of the parallelogram is further than this from its centre.
+  float reach() const { return 0.5f * (glm::length(a) + glm::length(b)); }
+  // Whether the point offset by q from the centre lies in the parallelogram and within half its
+  // reach of its plane (n: the surface's unit normal).
+  bool contains(const Vec3& q, const Vec3& n) const {
+    if (std::fabs(glm::dot(q, n)) > 0.5f * reach()) return false;
+    const float aa = glm::dot(a, a), ab = glm::dot(a, b), bb = glm::dot(b, b);
+    const float det = aa * bb - ab * ab;
+    if (!(det > 0.0f)) return false;
+    const float qa = glm::dot(q, a), qb = glm::dot(q, b);
+    const float alpha = (qa * bb - qb * ab) / det;
+    const float beta = (qb * aa - qa * ab) / det;
+    return std::fabs(alpha) <= 0.5f && std::fabs(beta) <= 0.5f;
+  }
+};
+
+struct RayDifferential {
+  bool valid = false;
+  Vec3 dOdx{0.0f}, dOdy{0.0f};  // the origin's change per pixel
+  Vec3 dDdx{0.0f}, dDdy{0.0f};  // the unit direction's change per pixel
+
+  // The footprint where a ray of unit direction d meets, at distance t, a surface of unit normal
+  // n. At grazing angles (|cos| below 0.05) it would grow without bound: none then.
+  PixelFootprint footprint(const Vec3& d, float t, const Vec3& n) const {
+    const float cosine = glm::dot(d, n);
+    if (!valid || !(std::fabs(cosine) >= 0.05f)) return {};
+    return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine)};
+  }
+
+  // The differentials of the ray a flat mirror of unit normal n sends on from that footprint.
+  RayDifferential reflected(const PixelFootprint& f, const Vec3& n) const {
+    if (!f.valid) return {};
+    return {true, f.a, f.b, dDdx - 2.0f * glm::dot(dDdx, n) * n,
+            dDdy - 2.0f * glm::dot(dDdy, n) * n};
+  }
+
+ private:
+  // The hit point P = O + t·d stays on the plane: dP = dO + t·dD + dt·d with dP·n = 0.
+  static Vec3 transfer(const Vec3& dO, const Vec3& dD, const Vec3& d, float t, const Vec3& n,
+                       float cosine) {
+    const Vec3 moved = dO + t * dD;
+    return moved - (glm::dot(moved, n) / cosine) * d;
+  }
+};
+
+}  // namespace prism
