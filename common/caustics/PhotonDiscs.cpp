@@ -1,6 +1,7 @@
 #include "caustics/PhotonDiscs.h"
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 
 namespace prism {
@@ -27,7 +28,9 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   const uint32_t self = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back({});
   Vec3 lo(1e30f), hi(-1e30f), clo(1e30f), chi(-1e30f);
+  float minRadius2 = 1e30f;
   for (uint32_t s = begin; s < end; ++s) {
+    minRadius2 = std::min(minRadius2, radius2_[s]);
     const float r = std::sqrt(radius2_[s]);
     lo = glm::min(lo, centre_[s] - Vec3(r));
     hi = glm::max(hi, centre_[s] + Vec3(r));
@@ -36,10 +39,11 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   }
   nodes_[self].lo = lo;
   nodes_[self].hi = hi;
+  nodes_[self].minRadius2Bits = static_cast<uint16_t>(std::bit_cast<uint32_t>(minRadius2) >> 16);
   // A leaf when small, or at the depth the query stack allows (64 holds 2 per level).
   if (end - begin <= kLeafSize || depth >= 30) {
     nodes_[self].first = begin;
-    nodes_[self].count = end - begin;
+    nodes_[self].count = static_cast<uint16_t>(end - begin);
     return self;
   }
   // Split at the median slot along the centres' widest axis; ties broken by photon index so the

@@ -5,6 +5,7 @@
 // Built the same from the same photons and radii on every rank, and visited in the same order.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -18,13 +19,13 @@ class PhotonDiscs {
   PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii);
 
   // Calls visit(photon index, squared distance, squared radius) for every photon whose disc
-  // covers x (distance < radius), or that lies within reach of x, in tree order.
+  // covers x (distance < radius), in tree order.
   template <class Visit>
-  void covering(const Vec3& x, float reach, Visit&& visit) const;
+  void covering(const Vec3& x, Visit&& visit) const;
+  // The same for every photon of squared radius at most narrow2 within reach of x (a pixel's
+  // footprint: PhotonGather). Subtrees without such a photon are skipped at once.
   template <class Visit>
-  void covering(const Vec3& x, Visit&& visit) const {
-    covering(x, 0.0f, visit);
-  }
+  void narrowWithin(const Vec3& x, float reach, float narrow2, Visit&& visit) const;
 
   size_t bytes() const;
 
@@ -32,7 +33,11 @@ class PhotonDiscs {
   struct Node {
     Vec3 lo, hi;     // bounds of the discs' boxes below
     uint32_t first;  // leaf: first slot; interior: index of the second child (the first follows)
-    uint32_t count;  // leaf: slots; interior: 0
+    uint16_t count;  // leaf: slots (at most 8); interior: 0
+    // The smallest squared radius below, as the top 16 bits of its float (rounded down: a lower
+    // bound), so that a node stays 32 bytes.
+    uint16_t minRadius2Bits;
+    float minRadius2() const { return std::bit_cast<float>(uint32_t(minRadius2Bits) << 16); }
   };
   uint32_t build(uint32_t begin, uint32_t end, int depth);
 
@@ -43,7 +48,32 @@ class PhotonDiscs {
 };
 
 template <class Visit>
-void PhotonDiscs::covering(const Vec3& x, float reach, Visit&& visit) const {
+void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
+  if (nodes_.empty()) return;
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (x.x < n.lo.x || x.y < n.lo.y || x.z < n.lo.z || x.x > n.hi.x || x.y > n.hi.y ||
+        x.z > n.hi.z)
+      continue;
+    if (n.count > 0) {
+      for (uint32_t s = n.first; s < n.first + n.count; ++s) {
+        const Vec3 d = x - centre_[s];
+        const float d2 = glm::dot(d, d);
+        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
+      }
+    } else {
+      const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());
+      stack[top++] = n.first;
+      stack[top++] = self + 1;
+    }
+  }
+}
+
+template <class Visit>
+void PhotonDiscs::narrowWithin(const Vec3& x, float reach, float narrow2, Visit&& visit) const {
   if (nodes_.empty()) return;
   const float reach2 = reach * reach;
   uint32_t stack[64];
@@ -51,15 +81,15 @@ void PhotonDiscs::covering(const Vec3& x, float reach, Visit&& visit) const {
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    // The discs' boxes grown by reach hold every centre within reach of x.
-    if (x.x < n.lo.x - reach || x.y < n.lo.y - reach || x.z < n.lo.z - reach ||
-        x.x > n.hi.x + reach || x.y > n.hi.y + reach || x.z > n.hi.z + reach)
+    if (n.minRadius2() > narrow2 || x.x < n.lo.x - reach || x.y < n.lo.y - reach ||
+        x.z < n.lo.z - reach || x.x > n.hi.x + reach || x.y > n.hi.y + reach ||
+        x.z > n.hi.z + reach)
       continue;
     if (n.count > 0) {
       for (uint32_t s = n.first; s < n.first + n.count; ++s) {
         const Vec3 d = x - centre_[s];
         const float d2 = glm::dot(d, d);
-        if (d2 < radius2_[s] || d2 < reach2) visit(index_[s], d2, radius2_[s]);
+        if (d2 < reach2 && radius2_[s] <= narrow2) visit(index_[s], d2, radius2_[s]);
       }
     } else {
       const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());

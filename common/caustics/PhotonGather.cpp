@@ -44,28 +44,40 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float reach = footprint.valid ? footprint.reach() : 0.0f;
   const float area = footprint.valid ? footprint.area() : 0.0f;
   const float narrow2 = area * kInvPi;  // the squared radius of a disc of that area
+  const PixelFootprint::Test inFootprint = footprint.test(normal);
   Color sum(0.0f);
-  const auto add = [&](const Photon& p, float distance2, float radius2) {
-    if (glm::dot(p.directionVector(), normal) >= 0.0f) return;  // arrived from behind
-    if (radius2 > narrow2) {
-      // Gathered out to the footprint's reach, beyond the photon's own kernel.
-      if (footprint.valid && !(distance2 < radius2)) return;
-      sum += p.power * densityKernel(settings_.filter, distance2, radius2);
-    } else if (footprint.contains(p.position - position, normal)) {
-      sum += p.power / area;
-    }
-  };
   if (!settings_.fixedRadius) {
     if (!discs_) return sum;
-    discs_->covering(position, reach, [&](uint32_t index, float distance2, float radius2) {
-      add(photons[index], distance2, radius2);
+    // Photons wider than the footprint through their kernel, narrower ones through the
+    // footprint (without one, narrow2 is 0 and every photon is wide).
+    discs_->covering(position, [&](uint32_t index, float distance2, float radius2) {
+      if (radius2 <= narrow2) return;
+      const Photon& p = photons[index];
+      if (glm::dot(p.directionVector(), normal) >= 0.0f) return;  // arrived from behind
+      sum += p.power * densityKernel(settings_.filter, distance2, radius2);
     });
+    if (footprint.valid) {
+      discs_->narrowWithin(position, reach, narrow2, [&](uint32_t index, float, float) {
+        const Photon& p = photons[index];
+        if (glm::dot(p.directionVector(), normal) >= 0.0f) return;  // arrived from behind
+        if (inFootprint.contains(p.position - position)) sum += p.power / area;
+      });
+    }
     return sum;
   }
   thread_local std::vector<PhotonNeighbour> neighbours;
   const float radius2 = settings_.radius * settings_.radius;
-  map_->within(position, std::max(radius2, reach * reach), neighbours);
-  for (const PhotonNeighbour& n : neighbours) add(photons[n.index], n.distance2, radius2);
+  const bool narrow = radius2 <= narrow2;
+  map_->within(position, narrow ? reach * reach : radius2, neighbours);
+  for (const PhotonNeighbour& n : neighbours) {
+    const Photon& p = photons[n.index];
+    if (glm::dot(p.directionVector(), normal) >= 0.0f) continue;  // arrived from behind
+    if (!narrow) {
+      sum += p.power * densityKernel(settings_.filter, n.distance2, radius2);
+    } else if (inFootprint.contains(p.position - position)) {
+      sum += p.power / area;
+    }
+  }
   return sum;
 }
 

@@ -22,18 +22,24 @@ struct PixelFootprint {
   float area() const { return glm::length(glm::cross(a, b)); }
   // No point of the parallelogram is further than this from its centre.
   float reach() const { return 0.5f * (glm::length(a) + glm::length(b)); }
-  // Whether the point offset by q from the centre lies in the parallelogram and within half its
-  // reach of its plane (n: the surface's unit normal).
-  bool contains(const Vec3& q, const Vec3& n) const {
-    if (std::fabs(glm::dot(q, n)) > 0.5f * reach()) return false;
+  // Answers "does the point offset by q from the centre lie in the parallelogram, within half
+  // its reach of its plane (n: the surface's unit normal)?" with three dot products: q's
+  // coordinates along a and b come from the dual basis, found once.
+  struct Test {
+    Vec3 dualA{0.0f}, dualB{0.0f}, normal{0.0f};
+    float slab = -1.0f;  // no point passes a test of a degenerate parallelogram
+    bool contains(const Vec3& q) const {
+      return std::fabs(glm::dot(q, normal)) <= slab && std::fabs(glm::dot(q, dualA)) <= 0.5f &&
+             std::fabs(glm::dot(q, dualB)) <= 0.5f;
+    }
+  };
+  Test test(const Vec3& n) const {
     const float aa = glm::dot(a, a), ab = glm::dot(a, b), bb = glm::dot(b, b);
     const float det = aa * bb - ab * ab;
-    if (!(det > 0.0f)) return false;
-    const float qa = glm::dot(q, a), qb = glm::dot(q, b);
-    const float alpha = (qa * bb - qb * ab) / det;
-    const float beta = (qb * aa - qa * ab) / det;
-    return std::fabs(alpha) <= 0.5f && std::fabs(beta) <= 0.5f;
+    if (!(det > 0.0f)) return {};
+    return {(bb * a - ab * b) / det, (aa * b - ab * a) / det, n, 0.5f * reach()};
   }
+  bool contains(const Vec3& q, const Vec3& n) const { return test(n).contains(q); }
 };
 
 struct RayDifferential {
