@@ -64,6 +64,11 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--threads", default="2")
     ap.add_argument("--rays", default="200000000", help="light rays of the reference")
+    # The focus pixel moved by a factor 1.7 between 2 and 4 bins per pixel and 4x4 and 8x8 eye
+    # samples: a reference coarser than this one mis-scores every method at the focus
+    # (docs/accuracy.md, "The pixel footprint").
+    ap.add_argument("--ref-samples", default="16", help="eye samples per pixel side of the reference")
+    ap.add_argument("--ref-bins", default="8", help="plane bins per pixel side of the reference")
     ap.add_argument("--photons", default="100000,200000,500000,1000000")
     ap.add_argument("--passes", default="1,2,4,8,16,32")
     ap.add_argument("--resolutions", default="256,512,1024,2048")
@@ -73,7 +78,8 @@ def main():
     args.ref = os.path.join(args.out, "reference.exr")
     if not os.path.exists(args.ref):
         t, _ = run([args.reference_tool, args.scene, "--out", args.ref, "--rays", args.rays,
-                    "--samples", "4", "--threads", args.threads])
+                    "--samples", args.ref_samples, "--bins-per-pixel", args.ref_bins,
+                    "--threads", args.threads])
         print("reference built in %.1f s" % t)
     # The direct light: the ball blocks shadow rays but casts no caustic.
     off = os.path.join(args.out, "direct-scene.yaml")
