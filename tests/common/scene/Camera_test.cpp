@@ -16,12 +16,17 @@ TEST(Camera, CentreRayLooksAtTheTarget) {
   EXPECT_EQ(r.origin, d.position);
 }
 
-TEST(Camera, VerticalFieldOfViewSpansTheImageHeight) {
+// A camera at the origin looking down −z with a vertical field of view of fovDegrees.
+CameraDesc lookingDownMinusZ(float fovDegrees) {
   CameraDesc d;
   d.position = {0, 0, 0};
   d.lookAt = {0, 0, -1};
-  d.fovDegrees = 60.0f;
-  const Camera camera(d, 200, 100);
+  d.fovDegrees = fovDegrees;
+  return d;
+}
+
+TEST(Camera, VerticalFieldOfViewSpansTheImageHeight) {
+  const Camera camera(lookingDownMinusZ(60.0f), 200, 100);
   const Ray top = camera.generateRay(100.0f, 0.0f);
   const Ray bottom = camera.generateRay(100.0f, 100.0f);
   EXPECT_NEAR(glm::degrees(std::acos(glm::dot(top.direction, bottom.direction))), 60.0f, 1e-3f);
@@ -61,10 +66,7 @@ TEST(Camera, NearClipIsMeasuredAlongTheViewAxis) {
 // 100 per pixel), along the camera's right and down; the footprint on a wall 3 away is a square
 // of 0.06. An orthographic pixel step moves the origin by the pixel's width instead.
 TEST(Camera, APixelStepTurnsTheRayByThePixelAngleOrMovesItByThePixelWidth) {
-  CameraDesc d;
-  d.position = {0, 0, 0};
-  d.lookAt = {0, 0, -1};
-  d.fovDegrees = 90.0f;
+  CameraDesc d = lookingDownMinusZ(90.0f);
   const Camera camera(d, 200, 100);
   const Ray centre = camera.generateRay(100.0f, 50.0f);
   const RayDifferential step = camera.pixelDifferential(centre);
