@@ -1,6 +1,5 @@
 #include "caustics/PhotonGather.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "caustics/DensityKernel.h"

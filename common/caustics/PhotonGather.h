@@ -39,10 +39,10 @@ class PhotonGather : public CausticEstimator {
   const PhotonGatherSettings& settings() const { return settings_; }
 
  private:
-  std::shared_ptr<const PhotonMap> map_;
   Color irradianceWithin(const Vec3& position, const Vec3& normal,
                          const PixelFootprint& footprint) const;
 
+  std::shared_ptr<const PhotonMap> map_;
   PhotonGatherSettings settings_;
   std::unique_ptr<const PhotonDiscs> discs_;  // per-photon radii only
 };

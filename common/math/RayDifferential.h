@@ -39,7 +39,6 @@ struct PixelFootprint {
     if (!(det > 0.0f)) return {};
     return {(bb * a - ab * b) / det, (aa * b - ab * a) / det, n, 0.5f * reach()};
   }
-  bool contains(const Vec3& q, const Vec3& n) const { return test(n).contains(q); }
 };
 
 struct RayDifferential {

@@ -459,7 +459,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   // Within noise: other photons, and from pass 2 on other sample points (the viewer jitters its
   // 1-spp passes, `prism render` samples pixel centres), over a caustic of a few dozen 40×30
   // pixels, partly hidden behind the ball whose silhouette the pixels' footprints cross. Measured:
-  // 1.116 with the estimate at the sample point, 1.166 with each pixel's footprint averaged.
+  // 1.116 with the estimate at the sample point, 1.17 with each pixel's footprint averaged.
   EXPECT_NEAR(viewerCaustic / referenceCaustic, 1.0, 0.2);
 
   const LiveStats stats = renderer.stats();
