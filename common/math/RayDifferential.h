@@ -2,9 +2,10 @@
 // differentials"), carried along a traced path so that at a hit it gives the pixel's footprint
 // on the surface: the parallelogram whose average the pixel measures. A density estimate (a
 // photon gather) can then give a pixel the average over its footprint, not the value at one
-// point: a focus narrower than a pixel is counted once, in the pixel it falls in. Flat mirrors
-// pass the differentials on; refraction and curved surfaces (a lens, a convex mirror) end them,
-// and the estimate past them is taken at the point.
+// point: a focus narrower than a pixel is counted once, in the pixel it falls in. Reflection
+// and refraction at planes, flat triangles and spheres pass the differentials on (a sphere's
+// curvature turns them: seen through a glass ball the footprint is the magnified one); other
+// curved surfaces end them, and the estimate past them is taken at the point.
 #pragma once
 
 #include <cmath>
@@ -54,11 +55,42 @@ struct RayDifferential {
     return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine)};
   }
 
-  // The differentials of the ray a flat mirror of unit normal n sends on from that footprint.
-  RayDifferential reflected(const PixelFootprint& f, const Vec3& n) const {
+  // How the surface's unit normal n (facing the ray) turns per pixel where the footprint lies:
+  // 0 on a flat surface, ±a/R and ±b/R on a sphere of radius R (curvature = ±1/R, + where n
+  // points out of the sphere).
+  struct Turn {
+    Vec3 dndx{0.0f}, dndy{0.0f};
+  };
+  static Turn sphereTurn(const PixelFootprint& f, float curvature) {
+    return {curvature * f.a, curvature * f.b};
+  }
+
+  // The differentials of the ray that leaves the footprint reflected (mirror direction r of unit
+  // incident direction d about n).
+  RayDifferential reflected(const PixelFootprint& f, const Vec3& d, const Vec3& n,
+                            const Turn& turn) const {
     if (!f.valid) return {};
-    return {true, f.a, f.b, dDdx - 2.0f * glm::dot(dDdx, n) * n,
-            dDdy - 2.0f * glm::dot(dDdy, n) * n};
+    const auto turned = [&](const Vec3& dD, const Vec3& dn) {
+      const float dDn = glm::dot(dD, n) + glm::dot(d, dn);
+      return dD - 2.0f * (glm::dot(d, n) * dn + dDn * n);
+    };
+    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
+  }
+
+  // The same for the ray refracted into direction t (unit, from refract(d, n, eta)): Igehy's
+  // t = eta·d + mu·n with mu = eta·cos_i − cos_t, differentiated.
+  RayDifferential refracted(const PixelFootprint& f, const Vec3& d, const Vec3& n, const Turn& turn,
+                            const Vec3& t, float eta) const {
+    if (!f.valid) return {};
+    const float cosI = -glm::dot(d, n), cosT = -glm::dot(t, n);
+    if (!(cosT > 1e-4f)) return {};
+    const float mu = eta * cosI - cosT;
+    const auto turned = [&](const Vec3& dD, const Vec3& dn) {
+      const float dCosI = -(glm::dot(dD, n) + glm::dot(d, dn));
+      const float dMu = (eta - eta * eta * cosI / cosT) * dCosI;
+      return eta * dD + mu * dn + dMu * n;
+    };
+    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
   }
 
  private:

@@ -70,14 +70,18 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
 
   const RenderSettings& settings = scene_.settings();
   if (depth >= settings.maxDepth) return result;
-  // A flat mirror passes the pixel's footprint on; refraction and curved surfaces (a lens, a
-  // convex mirror) would need the surface's curvature and the index, so the footprint ends there
-  // and estimates past them are taken at the point.
+  // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
+  // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
+  // taken at the point.
   const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
-  const bool flat = kind == PrimitiveKind::Plane ||
-                    (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
-  const RayDifferential mirrored =
-      flat ? differential.reflected(footprint, s.geometricNormal) : RayDifferential{};
+  bool turnKnown = kind == PrimitiveKind::Plane ||
+                   (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
+  RayDifferential::Turn turn;
+  if (kind == PrimitiveKind::Sphere) {
+    const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
+    turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
+    turnKnown = true;
+  }
 
   const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
 
@@ -86,15 +90,23 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
     const Vec3 direction = reflectedDirection(s, ray.direction);
     Ray reflected{s.rayOrigin(direction), direction};
     ++counters.secondary;
-    result +=
-        reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters, mirrored);
+    const RayDifferential onward =
+        turnKnown ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
+                  : RayDifferential{};
+    result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters, onward);
   }
 
   const Color transmitContribution = weight * transmitWeight;
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
     Ray transmitted{s.rayOrigin(*refracted), *refracted};
     ++counters.secondary;
-    result += transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters);
+    const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
+    const RayDifferential onward =
+        turnKnown ? differential.refracted(footprint, ray.direction, s.shadingNormal, turn,
+                                           *refracted, eta)
+                  : RayDifferential{};
+    result +=
+        transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters, onward);
   }
   return result;
 }

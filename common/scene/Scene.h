@@ -88,6 +88,8 @@ class Scene {
   const RenderSettings& settings() const { return settings_; }
   const CausticSettings& causticSettings() const { return caustics_; }
   const std::vector<MaterialDesc>& materials() const { return materials_; }
+  // Indexed by a PrimitiveRef of kind Sphere.
+  const std::vector<Sphere>& spheres() const { return spheres_; }
   const std::vector<PointLightDesc>& lights() const { return lights_; }
   const Color& ambientLight() const { return ambientLight_; }
   const SceneBuildStats& buildStats() const { return stats_; }

@@ -182,11 +182,11 @@ void expectNear(const Vec3& got, const Vec3& expected, float tolerance) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], expected[i], tolerance) << "component " << i;
 }
 
-// The pixel's footprint where its ray meets a receiver, through a flat mirror: each pixel step
+// The pixel's footprint where its ray meets a receiver, through a mirror: each pixel step
 // turns the ray by 0.01 rad, so after 4 units of path (1 down to the mirror, 3 up to the
 // ceiling) the footprint's sides are 0.04 long; at 60° from the normal the side in the plane of
 // incidence is twice as long (8 units of path: 0.08 across, 0.16 along).
-TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughFlatMirrors) {
+TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) {
   SceneDescription d;
   d.camera.position = {0, 1, 0};
   d.camera.lookAt = {0, 0, 0};
@@ -223,14 +223,32 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughFlatMirro
   EXPECT_NEAR(glm::length(probe.footprints[0].b), 0.08f, 1e-5f);
   EXPECT_NEAR(probe.footprints[0].area(), 0.0128f, 1e-6f);
 
-  // A curved mirror focuses the pixel's rays, which the integrator does not model: past it the
-  // estimate is taken at the point. The same path with the floor's top replaced by a sphere's.
+  // A convex mirror (the top of a sphere of radius 10) spreads the rays more: at the mirror the
+  // footprint's side is 0.01 and the normal turns by 0.01/10 across it, so the reflected rays
+  // spread by 0.01 + 2·0.001 per pixel; 3 more units of path: 0.01 + 3·0.012 = 0.046.
   d.planes.erase(d.planes.begin());
   d.spheres.push_back({{0, -10, 0}, 10.0f, 0, {}, CausticRole::Auto});
   const Scene curved(d);
   const WhittedIntegrator throughSphere(curved, {true, &probe});
   probe.footprints.clear();
   throughSphere.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
+  ASSERT_EQ(probe.footprints.size(), 1u);
+  ASSERT_TRUE(probe.footprints[0].valid);
+  expectNear(probe.footprints[0].a, {0.046f, 0, 0}, 1e-5f);
+  expectNear(probe.footprints[0].b, {0, 0, 0.046f}, 1e-5f);
+
+  // A cone's curvature is not modelled: past it the estimate is taken at the point.
+  d.spheres.clear();
+  ConeDesc cylinder;
+  cylinder.base = {-20, -10, 0};
+  cylinder.apex = {20, -10, 0};
+  cylinder.baseRadius = cylinder.apexRadius = 10.0f;
+  cylinder.material = 0;
+  d.cones.push_back(cylinder);
+  const Scene coned(d);
+  const WhittedIntegrator throughCone(coned, {true, &probe});
+  probe.footprints.clear();
+  throughCone.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
   ASSERT_EQ(probe.footprints.size(), 1u);
   EXPECT_FALSE(probe.footprints[0].valid);
 }
