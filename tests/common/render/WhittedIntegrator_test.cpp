@@ -253,5 +253,36 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   EXPECT_FALSE(probe.footprints[0].valid);
 }
 
+// Through a glass ball (radius 1, index 1.5) a parallel bundle converges as if bent at the
+// ball's centre by a lens of focal length nR/(2(n − 1)) = 1.5 (a ball lens's principal planes
+// meet at its centre): on a floor 2.5 below the centre a pixel of width 0.01 has become
+// 0.01·|1 − 2.5/1.5| = 0.00667 wide, flipped.
+TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
+  SceneDescription d;
+  MaterialDesc glass;
+  glass.diffuse = Color(0.0f);
+  glass.transmittance = Color(1.0f);
+  glass.ior = 1.5f;
+  glass.fresnel = false;
+  d.materials.push_back(glass);
+  d.materials.push_back(lambert(Color(0.5f)));
+  d.spheres.push_back({{0, 2.5f, 0}, 1.0f, 0, {}, CausticRole::Auto});
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  const Scene scene(d);
+  FootprintProbe probe;
+  const WhittedIntegrator integrator(scene, {true, &probe});
+  RayCounters rays;
+  RayDifferential parallel;
+  parallel.valid = true;
+  parallel.dOdx = {0.01f, 0.0f, 0.0f};
+  parallel.dOdy = {0.0f, 0.0f, 0.01f};
+  integrator.radiance(Ray{{0, 5, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, parallel);
+  ASSERT_EQ(probe.footprints.size(), 1u);
+  ASSERT_TRUE(probe.footprints[0].valid);
+  const float side = 0.01f * (2.5f / 1.5f - 1.0f);
+  expectNear(probe.footprints[0].a, {-side, 0, 0}, 2e-5f);
+  expectNear(probe.footprints[0].b, {0, 0, -side}, 2e-5f);
+}
+
 }  // namespace
 }  // namespace prism
