@@ -182,16 +182,29 @@ void expectNear(const Vec3& got, const Vec3& expected, float tolerance) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], expected[i], tolerance) << "component " << i;
 }
 
+// The footprints the caustic estimate is asked for along ray, traced in scene d.
+std::vector<PixelFootprint> footprintsAlong(const SceneDescription& d, const Ray& ray,
+                                            const RayDifferential& differential) {
+  const Scene scene(d);
+  FootprintProbe probe;
+  const WhittedIntegrator integrator(scene, {true, &probe});
+  RayCounters rays;
+  integrator.radiance(ray, 0, Color(1.0f), rays, differential);
+  return probe.footprints;
+}
+
+// A differential that moves the ray's origin by `width` and turns it by `angle` per pixel, along
+// x for a step in x and along z for a step in y.
+RayDifferential perPixel(float width, float angle) {
+  return {true, {width, 0, 0}, {0, 0, width}, {angle, 0, 0}, {0, 0, angle}};
+}
+
 // The pixel's footprint where its ray meets a receiver, through a mirror: each pixel step
 // turns the ray by 0.01 rad, so after 4 units of path (1 down to the mirror, 3 up to the
 // ceiling) the footprint's sides are 0.04 long; at 60° from the normal the side in the plane of
 // incidence is twice as long (8 units of path: 0.08 across, 0.16 along).
 TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) {
   SceneDescription d;
-  d.camera.position = {0, 1, 0};
-  d.camera.lookAt = {0, 0, 0};
-  d.camera.up = {0, 0, -1};
-  d.render.width = d.render.height = 9;
   MaterialDesc mirror;
   mirror.diffuse = Color(0.0f);
   mirror.reflectance = Color(1.0f);
@@ -199,43 +212,32 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   d.materials.push_back(lambert(Color(0.5f)));
   d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});  // a mirror floor 1 below the camera
   d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // a receiving ceiling 3 above the floor
-  const Scene scene(d);
-  FootprintProbe probe;
-  const WhittedIntegrator integrator(scene, {true, &probe});
-  RayCounters rays;
-  RayDifferential turn;
-  turn.valid = true;
-  turn.dDdx = {0.01f, 0.0f, 0.0f};
-  turn.dDdy = {0.0f, 0.0f, 0.01f};
-  integrator.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
-  ASSERT_EQ(probe.footprints.size(), 1u);  // the ceiling; the mirror receives no caustic
-  ASSERT_TRUE(probe.footprints[0].valid);
-  expectNear(probe.footprints[0].a, {0.04f, 0, 0}, 1e-6f);
-  expectNear(probe.footprints[0].b, {0, 0, 0.04f}, 1e-6f);
+  const Ray down{{0, 1, 0}, {0, -1, 0}};
+  std::vector<PixelFootprint> f = footprintsAlong(d, down, perPixel(0.0f, 0.01f));
+  ASSERT_EQ(f.size(), 1u);  // the ceiling; the mirror receives no caustic
+  ASSERT_TRUE(f[0].valid);
+  expectNear(f[0].a, {0.04f, 0, 0}, 1e-6f);
+  expectNear(f[0].b, {0, 0, 0.04f}, 1e-6f);
 
-  probe.footprints.clear();
   const Vec3 slanted = glm::normalize(Vec3(std::sqrt(3.0f), -1.0f, 0.0f));
-  RayDifferential slantedTurn = turn;
+  RayDifferential slantedTurn = perPixel(0.0f, 0.01f);
   slantedTurn.dDdx = 0.01f * glm::normalize(Vec3(0.5f, std::sqrt(3.0f) * 0.5f, 0.0f));
-  integrator.radiance(Ray{{0, 1, 0}, slanted}, 0, Color(1.0f), rays, slantedTurn);
-  ASSERT_EQ(probe.footprints.size(), 1u);
-  EXPECT_NEAR(glm::length(probe.footprints[0].a), 0.16f, 1e-5f);
-  EXPECT_NEAR(glm::length(probe.footprints[0].b), 0.08f, 1e-5f);
-  EXPECT_NEAR(probe.footprints[0].area(), 0.0128f, 1e-6f);
+  f = footprintsAlong(d, Ray{{0, 1, 0}, slanted}, slantedTurn);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NEAR(glm::length(f[0].a), 0.16f, 1e-5f);
+  EXPECT_NEAR(glm::length(f[0].b), 0.08f, 1e-5f);
+  EXPECT_NEAR(f[0].area(), 0.0128f, 1e-6f);
 
   // A convex mirror (the top of a sphere of radius 10) spreads the rays more: at the mirror the
   // footprint's side is 0.01 and the normal turns by 0.01/10 across it, so the reflected rays
   // spread by 0.01 + 2·0.001 per pixel; 3 more units of path: 0.01 + 3·0.012 = 0.046.
   d.planes.erase(d.planes.begin());
   d.spheres.push_back({{0, -10, 0}, 10.0f, 0, {}, CausticRole::Auto});
-  const Scene curved(d);
-  const WhittedIntegrator throughSphere(curved, {true, &probe});
-  probe.footprints.clear();
-  throughSphere.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
-  ASSERT_EQ(probe.footprints.size(), 1u);
-  ASSERT_TRUE(probe.footprints[0].valid);
-  expectNear(probe.footprints[0].a, {0.046f, 0, 0}, 1e-5f);
-  expectNear(probe.footprints[0].b, {0, 0, 0.046f}, 1e-5f);
+  f = footprintsAlong(d, down, perPixel(0.0f, 0.01f));
+  ASSERT_EQ(f.size(), 1u);
+  ASSERT_TRUE(f[0].valid);
+  expectNear(f[0].a, {0.046f, 0, 0}, 1e-5f);
+  expectNear(f[0].b, {0, 0, 0.046f}, 1e-5f);
 
   // A cone's curvature is not modelled: past it the estimate is taken at the point.
   d.spheres.clear();
@@ -245,12 +247,9 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   cylinder.baseRadius = cylinder.apexRadius = 10.0f;
   cylinder.material = 0;
   d.cones.push_back(cylinder);
-  const Scene coned(d);
-  const WhittedIntegrator throughCone(coned, {true, &probe});
-  probe.footprints.clear();
-  throughCone.radiance(Ray{{0, 1, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, turn);
-  ASSERT_EQ(probe.footprints.size(), 1u);
-  EXPECT_FALSE(probe.footprints[0].valid);
+  f = footprintsAlong(d, down, perPixel(0.0f, 0.01f));
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_FALSE(f[0].valid);
 }
 
 // Through a glass ball (radius 1, index 1.5) a parallel bundle converges as if bent at the
@@ -268,20 +267,13 @@ TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
   d.materials.push_back(lambert(Color(0.5f)));
   d.spheres.push_back({{0, 2.5f, 0}, 1.0f, 0, {}, CausticRole::Auto});
   d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
-  const Scene scene(d);
-  FootprintProbe probe;
-  const WhittedIntegrator integrator(scene, {true, &probe});
-  RayCounters rays;
-  RayDifferential parallel;
-  parallel.valid = true;
-  parallel.dOdx = {0.01f, 0.0f, 0.0f};
-  parallel.dOdy = {0.0f, 0.0f, 0.01f};
-  integrator.radiance(Ray{{0, 5, 0}, {0, -1, 0}}, 0, Color(1.0f), rays, parallel);
-  ASSERT_EQ(probe.footprints.size(), 1u);
-  ASSERT_TRUE(probe.footprints[0].valid);
+  const std::vector<PixelFootprint> f =
+      footprintsAlong(d, Ray{{0, 5, 0}, {0, -1, 0}}, perPixel(0.01f, 0.0f));
+  ASSERT_EQ(f.size(), 1u);
+  ASSERT_TRUE(f[0].valid);
   const float side = 0.01f * (2.5f / 1.5f - 1.0f);
-  expectNear(probe.footprints[0].a, {-side, 0, 0}, 2e-5f);
-  expectNear(probe.footprints[0].b, {0, 0, -side}, 2e-5f);
+  expectNear(f[0].a, {-side, 0, 0}, 2e-5f);
+  expectNear(f[0].b, {0, 0, -side}, 2e-5f);
 }
 
 }  // namespace
