@@ -43,7 +43,8 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float reach = footprint.valid ? footprint.reach() : 0.0f;
   const float area = footprint.valid ? footprint.area() : 0.0f;
   const float narrow2 = area * kInvPi;  // the squared radius of a disc of that area
-  const PixelFootprint::Test inFootprint = footprint.test(normal);
+  const PixelFootprint::Test inFootprint =
+      footprint.valid ? footprint.test(normal) : PixelFootprint::Test{};
   Color sum(0.0f);
   if (!settings_.fixedRadius) {
     if (!discs_) return sum;

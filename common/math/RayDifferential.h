@@ -50,8 +50,9 @@ struct RayDifferential {
   // The footprint where a ray of unit direction d meets, at distance t, a surface of unit normal
   // n. At grazing angles (|cos| below 0.05) it would grow without bound: none then.
   PixelFootprint footprint(const Vec3& d, float t, const Vec3& n) const {
+    if (!valid) return {};
     const float cosine = glm::dot(d, n);
-    if (!valid || !(std::fabs(cosine) >= 0.05f)) return {};
+    if (!(std::fabs(cosine) >= 0.05f)) return {};
     return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine)};
   }
 

@@ -32,7 +32,9 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
       sample = debugColor(scene_, ray, debugView_, rays);
     } else {
       ++rays.primary;
-      sample = integrator_.radiance(ray, 0, Color(1.0f), rays, camera_.pixelDifferential(ray));
+      const RayDifferential differential =
+          integrator_.usesDifferentials() ? camera_.pixelDifferential(ray) : RayDifferential{};
+      sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
     }
     // One NaN or infinite sample would poison the pixel and every average it enters.
     if (isFinite(sample)) {

@@ -77,7 +77,7 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
   bool turnKnown = kind == PrimitiveKind::Plane ||
                    (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
   RayDifferential::Turn turn;
-  if (kind == PrimitiveKind::Sphere) {
+  if (kind == PrimitiveKind::Sphere && footprint.valid) {
     const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
     turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
     turnKnown = true;

@@ -24,6 +24,9 @@ class WhittedIntegrator {
   // default) the estimate is taken at the point.
   Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
                  const RayDifferential& differential = {}) const;
+  // Whether radiance() uses a differential: only a caustic estimate does, so without one the
+  // tracing loop need not compute them.
+  bool usesDifferentials() const { return terms_.caustics != nullptr; }
 
  private:
   Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,
