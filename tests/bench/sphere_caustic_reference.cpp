@@ -17,7 +17,10 @@
 // narrower than a bin (looked up by S × S eye samples they alias: the focal pixel of
 // glass-ball-oblique.yaml read 1991, 3312 and 2607 with 2, 4 and 8 bins a pixel; projected, 2402
 // with any). The pixel's samples that meet the ball split into both Fresnel branches (up to the
-// scene's max_depth), as a ray tracer does, and add the mean of albedo/π · E_bin where they land.
+// scene's max_depth), as a ray tracer does, and add the mean of albedo/π · E_bin where they land;
+// the bins are finest at the focus, 1/B of the smallest footprint seen there (through the ball a
+// pixel may see a tenth of the plane it sees directly: with the bins of the directly seen plane
+// the focal pixels of glass-ball-top.yaml read 48929 and 52021 where symmetry wants one value).
 // The result is the pixel-averaged caustic radiance, which a render converges to with many
 // samples per pixel.
 //
@@ -270,10 +273,11 @@ PlaneGrid gridOver(const World& w, const double lo[2], const double hi[2], doubl
   return g;
 }
 
-// Two grids: over the bounding box of where the camera sees the plane directly, and finer over
+// Nested grids: over the bounding box of where the camera sees the plane directly, and finer over
 // where it sees the plane through the ball (which magnifies it); bins of 1/binsPerPixel of the
-// median pixel footprint in each. Lookups use the finest grid that holds the point; an eye path
-// that lands outside both is counted and reported.
+// median pixel footprint in each; then finer grids over where the light through the ball lands
+// (below). Lookups use the finest grid that holds the point; an eye path that lands outside all
+// is counted and reported.
 std::vector<PlaneGrid> makeGrids(const World& w, const Eye& eye, int binsPerPixel) {
   const PlaneGrid axes =
       gridOver(w, std::array<double, 2>{0, 0}.data(), std::array<double, 2>{1, 1}.data(), 1.0);
@@ -326,6 +330,7 @@ std::vector<PlaneGrid> makeGrids(const World& w, const Eye& eye, int binsPerPixe
   // and out of the ball), within the direct view, binned at the finest footprint seen there, so
   // a focus is resolved however wide the view.
   std::vector<double> us, vs;
+  std::vector<std::pair<double, double>> landing;
   const D3 axis = normalize(w.centre - w.light), toCentre = w.centre - w.light;
   const double cosMax = std::sqrt(1.0 - w.radius * w.radius / dot(toCentre, toCentre));
   const D3 a =
@@ -350,10 +355,11 @@ std::vector<PlaneGrid> makeGrids(const World& w, const Eye& eye, int binsPerPixe
       const D3 x = q + tp * out.refracted;
       us.push_back(dot(x - w.planePoint, axes.u));
       vs.push_back(dot(x - w.planePoint, axes.v));
+      landing.push_back({us.back(), vs.back()});  // us and vs are sorted apart below
     }
   }
   // Two nested grids: the 1st..99th percentiles of where it lands, at the finest footprint seen
-  // there; and the central half, where a focus lies, twice as fine.
+  // there (directly or through the ball); and the central half, where a focus lies, twice as fine.
   if (us.size() > 100) {
     std::sort(us.begin(), us.end());
     std::sort(vs.begin(), vs.end());
@@ -363,14 +369,48 @@ std::vector<PlaneGrid> makeGrids(const World& w, const Eye& eye, int binsPerPixe
       double clo[2] = {std::max(lo[0][0], us[q0] - pad), std::max(lo[0][1], vs[q0] - pad)};
       double chi[2] = {std::min(hi[0][0], us[q1] + pad), std::min(hi[0][1], vs[q1] + pad)};
       std::vector<double> f;
-      for (const Sample& s : samples[0]) {
-        const double pu = dot(s.p - w.planePoint, axes.u), pv = dot(s.p - w.planePoint, axes.v);
-        if (pu >= clo[0] && pu <= chi[0] && pv >= clo[1] && pv <= chi[1]) f.push_back(s.footprint);
+      for (const auto& level : samples) {
+        for (const Sample& s : level) {
+          const double pu = dot(s.p - w.planePoint, axes.u), pv = dot(s.p - w.planePoint, axes.v);
+          if (pu >= clo[0] && pu <= chi[0] && pv >= clo[1] && pv <= chi[1])
+            f.push_back(s.footprint);
+        }
       }
       if (clo[0] < chi[0] && clo[1] < chi[1] && !f.empty()) {
         std::nth_element(f.begin(), f.begin() + f.size() / 20, f.end());
         grids.push_back(gridOver(w, clo, chi, f[f.size() / 20] / (binsPerPixel * fineness)));
       }
+    }
+  }
+  // The focus: the densest spot of the coarse landing points, with a window of 128 of the
+  // finest footprints seen within it each way, binned at that footprint. Seen through the ball a
+  // focus is magnified: its pixels see less of the plane than any pixel seeing it directly.
+  if (us.size() > 100) {
+    const double ulo = us[us.size() / 100], uhi = us[us.size() - 1 - us.size() / 100];
+    const double vlo = vs[vs.size() / 100], vhi = vs[vs.size() - 1 - vs.size() / 100];
+    constexpr int kCells = 256;
+    std::vector<int> count(kCells * kCells, 0);
+    for (const auto& [pu, pv] : landing) {
+      const int cu = static_cast<int>((pu - ulo) / (uhi - ulo) * kCells);
+      const int cv = static_cast<int>((pv - vlo) / (vhi - vlo) * kCells);
+      if (cu >= 0 && cv >= 0 && cu < kCells && cv < kCells) ++count[cv * kCells + cu];
+    }
+    const int peak = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
+    const double cu = ulo + (peak % kCells + 0.5) * (uhi - ulo) / kCells;
+    const double cv = vlo + (peak / kCells + 0.5) * (vhi - vlo) / kCells;
+    const double reach = 2.0 * std::max(uhi - ulo, vhi - vlo) / kCells;
+    double finest = 1e300;
+    for (const auto& level : samples) {
+      for (const Sample& s : level) {
+        const double pu = dot(s.p - w.planePoint, axes.u), pv = dot(s.p - w.planePoint, axes.v);
+        if (std::abs(pu - cu) <= reach && std::abs(pv - cv) <= reach)
+          finest = std::min(finest, s.footprint);
+      }
+    }
+    if (finest < 1e300) {
+      const double half = 128.0 * finest;
+      const double flo[2] = {cu - half, cv - half}, fhi[2] = {cu + half, cv + half};
+      grids.push_back(gridOver(w, flo, fhi, finest / binsPerPixel));
     }
   }
   // Coarsest first: the first grid counts the flux that lands outside every grid, lookups take
