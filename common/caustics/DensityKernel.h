@@ -28,4 +28,22 @@ inline float densityKernel(PhotonFilter filter, float distance2, float radius2) 
   return 0.0f;
 }
 
+// The mean of the kernel over a parallelogram centred on the shading point, of edges a and b (a
+// pixel's footprint), for a photon at offset q from it: the pixel's average of that photon's
+// kernel. Midpoint rule on 4 × 4 points: its error changes sign with the photon's position
+// relative to the points, so it adds noise, not bias.
+inline float footprintMeanKernel(PhotonFilter filter, const Vec3& q, const Vec3& a, const Vec3& b,
+                                 float radius2) {
+  constexpr int kPoints = 4;
+  float sum = 0.0f;
+  for (int i = 0; i < kPoints; ++i) {
+    const Vec3 row = ((i + 0.5f) / kPoints - 0.5f) * a - q;
+    for (int j = 0; j < kPoints; ++j) {
+      const Vec3 y = row + ((j + 0.5f) / kPoints - 0.5f) * b;
+      sum += densityKernel(filter, glm::dot(y, y), radius2);
+    }
+  }
+  return sum / (kPoints * kPoints);
+}
+
 }  // namespace prism

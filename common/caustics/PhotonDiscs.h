@@ -6,6 +6,7 @@
 #pragma once
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -22,10 +23,11 @@ class PhotonDiscs {
   // covers x (distance < radius), in tree order.
   template <class Visit>
   void covering(const Vec3& x, Visit&& visit) const;
-  // The same for every photon of squared radius at most narrow2 within reach of x (a pixel's
-  // footprint: PhotonGather). Subtrees without such a photon are skipped at once.
+  // The same for every photon of squared radius at most max2 whose disc comes within reach of x
+  // (distance < radius + reach: it may cover part of a pixel's footprint; PhotonGather).
+  // Subtrees without such a photon are skipped at once.
   template <class Visit>
-  void narrowWithin(const Vec3& x, float reach, float narrow2, Visit&& visit) const;
+  void reaching(const Vec3& x, float reach, float max2, Visit&& visit) const;
 
   size_t bytes() const;
 
@@ -73,23 +75,23 @@ void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
 }
 
 template <class Visit>
-void PhotonDiscs::narrowWithin(const Vec3& x, float reach, float narrow2, Visit&& visit) const {
+void PhotonDiscs::reaching(const Vec3& x, float reach, float max2, Visit&& visit) const {
   if (nodes_.empty()) return;
-  const float reach2 = reach * reach;
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (n.minRadius2() > narrow2 || x.x < n.lo.x - reach || x.y < n.lo.y - reach ||
+    if (n.minRadius2() > max2 || x.x < n.lo.x - reach || x.y < n.lo.y - reach ||
         x.z < n.lo.z - reach || x.x > n.hi.x + reach || x.y > n.hi.y + reach ||
         x.z > n.hi.z + reach)
       continue;
     if (n.count > 0) {
       for (uint32_t s = n.first; s < n.first + n.count; ++s) {
+        if (radius2_[s] > max2) continue;
         const Vec3 d = x - centre_[s];
-        const float d2 = glm::dot(d, d);
-        if (d2 < reach2 && radius2_[s] <= narrow2) visit(index_[s], d2, radius2_[s]);
+        const float d2 = glm::dot(d, d), within = std::sqrt(radius2_[s]) + reach;
+        if (d2 < within * within) visit(index_[s], d2, radius2_[s]);
       }
     } else {
       const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());

@@ -29,10 +29,11 @@ class PhotonGather : public CausticEstimator {
                int threads = 0);
 
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
-  // With the pixel's footprint: a photon whose kernel is narrower than the footprint counts
-  // its power over the footprint's area if it lies in it, and nothing otherwise, so a focus
-  // narrower than a pixel gives that pixel its average, not the value at one point of it; wider
-  // photons keep their kernel.
+  // With the pixel's footprint: the pixel's average of the photons' kernels, so a focus narrower
+  // than a pixel gives that pixel its average, not the value at one point of it. A photon
+  // narrower than the footprint counts its power over the footprint's area if it lies in it and
+  // nothing otherwise; one about as wide, the mean of its kernel over the footprint; a wider one
+  // keeps its kernel at the centre.
   Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
 
   const PhotonMap& map() const { return *map_; }
