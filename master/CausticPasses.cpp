@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "caustics/AutomaticGather.h"
+#include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "master/PhotonPass.h"
 #include "util/Parallel.h"
@@ -83,7 +85,8 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
   CausticRunStats& stats = out.caustics;
   stats.method = settings.method;
   stats.progressive = settings.progressive;
-  stats.k = settings.gather;
+  stats.k =
+      settings.automaticGather ? automaticGatherLargestK(settings.gatherNoise) : settings.gather;
   stats.settings = settings;
   uint32_t frameId = options.frameId;
 
@@ -143,7 +146,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
 
   if (!settings.progressive) {
     const auto map = photonPass(0, "trace");
-    const PhotonGatherSettings gather{false, settings.gather, maxRadius, settings.filter};
+    const PhotonGatherSettings gather = classicGather(settings, maxRadius);
     PhotonPassStats sent;
     sendPhotonMap(*map, 0, gather, link, sent);
     addPhotonStats(stats, sent);

@@ -146,8 +146,16 @@ void addCausticMethodOptions(CLI::App* command, RenderOptions& o) {
 void addCausticOptions(CLI::App* render, RenderOptions& o) {
   const char* caustics = kCausticsGroup;
   addCausticMethodOptions(render, o);
-  addLimited(render, "--gather", o.gather, limits::kGather,
-             "Nearest photons per estimate, k (default 100)")
+  CLI::Option* gather = addLimited(render, "--gather", o.gather, limits::kGather,
+                                   "Nearest photons per estimate, k (default 100)");
+  gather->group(caustics);
+  render
+      ->add_option("--gather-noise", o.gatherNoise,
+                   "Automatic k (the scene's gather: auto): each photon's own k, up to "
+                   "1/noise^2 where the photon density is smooth, fewer at folds and foci; "
+                   "e.g. 0.05 (k up to 400)")
+      ->check(CLI::Range(limits::kSmallestGatherNoise, 1.0f))
+      ->excludes(gather)
       ->group(caustics);
   render
       ->add_option("--gather-radius", o.gatherRadius,
@@ -314,6 +322,7 @@ void addSweepCommand(CLI::App& app, SweepOptions& o) {
       "against a reference: RMSE, relative RMSE, MRSE, max error and caustic flux ratio, over\n"
       "the whole frame and the caustic region. Families (--families):\n"
       "  photons     photon map: photons per pass     k           photon map: photons gathered\n"
+      "  autok       photon map, automatic k: its largest k (the target noise 1/sqrt(k))\n"
       "  passes      progressive photon map: passes   resolution  caustic map: texels per side\n"
       "  steps       caustic map: distance iterations blur        caustic map: blur half-width\n"
       "  spp         samples per pixel, with the scene's own method\n"
@@ -336,6 +345,8 @@ void addSweepCommand(CLI::App& app, SweepOptions& o) {
   list("--photons-list", o.values.photons,
        "photons (default 25000,50000,100000,200000,400000,800000,1600000)");
   list("--k-list", o.values.gather, "k (default 10,25,50,100,200,400)");
+  list("--autok-list", o.values.autoGather,
+       "largest k of the automatic k (default 25,100,400,1600)");
   list("--passes-list", o.values.passes, "passes (default 1,2,4,8,16,32)");
   list("--resolution-list", o.values.resolution, "resolution (default 64,128,256,512,1024)");
   list("--steps-list", o.values.steps, "steps (default 1,2,3,5,10,20)");

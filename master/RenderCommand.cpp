@@ -38,7 +38,14 @@ void applyOverrides(const RenderOptions& o, RenderSettings& s) {
 void applyOverrides(const RenderOptions& o, CausticSettings& c) {
   if (o.causticMethod) c.method = *o.causticMethod;
   if (o.photons) c.photons = *o.photons;
-  if (o.gather) c.gather = *o.gather;
+  if (o.gather) {
+    c.gather = *o.gather;
+    c.automaticGather = false;
+  }
+  if (o.gatherNoise) {
+    c.gatherNoise = *o.gatherNoise;
+    c.automaticGather = true;
+  }
   if (o.passes) c.passes = *o.passes;
   if (o.progressive) c.progressive = *o.progressive;
   if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;

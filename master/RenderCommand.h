@@ -28,6 +28,7 @@ struct RenderOptions {
   std::optional<int> gather, passes;
   std::optional<bool> progressive;
   std::optional<float> gatherRadius;  // k-NN cap, or the first progressive radius
+  std::optional<float> gatherNoise;   // automatic k per photon (gather: auto) for this noise
   std::optional<double> timeBudget;
   std::string photonImagePath;  // debug: where the stored photons landed
   std::optional<int> mapResolution, mapSteps, mapBlurRadius;  // caustic mapping

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <ostream>
+#include <string>
 
 #include "master/ResourceCheck.h"
 #include "master/ScheduleNames.h"
@@ -109,11 +110,13 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
       << "          ";
   if (c.progressive && c.settings.radius > 0.0f) {
     out << "gather radius " << fixed(c.firstRadius, 4) << " -> " << fixed(c.lastRadius, 4);
-  } else if (c.progressive) {
-    out << "each photon over its " << c.k << "-NN radius within " << fixed(c.firstRadius, 4)
-        << ", shrunk to " << fixed(c.lastRadius, 4);
   } else {
-    out << "each photon over its " << c.k << "-NN radius within " << fixed(c.firstRadius, 4);
+    // gather: auto names the largest k; each photon took its own up to it.
+    const std::string k = c.settings.automaticGather
+                              ? "own k-NN radius (k <= " + std::to_string(c.k) + ", auto)"
+                              : std::to_string(c.k) + "-NN radius";
+    out << "each photon over its " << k << " within " << fixed(c.firstRadius, 4);
+    if (c.progressive) out << ", shrunk to " << fixed(c.lastRadius, 4);
   }
   out << "; trace " << milliseconds(c.traceSeconds) << ", kd-tree " << milliseconds(c.buildSeconds);
   if (c.radiiSeconds > 0.0) out << ", photon radii " << milliseconds(c.radiiSeconds);

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "caustics/CausticMapEstimator.h"
+#include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
 #include "master/AtomicFile.h"
@@ -59,7 +60,7 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
       const auto map = tracePhotonPass(tracer, 0, 1, link, stats);
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
-      const PhotonGatherSettings gather{false, settings.gather, radius, settings.filter};
+      const PhotonGatherSettings gather = classicGather(settings, radius);
       sendPhotonMap(*map, 0, gather, link, stats);
       prepared.stage = "photon pass (" + std::to_string(map->size()) + " photons)";
       prepared.pass = std::make_shared<const RenderPass>(

@@ -1,5 +1,6 @@
 #include "master/SweepPlan.h"
 
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -26,8 +27,14 @@ void requireRange(SweepFamily family, uint64_t value, const SettingLimit& limit)
 
 // The method each family's renders use, indexed by SweepFamily.
 constexpr const char* kFamilyMethod[] = {
-    "photon map",  "photon map",  "progressive photon map", "caustic map",
-    "caustic map", "caustic map", "scene's method",
+    "photon map",
+    "photon map",
+    "photon map (automatic k)",
+    "progressive photon map",
+    "caustic map",
+    "caustic map",
+    "caustic map",
+    "scene's method",
 };
 
 static_assert(std::size(kFamilyMethod) == static_cast<size_t>(SweepFamily::Samples) + 1);
@@ -71,6 +78,13 @@ std::vector<SweepPoint> planSweep(const std::vector<SweepFamily>& families,
         list = orDefault(values.gather, {10, 25, 50, 100, 200, 400});
         point.caustics.method = CausticMethod::PhotonMap;
         point.caustics.photons = photons;
+        point.caustics.automaticGather = false;
+        break;
+      case SweepFamily::AutoGather:
+        list = orDefault(values.autoGather, {25, 100, 400, 1600});
+        point.caustics.method = CausticMethod::PhotonMap;
+        point.caustics.photons = photons;
+        point.caustics.automaticGather = true;
         break;
       case SweepFamily::Passes:
         list = orDefault(values.passes, {1, 2, 4, 8, 16, 32});
@@ -105,6 +119,11 @@ std::vector<SweepPoint> planSweep(const std::vector<SweepFamily>& families,
         case SweepFamily::Gather:
           requireRange(family, value, limits::kGather);
           p.caustics.gather = static_cast<int>(value);
+          break;
+        case SweepFamily::AutoGather:  // the noise whose largest k is value
+          requireRange(family, value, limits::kGather);
+          p.caustics.gather = static_cast<int>(value);
+          p.caustics.gatherNoise = static_cast<float>(1.0 / std::sqrt(static_cast<double>(value)));
           break;
         case SweepFamily::Passes:
           requireRange(family, value, limits::kPasses);

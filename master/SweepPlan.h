@@ -2,6 +2,7 @@
 // the scene's own settings with that one parameter changed. Families:
 //   photons     photon map, k-NN gather: photons per pass
 //   k           photon map: photons gathered per estimate
+//   autok       photon map, automatic k (gather: auto): the largest k, from the target noise
 //   passes      progressive photon map: passes (one run, scored after each listed pass)
 //   resolution  caustic map: texels per side of each light-space view
 //   steps       caustic map: iterations of the receiver-distance estimate
@@ -17,13 +18,17 @@
 
 namespace prism {
 
-enum class SweepFamily { Photons, Gather, Passes, Resolution, Steps, Blur, Samples };
+enum class SweepFamily { Photons, Gather, AutoGather, Passes, Resolution, Steps, Blur, Samples };
 
 // "photons", "k", ...: the names the command line and the CSV use.
 inline constexpr NamedValue<SweepFamily> kSweepFamilyList[] = {
-    {"photons", SweepFamily::Photons}, {"k", SweepFamily::Gather},
-    {"passes", SweepFamily::Passes},   {"resolution", SweepFamily::Resolution},
-    {"steps", SweepFamily::Steps},     {"blur", SweepFamily::Blur},
+    {"photons", SweepFamily::Photons},
+    {"k", SweepFamily::Gather},
+    {"autok", SweepFamily::AutoGather},
+    {"passes", SweepFamily::Passes},
+    {"resolution", SweepFamily::Resolution},
+    {"steps", SweepFamily::Steps},
+    {"blur", SweepFamily::Blur},
     {"spp", SweepFamily::Samples}};
 inline constexpr NameTable<SweepFamily> kSweepFamilyNames{kSweepFamilyList};
 
@@ -33,7 +38,7 @@ const char* familyMethod(SweepFamily family);
 
 // The values each family sweeps; empty: the family's defaults.
 struct SweepValues {
-  std::vector<uint64_t> photons, gather, passes, resolution, steps, blur, samples;
+  std::vector<uint64_t> photons, gather, autoGather, passes, resolution, steps, blur, samples;
 };
 
 struct SweepPoint {

@@ -41,6 +41,8 @@ std::string valueText(const SweepPoint& p) {
       return shortCount(p.value) + " photons";
     case SweepFamily::Gather:
       return "k = " + std::to_string(p.value);
+    case SweepFamily::AutoGather:
+      return "k <= " + std::to_string(p.value) + " auto";
     case SweepFamily::Passes:
       return std::to_string(p.value) + (p.value == 1 ? " pass" : " passes");
     case SweepFamily::Resolution:

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "caustics/AutomaticGather.h"
+
 namespace prism {
 
 float automaticMaxRadius(const Scene& scene) {
@@ -21,6 +23,13 @@ float nextProgressiveRadius(float previous, int pass, float alpha) {
   return previous * std::sqrt((static_cast<float>(pass - 1) + alpha) / static_cast<float>(pass));
 }
 
+PhotonGatherSettings classicGather(const CausticSettings& c, float maxRadius) {
+  if (c.automaticGather) {
+    return {false, automaticGatherLargestK(c.gatherNoise), maxRadius, c.filter, 1.0f, true};
+  }
+  return {false, c.gather, maxRadius, c.filter, 1.0f, false};
+}
+
 PhotonGatherSettings progressiveGather(const CausticSettings& c, float maxRadius, int pass,
                                        const PhotonGatherSettings& previous) {
   if (c.radius > 0.0f) {
@@ -28,8 +37,10 @@ PhotonGatherSettings progressiveGather(const CausticSettings& c, float maxRadius
         pass == 1 ? c.radius : nextProgressiveRadius(previous.radius, pass, c.alpha);
     return {true, c.gather, radius, c.filter, 1.0f};
   }
-  const float scale = pass == 1 ? 1.0f : nextProgressiveRadius(previous.radiusScale, pass, c.alpha);
-  return {false, c.gather, maxRadius, c.filter, scale};
+  PhotonGatherSettings gather = classicGather(c, maxRadius);
+  gather.radiusScale =
+      pass == 1 ? 1.0f : nextProgressiveRadius(previous.radiusScale, pass, c.alpha);
+  return gather;
 }
 
 }  // namespace prism

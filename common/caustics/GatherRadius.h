@@ -12,6 +12,10 @@ namespace prism {
 // caster's bounding radius, or a hundredth of the scene's size when only planes cast.
 float automaticMaxRadius(const Scene& scene);
 
+// The gather of classic photon mapping: per-photon radii of the scene's k (or, with gather: auto,
+// each photon's own k up to the noise's largest k), capped at maxRadius.
+PhotonGatherSettings classicGather(const CausticSettings& c, float maxRadius);
+
 // The progressive gather radius of pass `pass` ≥ 2, given pass − 1's:
 // r²(pass) = r²(pass − 1)·(pass − 1 + α)/pass.
 float nextProgressiveRadius(float previous, int pass, float alpha);

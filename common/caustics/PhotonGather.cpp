@@ -2,19 +2,22 @@
 
 #include <cmath>
 
+#include "caustics/AutomaticGather.h"
 #include "caustics/DensityKernel.h"
 #include "util/Parallel.h"
 
 namespace prism {
 
-std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, int threads) {
+std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
+                               int threads) {
   std::vector<float> radii(map.size());
   const float maxRadius2 = maxRadius * maxRadius;
   const std::vector<uint32_t> order = map.spatialOrder();
   parallelFor(order.size(), threads, [&](uint64_t n) {
     thread_local std::vector<PhotonNeighbour> neighbours;
     const uint32_t i = order[n];
-    radii[i] = std::sqrt(map.nearest(map.photons()[i].position, k, maxRadius2, neighbours));
+    const float radius2 = map.nearest(map.photons()[i].position, k, maxRadius2, neighbours);
+    radii[i] = std::sqrt(automaticK ? automaticGatherRadius2(neighbours, k, maxRadius2) : radius2);
   });
   return radii;
 }
@@ -23,7 +26,8 @@ PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
                            const PhotonGatherSettings& settings, int threads)
     : map_(std::move(map)), settings_(settings) {
   if (settings_.fixedRadius || map_->size() == 0) return;
-  std::vector<float> radii = photonRadii(*map_, settings_.k, settings_.radius, threads);
+  std::vector<float> radii =
+      photonRadii(*map_, settings_.k, settings_.radius, settings_.automaticK, threads);
   for (float& r : radii) r *= settings_.radiusScale;
   discs_ = std::make_unique<const PhotonDiscs>(map_->photons(), radii);
 }

@@ -49,7 +49,9 @@ class PhotonGather : public CausticEstimator {
 };
 
 // Each photon's radius: the distance to its k-th nearest photon (itself included), capped at
-// maxRadius. The same on every rank: each photon's answer depends on the map alone.
-std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, int threads = 0);
+// maxRadius; with automaticK, to its own k's nearest, k up to k (caustics/AutomaticGather.h).
+// The same on every rank: each photon's answer depends on the map alone.
+std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
+                               int threads = 0);
 
 }  // namespace prism

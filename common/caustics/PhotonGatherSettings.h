@@ -15,6 +15,8 @@ struct PhotonGatherSettings {
   PhotonFilter filter = PhotonFilter::Cone;
   // Progressive passes with per-photon radii shrink them all by this factor (1: classic).
   float radiusScale = 1.0f;
+  // Per-photon radii only: k chosen per photon up to k (caustics/AutomaticGather.h).
+  bool automaticK = false;
 };
 
 }  // namespace prism

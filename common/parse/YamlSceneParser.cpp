@@ -43,10 +43,10 @@ constexpr std::string_view kRenderKeys[] = {"width",     "height",           "sa
                                             "max_depth", "min_contribution", "seed",
                                             "exposure",  "triangle_test"};
 constexpr std::string_view kCausticsKeys[] = {
-    "method",    "photons",        "gather",          "max_radius",
-    "filter",    "max_bounces",    "progressive",     "passes",
-    "alpha",     "radius",         "time_budget",     "map_resolution",
-    "map_steps", "map_blur_sigma", "map_blur_radius", "map_paths"};
+    "method",          "photons",     "gather",         "noise",     "max_radius",
+    "filter",          "max_bounces", "progressive",    "passes",    "alpha",
+    "radius",          "time_budget", "map_resolution", "map_steps", "map_blur_sigma",
+    "map_blur_radius", "map_paths"};
 constexpr std::string_view kEnvironmentKeys[] = {"cubemap", "scale"};
 // In the OpenGL cube-map order of CubeMapDesc::faces: +X, -X, +Y, -Y, +Z, -Z.
 constexpr std::string_view kCubeMapKeys[] = {"px", "nx", "py", "ny", "pz", "nz"};
@@ -191,8 +191,17 @@ class YamlSceneReader : private CheckedYaml {
     if (const Entry* e = m.find("photons")) {
       c.photons = static_cast<uint64_t>(integer(*e, limits::kPhotons));
     }
-    if (const Entry* e = m.find("gather"))
-      c.gather = static_cast<int>(integer(*e, limits::kGather));
+    if (const Entry* e = m.find("gather")) {
+      if (e->value.IsScalar() && e->value.Scalar() == "auto")
+        c.automaticGather = true;
+      else
+        c.gather = static_cast<int>(integer(*e, limits::kGather));
+    }
+    if (const Entry* e = m.find("noise")) {
+      c.gatherNoise = positive(*e);
+      if (c.gatherNoise < limits::kSmallestGatherNoise || c.gatherNoise > 1.0f)
+        fail(loc(*e), "'noise' must lie between 0.0032 and 1, found " + text(*e));
+    }
     if (const Entry* e = m.find("max_radius")) c.maxRadius = nonNegative(*e);
     if (const Entry* e = m.find("filter")) c.filter = choice(*e, kPhotonFilterNames);
     if (const Entry* e = m.find("max_bounces")) {

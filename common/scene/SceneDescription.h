@@ -146,6 +146,9 @@ struct CausticSettings {
   CausticMethod method = CausticMethod::None;
   uint64_t photons = 200000;  // emitted per pass, over all lights
   int gather = 100;           // k: each photon's radius is the distance to its k-th nearest
+  // gather: auto — k chosen per photon, up to ⌈1/noise²⌉ (caustics/AutomaticGather.h).
+  bool automaticGather = false;
+  float gatherNoise = 0.05f;
   float maxRadius = 0.0f;     // cap on the photon radii; 0: automatic from the casters' size
   PhotonFilter filter = PhotonFilter::Cone;
   int maxBounces = 16;  // specular bounces a photon may take before it is dropped

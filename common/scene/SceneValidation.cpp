@@ -70,6 +70,12 @@ void validate(const CausticSettings& c) {
   checkReal(kCaustics, "radius", "--gather-radius", c.radius, false);
   checkReal(kCaustics, "time_budget", "--time-budget", c.timeBudgetSeconds, false);
   checkReal(kCaustics, "map_blur_sigma", "--map-blur-sigma", c.mapBlurSigma, false);
+  // noise n asks for up to ⌈1/n²⌉ photons per estimate: at most the largest gather.
+  if (!(c.gatherNoise >= limits::kSmallestGatherNoise && c.gatherNoise <= 1.0f)) {
+    refuse(kCaustics, "noise", "--gather-noise",
+           "must lie between " + std::to_string(limits::kSmallestGatherNoise) + " and 1, found " +
+               std::to_string(c.gatherNoise));
+  }
   if (!(c.alpha > 0.0f && c.alpha < 1.0f)) {
     refuse(kCaustics, "alpha", "",
            "must lie strictly between 0 and 1, found " + std::to_string(c.alpha));

@@ -32,6 +32,8 @@ inline constexpr SettingLimit kMaxDepth{"max_depth", "--max-depth", 0, 256};
 // 2^40 photons: photon indices and counts stay exact; memory refuses far fewer first.
 inline constexpr SettingLimit kPhotons{"photons", "--photons", 1, int64_t{1} << 40};
 inline constexpr SettingLimit kGather{"gather", "--gather", 1, 100000};
+// gather: auto's target noise: 1/√100000, so that its largest k stays within kGather.
+inline constexpr float kSmallestGatherNoise = 0.0032f;
 inline constexpr SettingLimit kMaxBounces{"max_bounces", "", 1, 256};
 inline constexpr SettingLimit kPasses{"passes", "--passes", 1, 1 << 20};
 inline constexpr SettingLimit kMapResolution{"map_resolution", "--map-resolution", 16, 4096};

@@ -500,13 +500,14 @@ std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons) {
   return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
-    const auto& [fixedRadius, k, radius, filter, radiusScale] = gather;
+    const auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
     w.writeU32(pass);
     w.writeBool(fixedRadius);
     w.writeI32(k);
     w.writeF32(radius);
     w.writeU32(static_cast<uint32_t>(filter));
     w.writeF32(radiusScale);
+    w.writeBool(automaticK);
     writePhotons(w, photons);
   });
 }
@@ -515,7 +516,7 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
   return decodePayload(message, MessageType::PhotonMap, [](ByteReader& r) {
     PhotonMapMessage map;
     auto& [pass, gather, photons] = map;
-    auto& [fixedRadius, k, radius, filter, radiusScale] = gather;
+    auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
     pass = r.readU32();
     fixedRadius = r.readBool();
     k = r.readI32();
@@ -526,6 +527,7 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
     }
     filter = static_cast<PhotonFilter>(rawFilter);
     radiusScale = r.readF32();
+    automaticK = r.readBool();
     if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius) || !(radiusScale > 0.0f) ||
         !std::isfinite(radiusScale)) {
       throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +

@@ -25,7 +25,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 5: the caustic-map term of TileJob, the view's caustic-map blur switch, and the Echo
 // message (`prism speedup` measures the links with it). 6: View names the oldest frame still
 // running (pipelined frames) and says whether one sample per pixel is jittered. 7: PhotonCancel.
-inline constexpr uint16_t kVersion = 7;
+// 8: the automatic k (gather: auto) in the scene's caustics and the photon map's gather.
+inline constexpr uint16_t kVersion = 8;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 

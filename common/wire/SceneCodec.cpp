@@ -175,12 +175,14 @@ RenderSettings readRender(ByteReader& r) {
 }
 
 void writeCaustics(ByteWriter& w, const CausticSettings& c) {
-  const auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha,
-               radius, timeBudgetSeconds, mapResolution, mapSteps, mapBlurSigma, mapBlurRadius,
-               mapPaths] = c;
+  const auto& [method, photons, gather, automaticGather, gatherNoise, maxRadius, filter, maxBounces,
+               progressive, passes, alpha, radius, timeBudgetSeconds, mapResolution, mapSteps,
+               mapBlurSigma, mapBlurRadius, mapPaths] = c;
   writeEnum(w, method);
   w.writeU64(photons);
   w.writeI32(gather);
+  w.writeBool(automaticGather);
+  w.writeF32(gatherNoise);
   w.writeF32(maxRadius);
   writeEnum(w, filter);
   w.writeI32(maxBounces);
@@ -198,11 +200,14 @@ void writeCaustics(ByteWriter& w, const CausticSettings& c) {
 
 CausticSettings readCaustics(ByteReader& r) {
   CausticSettings c;
-  auto& [method, photons, gather, maxRadius, filter, maxBounces, progressive, passes, alpha, radius,
-         timeBudgetSeconds, mapResolution, mapSteps, mapBlurSigma, mapBlurRadius, mapPaths] = c;
+  auto& [method, photons, gather, automaticGather, gatherNoise, maxRadius, filter, maxBounces,
+         progressive, passes, alpha, radius, timeBudgetSeconds, mapResolution, mapSteps,
+         mapBlurSigma, mapBlurRadius, mapPaths] = c;
   method = readEnum<CausticMethod>(r, "caustic method");
   photons = r.readU64();
   gather = r.readI32();
+  automaticGather = r.readBool();
+  gatherNoise = r.readF32();
   maxRadius = r.readF32();
   filter = readEnum<PhotonFilter>(r, "photon filter");
   maxBounces = r.readI32();

@@ -34,12 +34,12 @@ TEST(GatherRadius, PhotonRadiiAreTheKthNeighbourDistanceCapped) {
   std::vector<Photon> line(300);
   for (size_t i = 0; i < line.size(); ++i) line[i].position = {static_cast<float>(i), 0, 0};
   const PhotonMap map(std::move(line));
-  const std::vector<float> radii = photonRadii(map, 3, 10.0f, 2);
+  const std::vector<float> radii = photonRadii(map, 3, 10.0f, false, 2);
   ASSERT_EQ(radii.size(), 300u);
   EXPECT_FLOAT_EQ(radii[0], 2.0f);
   EXPECT_FLOAT_EQ(radii[150], 1.0f);
   EXPECT_FLOAT_EQ(radii[299], 2.0f);
-  EXPECT_FLOAT_EQ(photonRadii(map, 3, 1.5f, 2)[0], 1.5f);  // capped
+  EXPECT_FLOAT_EQ(photonRadii(map, 3, 1.5f, false, 2)[0], 1.5f);  // capped
 }
 
 // Every radius equals a brute-force k-th nearest distance (squared as the kd-tree squares it,
@@ -81,7 +81,7 @@ TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
       expected[i] = std::sqrt(within[k - 1]);
     }
     for (int threads : {1, 2}) {
-      const std::vector<float> radii = photonRadii(map, k, maxRadius, threads);
+      const std::vector<float> radii = photonRadii(map, k, maxRadius, false, threads);
       size_t capped = 0, wrong = 0;
       for (size_t i = 0; i < radii.size(); ++i) {
         capped += expected[i] == maxRadius;

@@ -212,6 +212,16 @@ TEST(YamlSceneParser, FullSceneReadsEveryKey) {
   EXPECT_EQ(s.meshes[2].caustic, CausticRole::Receive);
 }
 
+TEST(YamlSceneParser, GatherAutoTakesTheNoiseItAimsAt) {
+  const SceneDescription s =
+      parse("caustics:\n  method: photon_map\n  gather: auto\n  noise: 0.1\n");
+  EXPECT_TRUE(s.caustics.automaticGather);
+  EXPECT_FLOAT_EQ(s.caustics.gatherNoise, 0.1f);
+  const SceneDescription fixed = parse("caustics:\n  gather: 30\n");
+  EXPECT_FALSE(fixed.caustics.automaticGather);
+  EXPECT_EQ(fixed.caustics.gather, 30);
+}
+
 TEST(YamlSceneParser, CausticsDefaultToNone) {
   const SceneDescription s = parse("objects:\n  - sphere: {center: [0, 0, 0], radius: 1}\n");
   const CausticSettings defaults;
@@ -676,6 +686,8 @@ const BadScene kBadScenes[] = {
     {"alpha_out_of_range.yaml", 3, 10, "'alpha' must lie strictly between 0 and 1, found 1.5"},
     {"photons_zero.yaml", 2, 12, "'photons' must be at least 1"},
     {"gather_zero.yaml", 2, 11, "'gather' must be at least 1, found 0"},
+    {"gather_not_auto.yaml", 2, 11, "expected an integer for 'gather', found 'automatic'"},
+    {"noise_too_large.yaml", 3, 10, "'noise' must lie between 0.0032 and 1, found 2"},
     {"negative_time_budget.yaml", 2, 16, "'time_budget' must not be negative, found -1"},
     {"up_parallel.yaml", 1, 1, "'up' is parallel to the view direction"},
     // references

@@ -150,11 +150,11 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
-  // liveFrom; 6: before PhotonCancel.
-  for (uint16_t version : {1, 2, 3, 4, 5, 6, 8}) {
+  // liveFrom; 6: before PhotonCancel; 7: before the automatic k.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 9}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 7");
+                    "message version " + std::to_string(version) + ", this build speaks 8");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel; 14 is the
@@ -568,7 +568,8 @@ TEST(Messages, PhotonMapWithAHugePhotonCountThrowsWithoutAllocating) {
     w.writeI32(10);
     w.writeF32(0.5f);
     w.writeU32(1);
-    w.writeF32(1.0f);  // radius scale
+    w.writeF32(1.0f);    // radius scale
+    w.writeBool(false);  // automatic k
     w.writeU64(uint64_t{1} << 60);
   });
   expectWireError([&] { decodePhotonMap(m); }, "corrupt element count 1152921504606846976");
@@ -584,7 +585,7 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
-  EXPECT_EQ(sizeof(PhotonMapMessage), 48u) << update;
+  EXPECT_EQ(sizeof(PhotonMapMessage), 56u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 96u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 32u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;

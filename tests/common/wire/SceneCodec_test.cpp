@@ -25,6 +25,8 @@ SceneDescription fullScene() {
   d.caustics = {CausticMethod::PhotonMap,
                 0x1'0000'0007ull,
                 37,
+                true,
+                0.0375f,
                 0.0625f,
                 PhotonFilter::Epanechnikov,
                 9,
@@ -313,8 +315,8 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 40u) << update;
-  EXPECT_EQ(sizeof(CausticSettings), 80u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 816u) << update;
+  EXPECT_EQ(sizeof(CausticSettings), 88u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 824u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
