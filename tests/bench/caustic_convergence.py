@@ -41,9 +41,38 @@ def run(cmd):
     return time.monotonic() - start, p.stdout
 
 
-def score(args, image, direct):
-    _, out = run([args.reference_tool, "--reference", args.ref, "--score", image, "--direct", direct,
-                  "--scene", args.scene])
+# The exact reference's resolution. The focus pixel moved by a factor 1.7 between 2 and 4 bins per
+# pixel and 4x4 and 8x8 eye samples: a reference coarser than this one mis-scores every method at
+# the focus (docs/accuracy.md, "The pixel footprint").
+REF_RAYS, REF_SAMPLES, REF_BINS = "200000000", "16", "8"
+
+
+def build_reference(tool, scene, out, rays=REF_RAYS, samples=REF_SAMPLES, bins=REF_BINS,
+                    threads="2"):
+    """Builds the exact caustic of `scene` into `out` unless it is there (a cache): the seconds it
+    took, or None."""
+    if os.path.exists(out):
+        return None
+    part = out + ".part.exr"  # a run killed half-way leaves no file that looks finished
+    t, _ = run([tool, scene, "--out", part, "--rays", str(rays), "--samples", str(samples),
+                "--bins-per-pixel", str(bins), "--threads", str(threads)])
+    os.replace(part, out)
+    return t
+
+
+def write_direct_scene(scene, out):
+    """`scene` with the ball's caustic role off: it still blocks shadow rays, and casts nothing."""
+    with open(scene) as f, open(out, "w") as g:
+        for line in f:
+            if line.strip().startswith("- sphere:") and "caustic" not in line:
+                line = line.rstrip().rstrip("}") + ', caustic: "off"}\n'
+            g.write(line)
+
+
+def score(tool, reference, image, direct, scene, png=None):
+    """The reference tool's scores of `image` (its caustic: image - direct), as a dict."""
+    cmd = [tool, "--reference", reference, "--score", image, "--direct", direct, "--scene", scene]
+    _, out = run(cmd + (["--png", png] if png else []))
     words = out.split()
     return {words[i]: float(words[i + 1]) for i in range(0, len(words) - 1, 2)}
 
@@ -63,31 +92,23 @@ def main():
     ap.add_argument("--scene", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--threads", default="2")
-    ap.add_argument("--rays", default="200000000", help="light rays of the reference")
-    # The focus pixel moved by a factor 1.7 between 2 and 4 bins per pixel and 4x4 and 8x8 eye
-    # samples: a reference coarser than this one mis-scores every method at the focus
-    # (docs/accuracy.md, "The pixel footprint").
-    ap.add_argument("--ref-samples", default="16", help="eye samples per pixel side of the reference")
-    ap.add_argument("--ref-bins", default="8", help="plane bins per pixel side of the reference")
+    ap.add_argument("--rays", default=REF_RAYS, help="light rays of the reference")
+    ap.add_argument("--ref-samples", default=REF_SAMPLES, help="eye samples per pixel side of the reference")
+    ap.add_argument("--ref-bins", default=REF_BINS, help="plane bins per pixel side of the reference")
     ap.add_argument("--photons", default="100000,200000,500000,1000000")
     ap.add_argument("--passes", default="1,2,4,8,16,32")
     ap.add_argument("--resolutions", default="256,512,1024,2048")
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    args.ref = os.path.join(args.out, "reference.exr")
-    if not os.path.exists(args.ref):
-        t, _ = run([args.reference_tool, args.scene, "--out", args.ref, "--rays", args.rays,
-                    "--samples", args.ref_samples, "--bins-per-pixel", args.ref_bins,
-                    "--threads", args.threads])
+    ref = os.path.join(args.out, "reference.exr")
+    t = build_reference(args.reference_tool, args.scene, ref, args.rays, args.ref_samples,
+                        args.ref_bins, args.threads)
+    if t is not None:
         print("reference built in %.1f s" % t)
     # The direct light: the ball blocks shadow rays but casts no caustic.
     off = os.path.join(args.out, "direct-scene.yaml")
-    with open(args.scene) as f, open(off, "w") as g:
-        for line in f:
-            if line.strip().startswith("- sphere:") and "caustic" not in line:
-                line = line.rstrip().rstrip("}") + ', caustic: "off"}\n'
-            g.write(line)
+    write_direct_scene(args.scene, off)
     direct = os.path.join(args.out, "direct.exr")
     run([args.prism, "render", off, "-o", direct, "--threads", args.threads, "--overwrite", "-q"])
 
@@ -107,7 +128,7 @@ def main():
                         "--overwrite", "-q"] + flags)
             times[i].append(t)
             if rnd == 0:
-                scores[i] = score(args, image, direct)
+                scores[i] = score(args.reference_tool, ref, image, direct, args.scene)
     print("| method | budget | wall s (median) | min..max | full-region rel. RMSE | regular part | flux ratio |")
     print("|---|---|---:|---|---:|---:|---:|")
     curves = {}
