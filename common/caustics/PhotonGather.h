@@ -49,7 +49,7 @@ class PhotonGather : public CausticEstimator {
 };
 
 // Each photon's radius: the distance to its k-th nearest photon (itself included), capped at
-// maxRadius; with automaticK, to its own k's nearest, k up to k (caustics/AutomaticGather.h).
+// maxRadius; with automaticK, each photon's own k, at most k (caustics/AutomaticGather.h).
 // The same on every rank: each photon's answer depends on the map alone.
 std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
                                int threads = 0);
