@@ -40,6 +40,7 @@ SceneDescription progressiveSettings(SceneDescription d, const ReferenceRequest&
   d.caustics.timeBudgetSeconds = 0.0;
   d.caustics.radius = 0.0f;
   d.caustics.gather = r.k;
+  d.caustics.automaticGather = false;  // the reference's own k, whatever the scene says
   return d;
 }
 

@@ -5,6 +5,7 @@
 
 #include <sstream>
 
+#include "caustics/AutomaticGather.h"
 #include "master/ParetoFront.h"
 #include "master/SweepReport.h"
 
@@ -47,6 +48,26 @@ TEST(SweepPlan, EachFamilyChangesOneParameterOfTheScenesSettings) {
   EXPECT_EQ(points[6].caustics.mapBlurRadius, 4);
   EXPECT_FLOAT_EQ(points[6].caustics.mapBlurSigma, 2.0f);
   for (const SweepPoint& p : points) EXPECT_EQ(p.samplesPerPixel, 2);
+}
+
+// autok sweeps the automatic k by its largest k (the noise 1/√k); k sweeps fixed k even in a
+// scene that asks for gather: auto.
+TEST(SweepPlan, TheAutomaticKFamilySetsTheNoiseOfItsLargestKAndKFamilyFixesK) {
+  SceneDescription scene = photonScene();
+  scene.caustics.automaticGather = true;
+  SweepValues values;
+  values.gather = {50};
+  values.autoGather = {25, 400};
+  const auto points = planSweep({SweepFamily::Gather, SweepFamily::AutoGather}, values, scene);
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_FALSE(points[0].caustics.automaticGather);
+  EXPECT_EQ(points[0].caustics.gather, 50);
+  for (const SweepPoint& p : {points[1], points[2]}) {
+    EXPECT_TRUE(p.caustics.automaticGather);
+    EXPECT_EQ(p.caustics.method, CausticMethod::PhotonMap);
+    EXPECT_EQ(automaticGatherLargestK(p.caustics.gatherNoise), static_cast<int>(p.value));
+  }
+  EXPECT_FLOAT_EQ(points[2].caustics.gatherNoise, 0.05f);
 }
 
 TEST(SweepPlan, DefaultsCoverEveryMethodAndRefuseValuesOutOfRange) {
