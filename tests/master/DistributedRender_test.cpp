@@ -405,6 +405,28 @@ TEST_F(DistributedRender, CausticMapPixelsAreBitIdenticalForOneAndTwoRanks) {
   EXPECT_NE(run.output.find("caustics  caustic map: 128x128"), std::string::npos) << run.output;
 }
 
+// gather: auto travels with the photon map: on the ring's fold each photon's own k differs from
+// the largest k (so a slave that ignored it would render other pixels), and two ranks give the
+// single process's image.
+TEST_F(DistributedRender, AutomaticKIsCarriedToTheSlaves) {
+  const std::string scene = std::string(PRISM_SOURCE_DIR) +
+                            "/scenes/caustic-ring.yaml -W 64 -H 48 --spp 1 --photons 200000";
+  const test::ProcessRun fixed =
+      test::runPrism("render " + scene + " --gather 400 -q -o " + path("fixed.exr"));
+  ASSERT_EQ(fixed.exitCode, 0) << fixed.output;
+  const test::ProcessRun single =
+      test::runPrism("render " + scene + " --gather-noise 0.05 -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  ASSERT_FALSE(samePixels(readImage(path("fixed.exr")), readImage(path("reference.exr"))));
+  const test::ProcessRun run = test::runPrismMpi(
+      2, "render " + scene + " --gather-noise 0.05 -o " + path("mpi.exr") +
+             " --tile-size 8 --schedule static");  // the slave renders half the tiles
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_NE(run.output.find("k <= 400, auto"), std::string::npos) << run.output;
+}
+
 // Photon shares are gathered and the map sent on to every slave: the largest messages of a
 // caustic render, here over TCP.
 TEST_F(DistributedRender, OverTcpProgressivePhotonMapPixelsAreBitIdentical) {
