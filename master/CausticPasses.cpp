@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "caustics/AutomaticGather.h"
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "master/PhotonPass.h"
@@ -85,8 +84,7 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
   CausticRunStats& stats = out.caustics;
   stats.method = settings.method;
   stats.progressive = settings.progressive;
-  stats.k =
-      settings.automaticGather ? automaticGatherLargestK(settings.gatherNoise) : settings.gather;
+  stats.k = classicGather(settings, 0.0f).k;  // with gather: auto, its largest k
   stats.settings = settings;
   uint32_t frameId = options.frameId;
 

@@ -42,6 +42,9 @@ class PhotonDiscs {
     float minRadius2() const { return std::bit_cast<float>(uint32_t(minRadius2Bits) << 16); }
   };
   uint32_t build(uint32_t begin, uint32_t end, int depth);
+  // Depth first over the nodes `enters` accepts, calling atSlot(slot) for their leaves' slots.
+  template <class Enters, class AtSlot>
+  void walk(Enters&& enters, AtSlot&& atSlot) const;
 
   std::vector<Node> nodes_;
   std::vector<uint32_t> index_;  // photon index per slot
@@ -49,23 +52,17 @@ class PhotonDiscs {
   std::vector<float> radius2_;   // per slot
 };
 
-template <class Visit>
-void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
+template <class Enters, class AtSlot>
+void PhotonDiscs::walk(Enters&& enters, AtSlot&& atSlot) const {
   if (nodes_.empty()) return;
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (x.x < n.lo.x || x.y < n.lo.y || x.z < n.lo.z || x.x > n.hi.x || x.y > n.hi.y ||
-        x.z > n.hi.z)
-      continue;
+    if (!enters(n)) continue;
     if (n.count > 0) {
-      for (uint32_t s = n.first; s < n.first + n.count; ++s) {
-        const Vec3 d = x - centre_[s];
-        const float d2 = glm::dot(d, d);
-        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
-      }
+      for (uint32_t s = n.first; s < n.first + n.count; ++s) atSlot(s);
     } else {
       const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());
       stack[top++] = n.first;
@@ -75,30 +72,33 @@ void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
 }
 
 template <class Visit>
+void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
+  walk(
+      [&](const Node& n) {
+        return x.x >= n.lo.x && x.y >= n.lo.y && x.z >= n.lo.z && x.x <= n.hi.x && x.y <= n.hi.y &&
+               x.z <= n.hi.z;
+      },
+      [&](uint32_t s) {
+        const Vec3 d = x - centre_[s];
+        const float d2 = glm::dot(d, d);
+        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
+      });
+}
+
+template <class Visit>
 void PhotonDiscs::reaching(const Vec3& x, float reach, float max2, Visit&& visit) const {
-  if (nodes_.empty()) return;
-  uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (n.minRadius2() > max2 || x.x < n.lo.x - reach || x.y < n.lo.y - reach ||
-        x.z < n.lo.z - reach || x.x > n.hi.x + reach || x.y > n.hi.y + reach ||
-        x.z > n.hi.z + reach)
-      continue;
-    if (n.count > 0) {
-      for (uint32_t s = n.first; s < n.first + n.count; ++s) {
-        if (radius2_[s] > max2) continue;
+  walk(
+      [&](const Node& n) {
+        return n.minRadius2() <= max2 && x.x >= n.lo.x - reach && x.y >= n.lo.y - reach &&
+               x.z >= n.lo.z - reach && x.x <= n.hi.x + reach && x.y <= n.hi.y + reach &&
+               x.z <= n.hi.z + reach;
+      },
+      [&](uint32_t s) {
+        if (radius2_[s] > max2) return;
         const Vec3 d = x - centre_[s];
         const float d2 = glm::dot(d, d), within = std::sqrt(radius2_[s]) + reach;
         if (d2 < within * within) visit(index_[s], d2, radius2_[s]);
-      }
-    } else {
-      const uint32_t self = static_cast<uint32_t>(&n - nodes_.data());
-      stack[top++] = n.first;
-      stack[top++] = self + 1;
-    }
-  }
+      });
 }
 
 }  // namespace prism

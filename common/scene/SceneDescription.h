@@ -149,7 +149,7 @@ struct CausticSettings {
   // gather: auto — k chosen per photon, up to ⌈1/noise²⌉ (caustics/AutomaticGather.h).
   bool automaticGather = false;
   float gatherNoise = 0.05f;
-  float maxRadius = 0.0f;     // cap on the photon radii; 0: automatic from the casters' size
+  float maxRadius = 0.0f;  // cap on the photon radii; 0: automatic from the casters' size
   PhotonFilter filter = PhotonFilter::Cone;
   int maxBounces = 16;  // specular bounces a photon may take before it is dropped
   // Progressive photon mapping: passes whose radii shrink by the rule of Knaus & Zwicker 2011.
