@@ -22,6 +22,9 @@ class CausticEstimator {
     (void)footprint;
     return irradiance(s.position, s.geometricNormal);
   }
+  // Whether irradianceAt reads the footprint. The renderer carries ray differentials only for
+  // estimators that do: they cost every ray of a frame some arithmetic.
+  virtual bool usesFootprint() const { return false; }
 };
 
 }  // namespace prism

@@ -35,6 +35,7 @@ class PhotonGather : public CausticEstimator {
   // nothing otherwise; one about as wide, the mean of its kernel over the footprint; a wider one
   // keeps its kernel at the centre.
   Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
+  bool usesFootprint() const override { return true; }
 
   const PhotonMap& map() const { return *map_; }
   const PhotonGatherSettings& settings() const { return settings_; }

@@ -24,9 +24,12 @@ class WhittedIntegrator {
   // default) the estimate is taken at the point.
   Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
                  const RayDifferential& differential = {}) const;
-  // Whether radiance() uses a differential: only a caustic estimate does, so without one the
-  // tracing loop need not compute them.
-  bool usesDifferentials() const { return terms_.caustics != nullptr; }
+  // Whether radiance() uses a differential: only a caustic estimate that averages over the
+  // pixel's footprint does (photon gathers; not the caustic map), so otherwise the tracing loop
+  // need not compute them.
+  bool usesDifferentials() const {
+    return terms_.caustics != nullptr && terms_.caustics->usesFootprint();
+  }
 
  private:
   Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,

@@ -175,6 +175,7 @@ class FootprintProbe : public CausticEstimator {
     footprints.push_back(footprint);
     return Color(0.0f);
   }
+  bool usesFootprint() const override { return true; }
   mutable std::vector<PixelFootprint> footprints;
 };
 
