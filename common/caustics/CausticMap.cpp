@@ -14,10 +14,29 @@ namespace {
 constexpr int kMaxInterfaces = 8;    // caster surfaces a traced path may cross
 constexpr float kMinWeight = 1e-3f;  // branches below this share of the texel's flux are dropped
 
-// How far a point's distance from the light may differ from a texel's receiver and still be that
-// receiver: a texel's footprint along the surface's slope, plus a little for float error.
-float depthTolerance(const ReceiverTexel& t, float texelSize) {
-  return t.distance * (2e-3f + 1.5f * texelSize / std::max(t.cosine, 0.1f));
+// The region of space whose lookups can read texel (i, j) of a view (receiver at `distance`,
+// depth tolerance `tolerance`): a lookup reads the texels around where the point projects, so
+// the point lies within a texel of this one's centre, at most `tolerance` nearer or further from
+// the light than its receiver. The window taken is half a texel wider on every side, and the
+// far corners are pushed out so that the sphere of the far distance stays inside: the box holds
+// the region with room to spare for rounding.
+Aabb texelReach(const LightFrustum& frustum, const Vec3& light, int view, int i, int j,
+                float distance, float tolerance) {
+  const Vec3 centre = frustum.direction(view, i + 0.5f, j + 0.5f);
+  const float x0 = static_cast<float>(i) - 1.0f, x1 = static_cast<float>(i) + 2.0f;
+  const float y0 = static_cast<float>(j) - 1.0f, y1 = static_cast<float>(j) + 2.0f;
+  const Vec3 corners[4] = {frustum.direction(view, x0, y0), frustum.direction(view, x1, y0),
+                           frustum.direction(view, x0, y1), frustum.direction(view, x1, y1)};
+  float minCos = 1.0f;
+  for (const Vec3& c : corners) minCos = std::min(minCos, glm::dot(c, centre));
+  const float nearest = std::max(distance - tolerance, 0.0f);
+  const float farthest = (distance + tolerance) / std::max(minCos, 0.5f);
+  Aabb box;
+  for (const Vec3& c : corners) {
+    box.extend(light + nearest * c);
+    box.extend(light + farthest * c);
+  }
+  return box;
 }
 
 struct Splat {
@@ -139,6 +158,10 @@ CausticMapStats& CausticMapStats::operator+=(const CausticMapStats& o) {
   return *this;
 }
 
+float CausticMap::depthTolerance(const ReceiverTexel& t, float texelSize) {
+  return t.distance * (2e-3f + 1.5f * texelSize / std::max(t.cosine, 0.1f));
+}
+
 CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSettings& settings,
                        int threads)
     : frustum_(scene.lights()[lightIndex].position, scene.causticCasters(),
@@ -239,11 +262,26 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
     pass(1, 0);
     pass(0, 1);
   }
+  const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
+  for (int view = 0; view < views; ++view) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const ReceiverTexel& t = receivers_->at(view, i, j);
+        if (!t.valid || isBlack(irradiance_[(static_cast<size_t>(view) * n + j) * n + i])) continue;
+        lit_.extend(texelReach(frustum_, light.position, view, i, j, t.distance,
+                               depthTolerance(t, texelSize)));
+      }
+    }
+  }
   stats_.filterSeconds = secondsSince(start);
 }
 
 Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
-  if (frustum_.empty()) return Color(0.0f);
+  // Most receiver points see no caustic: the answer there is 0, found without projecting.
+  if (!(glm::all(glm::greaterThanEqual(position, lit_.lower)) &&
+        glm::all(glm::lessThanEqual(position, lit_.upper)))) {
+    return Color(0.0f);
+  }
   const std::optional<LightSpacePoint> p = frustum_.project(position);
   if (!p) return Color(0.0f);
   const int n = frustum_.resolution();

@@ -16,6 +16,7 @@
 
 #include "caustics/LightFrustum.h"
 #include "caustics/ReceiverMap.h"
+#include "math/Aabb.h"
 #include "scene/Scene.h"
 
 namespace prism {
@@ -54,12 +55,19 @@ class CausticMap {
   // Caustic irradiance at a receiver point facing `normal`: bilinear over the texels around its
   // projection whose receiver is this point (within a depth tolerance) and faces its way.
   Color irradiance(const Vec3& position, const Vec3& normal) const;
+  // How far a point's distance from the light may differ from a texel's receiver and still be
+  // that receiver: a texel's footprint along the surface's slope, plus a little for float error.
+  // texelSize: a texel's width on the plane at distance 1.
+  static float depthTolerance(const ReceiverTexel& t, float texelSize);
+  // Holds every point irradiance() can give a non-zero answer: lookups outside return at once.
+  const Aabb& litBounds() const { return lit_; }
 
  private:
   LightFrustum frustum_;
   std::unique_ptr<ReceiverMap> receivers_;
   std::vector<CasterTexel> casters_;
   std::vector<Color> irradiance_;
+  Aabb lit_;
   CausticMapStats stats_;
 };
 

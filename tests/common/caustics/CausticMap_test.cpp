@@ -143,6 +143,50 @@ TEST(CausticMap, ErrorAgainstPhotonMappingFallsAsResolutionRises) {
   EXPECT_LT(errors[3], 0.1);
 }
 
+// Lookups outside litBounds() return 0 without projecting, so the box must hold every point that
+// can read a lit texel: points within a texel of its centre at its receiver's distance.
+TEST(CausticMap, EveryPointThatCanReadALitTexelIsInsideTheLitBounds) {
+  const Scene scene(sphereScene(1.5f, 64, 2));
+  const CausticMap map(scene, 0, scene.causticSettings(), 0);
+  const Aabb& lit = map.litBounds();
+  const LightFrustum& frustum = map.frustum();
+  const Vec3 light = scene.lights()[0].position;
+  const int n = frustum.resolution();
+  const float texelSize = 2.0f * frustum.views()[0].tanHalf / static_cast<float>(n);
+  const auto inside = [&](const Vec3& p) {
+    return glm::all(glm::greaterThanEqual(p, lit.lower)) &&
+           glm::all(glm::lessThanEqual(p, lit.upper));
+  };
+  size_t litTexels = 0;
+  for (int view = 0; view < static_cast<int>(frustum.views().size()); ++view) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const ReceiverTexel& t = map.receivers().at(view, i, j);
+        const Color& e = map.irradianceMap()[(static_cast<size_t>(view) * n + j) * n + i];
+        if (!t.valid || maxComponent(e) <= 0.0f) continue;
+        ++litTexels;
+        // A lookup reads this texel from anywhere in [i - 0.5, i + 1.5) × [j - 0.5, j + 1.5),
+        // within the depth tolerance of its receiver's distance.
+        const float tolerance = 0.999f * CausticMap::depthTolerance(t, texelSize);
+        for (const float x : {i - 0.5f, i + 0.5f, i + 1.499f}) {
+          for (const float y : {j - 0.5f, j + 0.5f, j + 1.499f}) {
+            for (const float r : {t.distance - tolerance, t.distance, t.distance + tolerance}) {
+              const Vec3 p = light + r * frustum.direction(view, x, y);
+              ASSERT_TRUE(inside(p)) << "texel " << i << ", " << j << " at " << x << ", " << y;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(litTexels, 100u);
+  // Light through the ball lands on the floor under it, in the light's view of the ball, and on
+  // nothing else: the box is that thin slab of floor.
+  EXPECT_TRUE(inside({0.0f, 0.0f, 0.0f}));
+  EXPECT_FALSE(inside({0.0f, 0.0f, 3.0f}));  // past the light's view of the ball (tan 0.6 · 4)
+  EXPECT_FALSE(inside({0.0f, 1.0f, 0.0f}));  // inside the ball, far above the floor
+}
+
 TEST(CausticMap, IsTheSameForAnyThreadCount) {
   const Scene scene(sphereScene(1.5f, 128, 2));
   const CausticMap one(scene, 0, scene.causticSettings(), 1);
