@@ -21,6 +21,7 @@
 #include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
 #include "image/ToneMap.h"
+#include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/ResourceCheck.h"
 #include "parse/SceneLoader.h"
@@ -106,9 +107,12 @@ const std::string kPlaneScene = PRISM_SOURCE_DIR "/scenes/lambert-plane.yaml";
 TEST(MainWindow, ShowsTheFrameTheRendererProduced) {
   LiveWindow live(kDefaultScene, 96, 54, 2, 1);  // one full pass, then still
   ASSERT_TRUE(live.waitForFullPasses(1));
-  // Pass 1 uses the scene's seed and spp: exactly the image `prism render` makes.
+  // Pass 1 uses the scene's seed and spp: exactly the image `prism render` makes, the default
+  // scene's caustic map included.
   const ImageRgb& shown = live.window().frame().image();
-  const ImageRgb expected = renderFrame(live.scene(), FrameOptions{}).image;
+  const ImageRgb expected = renderWithCaustics(live.scene(), FrameOptions{}).image;
+  ASSERT_NE(expected.pixels, renderFrame(live.scene(), FrameOptions{}).image.pixels)
+      << "the default scene's caustic is missing";
   ASSERT_EQ(shown.pixels.size(), expected.pixels.size());
   for (size_t i = 0; i < shown.pixels.size(); ++i) {
     ASSERT_EQ(shown.pixels[i], expected.pixels[i]) << "pixel " << i;
