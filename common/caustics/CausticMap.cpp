@@ -212,7 +212,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
 
   start = SteadyClock::now();
   // Flux to irradiance: a receiver texel covers Ω·d²/cos θ of its surface.
-  irradiance_.assign(texels, Color(0.0f));
+  std::vector<Color> irradiance(texels, Color(0.0f));
   for (int view = 0; view < views; ++view) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -220,7 +220,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
         const size_t k = (static_cast<size_t>(view) * n + j) * n + i;
         if (!t.valid) continue;
         const double area = frustum_.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
-        irradiance_[k] = flux[k] * static_cast<float>(1.0 / area);
+        irradiance[k] = flux[k] * static_cast<float>(1.0 / area);
       }
     }
   }
@@ -250,26 +250,34 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
               const ReceiverTexel& t = receivers_->at(view, ii, jj);
               if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
               const float w = kernel[static_cast<size_t>(std::abs(k))];
-              acc += w * irradiance_[(static_cast<size_t>(view) * n + jj) * n + ii];
+              acc += w * irradiance[(static_cast<size_t>(view) * n + jj) * n + ii];
               wsum += w;
             }
             out[(static_cast<size_t>(view) * n + j) * n + i] = acc / wsum;
           }
         }
       }
-      irradiance_ = std::move(out);
+      irradiance = std::move(out);
     };
     pass(1, 0);
     pass(0, 1);
   }
   const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
+  lookup_.resize(texels);
   for (int view = 0; view < views; ++view) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         const ReceiverTexel& t = receivers_->at(view, i, j);
-        if (!t.valid || isBlack(irradiance_[(static_cast<size_t>(view) * n + j) * n + i])) continue;
-        lit_.extend(texelReach(frustum_, light.position, view, i, j, t.distance,
-                               depthTolerance(t, texelSize)));
+        const size_t k = (static_cast<size_t>(view) * n + j) * n + i;
+        lookup_[k].irradiance = irradiance[k];
+        if (!t.valid) continue;
+        const float tolerance = depthTolerance(t, texelSize);
+        lookup_[k].normal = t.normal;
+        lookup_[k].distance = t.distance;
+        lookup_[k].tolerance = tolerance;
+        if (!isBlack(irradiance[k])) {
+          lit_.extend(texelReach(frustum_, light.position, view, i, j, t.distance, tolerance));
+        }
       }
     }
   }
@@ -285,7 +293,6 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   const std::optional<LightSpacePoint> p = frustum_.project(position);
   if (!p) return Color(0.0f);
   const int n = frustum_.resolution();
-  const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
   const float fx = p->x - 0.5f, fy = p->y - 0.5f;
   const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
   const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
@@ -293,14 +300,14 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   float wsum = 0.0f;
   for (int c = 0; c < 4; ++c) {
     const int i = std::clamp(i0 + (c & 1), 0, n - 1), j = std::clamp(j0 + (c >> 1), 0, n - 1);
-    const ReceiverTexel& t = receivers_->at(p->view, i, j);
-    // The shadow-map test: only the receiver the light sees in this texel gets its caustic.
-    if (!t.valid || glm::dot(normal, t.normal) <= 0.0f ||
-        std::abs(t.distance - p->distance) > depthTolerance(t, texelSize)) {
+    const LookupTexel& t = lookup_[(static_cast<size_t>(p->view) * n + j) * n + i];
+    // The shadow-map test: only the receiver the light sees in this texel gets its caustic (a
+    // texel without one has a zero normal and fails it).
+    if (glm::dot(normal, t.normal) <= 0.0f || std::abs(t.distance - p->distance) > t.tolerance) {
       continue;
     }
     const float w = ((c & 1) ? ax : 1.0f - ax) * ((c >> 1) ? ay : 1.0f - ay);
-    acc += w * irradiance_[(static_cast<size_t>(p->view) * n + j) * n + i];
+    acc += w * t.irradiance;
     wsum += w;
   }
   return wsum > 1e-4f ? acc / wsum : Color(0.0f);

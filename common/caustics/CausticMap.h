@@ -48,8 +48,9 @@ class CausticMap {
   const LightFrustum& frustum() const { return frustum_; }
   const ReceiverMap& receivers() const { return *receivers_; }
   const std::vector<CasterTexel>& casters() const { return casters_; }
-  // Caustic irradiance per receiver texel (W/m²), view-major then rows, after the blur.
-  const std::vector<Color>& irradianceMap() const { return irradiance_; }
+  // Caustic irradiance of a receiver texel (W/m²), numbered view-major then rows, after the blur.
+  const Color& texelIrradiance(size_t texel) const { return lookup_[texel].irradiance; }
+  size_t texelCount() const { return lookup_.size(); }
   const CausticMapStats& stats() const { return stats_; }
 
   // Caustic irradiance at a receiver point facing `normal`: bilinear over the texels around its
@@ -66,7 +67,17 @@ class CausticMap {
   LightFrustum frustum_;
   std::unique_ptr<ReceiverMap> receivers_;
   std::vector<CasterTexel> casters_;
-  std::vector<Color> irradiance_;
+  // What a lookup reads of a texel, in one 32-byte record: two share a cache line, where the
+  // receiver map's texel and the irradiance apart took up to two lines each.
+  struct alignas(32) LookupTexel {
+    Vec3 normal{0.0f};  // the receiver's; zero where there is none, which fails every lookup
+    float distance = 0.0f;
+    float tolerance = 0.0f;  // depthTolerance() of the receiver
+    Color irradiance{0.0f};
+  };
+  static_assert(sizeof(LookupTexel) == 32);
+
+  std::vector<LookupTexel> lookup_;
   Aabb lit_;
   CausticMapStats stats_;
 };

@@ -22,7 +22,7 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
         if (r.valid) lo = glm::min(lo, r.position), hi = glm::max(hi, r.position);
         const CasterTexel& c = map.casters()[k];
         if (c.valid) lo = glm::min(lo, c.position), hi = glm::max(hi, c.position);
-        const float e = maxComponent(map.irradianceMap()[k]);
+        const float e = maxComponent(map.texelIrradiance(k));
         if (e > 0.0f) lit.push_back(e);
       }
     }
@@ -55,7 +55,7 @@ std::vector<NamedImage> causticMapImages(const CausticMap& map) {
           out[1].image.pixels[px] = shade(c.position);
           out[2].image.pixels[px] = 0.5f * c.normal + 0.5f;
         }
-        if (white > 0.0f) out[3].image.pixels[px] = map.irradianceMap()[k] / white;
+        if (white > 0.0f) out[3].image.pixels[px] = map.texelIrradiance(k) / white;
       }
     }
   }

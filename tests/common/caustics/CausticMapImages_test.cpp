@@ -49,8 +49,9 @@ TEST(CausticMapImages, OnePixelPerTexelWithTheCausticWhiteAtThePercentile) {
   // and give or take the texels tied with the one at the percentile (a symmetric caustic has
   // groups of texels equal to a few units in the last place).
   std::vector<float> sorted;
-  for (const Color& e : map.irradianceMap()) {
-    if (maxComponent(e) > 0.0f) sorted.push_back(maxComponent(e));
+  for (size_t k = 0; k < map.texelCount(); ++k) {
+    const float e = maxComponent(map.texelIrradiance(k));
+    if (e > 0.0f) sorted.push_back(e);
   }
   std::sort(sorted.begin(), sorted.end());
   const float atPercentile = sorted[static_cast<size_t>(kCausticWhitePercentile * sorted.size())];
