@@ -39,7 +39,7 @@ void FrameAccumulator::write(ImageRgb& target, const TileResult& tile) const {
   const TileRect& r = tile.rect;
   const int w = pass_.view->width;
   const int h = pass_.view->height;
-  if (pass_.scale != 1 || w != target.width || h != target.height) {
+  if (!pass_.scale.full() || w != target.width || h != target.height) {
     // A reduced frame: each of its pixels covers a block of display pixels.
     for (int ty = 0; ty < r.height; ++ty) {
       const int py = r.y + ty;

@@ -446,7 +446,7 @@ void MainWindow::updateStatusBar() {
   const PassInfo& p = frame_.pass();
   const QString what =
       p.pass == 0
-          ? QString("moving, 1/%1 resolution, 1 spp").arg(p.scale)
+          ? QString("moving, %1 resolution, 1 spp").arg(QString::fromStdString(p.scale.text()))
           : QString("pass %1 (%2 spp each)").arg(p.pass).arg(p.view ? p.view->samplesPerPixel : 0);
   status_->setText(QString("frame %1 · %2 · tiles %3/%4 · %5 spp averaged · h: keys")
                        .arg(p.frame)

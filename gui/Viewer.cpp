@@ -9,8 +9,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <functional>
+#include <map>
 #include <optional>
 #include <ostream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -107,10 +110,18 @@ class MoveBenchmark : public QObject {
             : 0.0;
     const double fps = span > 0.0 ? static_cast<double>(frames_.size() - 1) / span : 0.0;
     int full = 0;
-    int largestScale = 1;
+    std::map<double, std::pair<FrameScale, int>, std::greater<>> reduced;  // finest first
     for (const Frame& f : frames_) {
-      full += f.scale == 1;
-      largestScale = std::max(largestScale, f.scale);
+      full += f.scale.full();
+      if (!f.scale.full()) {
+        auto& [scale, count] = reduced[f.scale.fraction()];
+        scale = f.scale;
+        ++count;
+      }
+    }
+    std::string steps;  // "2/3: 60, 1/2: 14"
+    for (const auto& [fraction, step] : reduced) {
+      steps += (steps.empty() ? "" : ", ") + step.first.text() + ": " + std::to_string(step.second);
     }
     const ImageRgb& image = window_.frame().image();
     char line[256];
@@ -122,8 +133,8 @@ class MoveBenchmark : public QObject {
     out_ << "benchmark  " << moves_ << " camera moves, one every " << intervalMs_ << " ms, "
          << std::chrono::duration<double>(lastMove_ - firstMove_).count() << " s\n"
          << line << "frames     " << frames_.size() << " shown while moving: " << full
-         << " at full resolution, " << frames_.size() - static_cast<size_t>(full)
-         << " reduced (down to 1/" << largestScale << " of each side)\n"
+         << " at full resolution, " << frames_.size() - static_cast<size_t>(full) << " reduced"
+         << (steps.empty() ? "" : " (of each side " + steps + ")") << "\n"
          << "latency    median " << 1e3 * percentile(latencies_, 0.5) << " ms, p95 "
          << 1e3 * percentile(latencies_, 0.95) << " ms (a move to the frame showing it)\n"
          << "full res   " << 1e3 * fullAfterLastMove
@@ -137,7 +148,7 @@ class MoveBenchmark : public QObject {
   };
   struct Frame {
     SteadyClock::time_point at;
-    int scale = 1;
+    FrameScale scale;
     int pass = 0;
   };
 

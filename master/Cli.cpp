@@ -213,8 +213,8 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   addSceneOptions(view, o.render);
   addCausticMethodOptions(view, o.render);
   view->add_option("--preview-scale", o.previewScale,
-                   "While the camera moves, frames may drop to 1/N of each side to meet "
-                   "--frame-time (default 4; 1: always full resolution)")
+                   "While the camera moves, frames may drop to 3/4, 2/3, 1/2, 1/3, ... down to "
+                   "1/N of each side to meet --frame-time (default 4; 1: always full resolution)")
       ->check(CLI::Range(1, 64));
   view->add_option("--frame-time", o.frameTimeMilliseconds,
                    "Target time of a frame while the camera moves, in ms (default 33.3: 30 "

@@ -28,7 +28,7 @@ struct LiveRenderer::PassPlan {
   uint32_t frame = 0;
   uint64_t viewId = 0;
   ViewSettings view;
-  int scale = 1;
+  FrameScale scale;
   bool firstOfView = false;
 };
 
@@ -131,8 +131,8 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   info.firstOfView = plan.firstOfView;
   auto view = std::make_shared<RenderView>();
   view->camera = plan.view.camera;
-  view->width = std::max(1, settings.width / info.scale);
-  view->height = std::max(1, settings.height / info.scale);
+  view->width = info.scale.side(settings.width);
+  view->height = info.scale.side(settings.height);
   view->samplesPerPixel = index == 0 ? 1 : plan.view.samplesPerPixel;
   view->seed = passSeed(settings.seed, index);
   view->debugView = plan.view.debugView;
@@ -141,7 +141,7 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   info.view = view;
   info.light = std::move(light);
   const int tileSize = options_.distribution.tileSize > 0
-                           ? std::max(8, options_.distribution.tileSize / info.scale)
+                           ? std::max(8, info.scale.side(options_.distribution.tileSize))
                            : automaticTileSize(view->width, view->height, liveThreads);
   info.tiles = planTiles(view->width, view->height, tileSize);
   passes_.push_back(std::make_unique<Pass>(info, now()));
@@ -188,14 +188,14 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
     // At full resolution it is pass 1 when that is what pass 1 renders (the view's samples per
     // pixel, and no photon pass, which a moving camera would wait for).
     const RenderSettings& r = scene_.settings();
-    const int scale = governor_.scaleFor(r.width, r.height);
-    const bool isPassOne = scale == 1 && view_.samplesPerPixel == 1 && !tracesPhotons(view_);
+    const FrameScale scale = governor_.scaleFor(r.width, r.height);
+    const bool isPassOne = scale.full() && view_.samplesPerPixel == 1 && !tracesPhotons(view_);
     lastIndex_ = isPassOne ? 1 : 0;
     return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, scale, true};
   }
   ++lastIndex_;  // the still camera's next full-resolution pass
   cancelPhotons_ = false;
-  return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, 1, false};
+  return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, FrameScale{}, false};
 }
 
 void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
@@ -211,7 +211,7 @@ void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
   FrameTimeStats& f = live_.frameTimes;
   f.shownWidth = v.width;
   f.shownHeight = v.height;
-  if (pass.info.firstOfView) ++(pass.info.scale == 1 ? f.fullResolutionFrames : f.reducedFrames);
+  if (pass.info.firstOfView) ++(pass.info.scale.full() ? f.fullResolutionFrames : f.reducedFrames);
 }
 
 std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) {

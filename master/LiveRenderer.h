@@ -4,8 +4,8 @@
 //
 // The frame loop is real time. While the camera moves, every frame renders the newest view at 1
 // sample per pixel, at full resolution unless a frame would miss the frame-time target: then each
-// side is divided by the smallest scale that fits (master/ResolutionGovernor.h, up to
-// previewScale), and the resolution comes back as soon as a frame fits again. Frames are
+// side takes the largest share that fits, 3/4, 2/3, 1/2, 1/3, … (master/ResolutionGovernor.h, down
+// to 1/previewScale), and the resolution comes back as soon as a frame fits again. Frames are
 // pipelined: once every tile of the current frame has been handed out, the next frame (the
 // newest view, or the next pass of a still one) is queued on the tile dispatcher, so render
 // threads and slaves go straight on to its tiles while the last ones of the frame before return
@@ -78,8 +78,8 @@ namespace prism {
 struct LiveOptions {
   // Threads, tile size (0: automatic for each pass's resolution), schedule, leases.
   DistributionOptions distribution;
-  // While moving, a frame may drop to 1/previewScale of each side to meet frameTimeSeconds;
-  // 1: always full resolution.
+  // While moving, a frame may drop to 3/4, 2/3, 1/2, 1/3, … down to 1/previewScale of each side
+  // to meet frameTimeSeconds; 1: always full resolution.
   int previewScale = 4;
   int maxPasses = 64;                  // full-resolution passes per view; then the renderer idles
   double statsInterval = 0.25;         // seconds between LiveListener::statsUpdated calls
@@ -101,7 +101,7 @@ struct PassInfo {
   uint32_t frame = 0;   // wire frame id, unique per pass
   uint64_t viewId = 0;  // increases with every setView()
   int pass = 0;         // 0: a frame while moving that is not averaged (reduced, or 1 spp)
-  int scale = 1;        // the pass's pixels are scale × scale display pixels
+  FrameScale scale;     // the pass's share of each side of the display (full resolution: 1)
   // The first frame of its view: shown when complete, never mixed with the view before.
   bool firstOfView = false;
   std::shared_ptr<const RenderView> view;  // what the pass renders, at its own resolution

@@ -14,7 +14,7 @@ namespace prism {
 
 struct ViewOptions {
   RenderOptions render;  // scene path, overrides, threads and distribution, as for `render`
-  int previewScale = 4;  // frames while moving may drop to 1/previewScale of each side
+  int previewScale = 4;  // frames while moving may drop down to 1/previewScale of each side
   int maxPasses = 64;    // full-resolution passes before the view stops refining
   double frameTimeMilliseconds = 1000.0 / 30;  // target for frames while moving; 0: none
   bool pipeline = true;    // queue the next frame before the current one's last tiles return

@@ -10,7 +10,7 @@ PassInfo pass(uint32_t frame, int index, int scale, int width, int height) {
   p.frame = frame;
   p.viewId = 1;
   p.pass = index;
-  p.scale = scale;
+  p.scale = FrameScale{1, scale};
   auto view = std::make_shared<RenderView>();
   view->width = width;
   view->height = height;

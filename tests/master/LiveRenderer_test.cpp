@@ -313,10 +313,10 @@ TEST(LiveRenderer, FramesWhileMovingAreFullResolutionAndBitIdenticalToRender) {
 
   const std::vector<PassInfo> passes = recorder.passes();
   ASSERT_GE(passes.size(), 2u);
-  EXPECT_EQ(passes.front().scale, 4);  // nothing measured yet: the cheapest frame
-  int fullFrames = 0;                  // first frames of a view at full resolution
+  EXPECT_EQ(passes.front().scale.text(), "1/4");  // nothing measured yet: the cheapest frame
+  int fullFrames = 0;                             // first frames of a view at full resolution
   for (const PassInfo& p : passes) {
-    if (!recorder.finished(p.frame) || p.scale != 1) continue;
+    if (!recorder.finished(p.frame) || !p.scale.full()) continue;
     // A view's first frame, or its pass 1 after a reduced first frame when the next move came
     // later than that pass's end: both are `prism render` of the view.
     fullFrames += p.firstOfView;
