@@ -75,7 +75,7 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
   validate(description);
   checkRenderFits(description.render, limit);
   checkTilesFit(description.render, options.distribution.tileSize, limit);
-  checkCausticsFit(description.caustics, limit);
+  checkCausticsFit(description.caustics, description.lights.size(), limit);
   checkSceneFits(description, options.distribution.tileSize, limit);
   return description;
 }

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "caustics/CausticMap.h"
+
 namespace prism {
 namespace {
 
@@ -58,9 +60,25 @@ uint64_t photonMemoryBytes(const CausticSettings& c) {
   return saturatingMultiply(c.photons, kBytesPerPhoton);
 }
 
-void checkCausticsFit(const CausticSettings& c, const MemoryLimit& limit) {
+uint64_t causticMapMemoryBytes(const CausticSettings& c, size_t lights) {
+  if (c.method != CausticMethod::CausticMap) return 0;
+  constexpr uint64_t kMinViews = 1;
+  constexpr uint64_t kBytesPerTexel = sizeof(ReceiverTexel) + sizeof(CasterTexel) +
+                                      CausticMap::kLookupTexelBytes + 3 * sizeof(Color);
+  const uint64_t side = static_cast<uint64_t>(std::max(c.mapResolution, 0));
+  const uint64_t texels =
+      saturatingMultiply(saturatingMultiply(side, side), saturatingMultiply(lights, kMinViews));
+  return saturatingMultiply(texels, kBytesPerTexel);
+}
+
+void checkCausticsFit(const CausticSettings& c, size_t lights, const MemoryLimit& limit) {
   require(photonMemoryBytes(c), limit, std::to_string(c.photons) + " photons per pass",
           "reduce --photons, or use more --passes of fewer");
+  require(causticMapMemoryBytes(c, lights), limit,
+          "caustic maps of " + std::to_string(lights) + (lights == 1 ? " light" : " lights") +
+              " at " + std::to_string(c.mapResolution) +
+              " texels a side (one view a light, at least)",
+          "reduce --map-resolution");
 }
 
 void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& limit) {
@@ -68,13 +86,14 @@ void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& 
   const uint64_t geometry = geometryMemoryBytes(d);
   const uint64_t frame = frameMemoryBytes(d.render);
   const uint64_t tiles = tileMemoryBytes(tileCount(d.render, tileSize));
-  const uint64_t photons = photonMemoryBytes(d.caustics);
+  const uint64_t caustics = saturatingAdd(photonMemoryBytes(d.caustics),
+                                          causticMapMemoryBytes(d.caustics, d.lights.size()));
   const uint64_t total =
-      saturatingAdd(saturatingAdd(geometry, frame), saturatingAdd(tiles, photons));
+      saturatingAdd(saturatingAdd(geometry, frame), saturatingAdd(tiles, caustics));
   require(total, limit,
           "the run (geometry " + formatBytes(static_cast<double>(geometry)) + ", frame " +
-              formatBytes(static_cast<double>(frame)) + ", photons " +
-              formatBytes(static_cast<double>(photons)) + ")",
+              formatBytes(static_cast<double>(frame)) + ", caustics " +
+              formatBytes(static_cast<double>(caustics)) + ")",
           "reduce what is largest");
 }
 

@@ -36,10 +36,18 @@ void checkTilesFit(const RenderSettings& settings, int tileSize, const MemoryLim
 // shares as they arrive, the assembled map with its kd-tree, and the message that sends it on.
 uint64_t photonMemoryBytes(const CausticSettings& caustics);
 
-// Throws when the photon map cannot fit, naming the bytes and the limit.
-void checkCausticsFit(const CausticSettings& caustics, const MemoryLimit& limit);
+// Bytes the caustic maps of `lights` point lights need at least: one view a light (a light
+// among its casters takes six, which only the built scene tells), each texel with its receiver,
+// caster and lookup records and the build's flux and blur buffers. Requests past the limit even
+// so are refused before the scene is sent or built.
+uint64_t causticMapMemoryBytes(const CausticSettings& caustics, size_t lights);
 
-// Throws when the geometry cannot fit, and then when everything together cannot.
+// Throws when the photon map, or the caustic maps of `lights` lights, cannot fit, naming the
+// bytes and the limit.
+void checkCausticsFit(const CausticSettings& caustics, size_t lights, const MemoryLimit& limit);
+
+// Throws when the geometry cannot fit, and then when everything together cannot (caustic maps
+// counted at their worst).
 void checkSceneFits(const SceneDescription& description, int tileSize, const MemoryLimit& limit);
 
 }  // namespace prism

@@ -56,6 +56,9 @@ class CausticMap {
   // Caustic irradiance at a receiver point facing `normal`: bilinear over the texels around its
   // projection whose receiver is this point (within a depth tolerance) and faces its way.
   Color irradiance(const Vec3& position, const Vec3& normal) const;
+  // Bytes a texel's lookup record takes (beside the receiver and caster texels).
+  static constexpr size_t kLookupTexelBytes = 32;
+
   // How far a point's distance from the light may differ from a texel's receiver and still be
   // that receiver: a texel's footprint along the surface's slope, plus a little for float error.
   // texelSize: a texel's width on the plane at distance 1.
@@ -75,7 +78,7 @@ class CausticMap {
     float tolerance = 0.0f;  // depthTolerance() of the receiver
     Color irradiance{0.0f};
   };
-  static_assert(sizeof(LookupTexel) == 32);
+  static_assert(sizeof(LookupTexel) == kLookupTexelBytes);
 
   std::vector<LookupTexel> lookup_;
   Aabb lit_;

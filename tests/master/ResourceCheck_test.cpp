@@ -1,5 +1,6 @@
 #include "master/ResourceCheck.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -62,16 +63,46 @@ TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
   c.method = CausticMethod::PhotonMap;
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 96000000000000ull);
-  EXPECT_EQ(refusal([&] { checkCausticsFit(c, k16GiB); }),
+  EXPECT_EQ(refusal([&] { checkCausticsFit(c, 1, k16GiB); }),
             "1000000000000 photons per pass needs 87.3 TiB (96000000000000 bytes); the memory "
             "limit is 16.0 GiB (17179869184 bytes, test): reduce --photons, or use more --passes "
             "of fewer");
   c.photons = 10000000;  // 10 M photons: under 1 GiB
-  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
+  EXPECT_NO_THROW(checkCausticsFit(c, 1, k16GiB));
   c.method = CausticMethod::None;  // no photon map, no memory, whatever the count says
   c.photons = 1000000000000ull;
   EXPECT_EQ(photonMemoryBytes(c), 0u);
-  EXPECT_NO_THROW(checkCausticsFit(c, k16GiB));
+  EXPECT_NO_THROW(checkCausticsFit(c, 1, k16GiB));
+}
+
+// Caustic maps at 4096 texels a side for 8 lights, at least one view each: 8 · 4096² texels of
+// 132 bytes (receiver 36, caster 28, lookup 32, the build's flux and blur buffers 3 · 12) is
+// 17.7 GB, refused on a 16 GiB machine before any map is built; the default 512 needs 66 MiB.
+TEST(ResourceCheck, RefusesCausticMapsLargerThanMemoryWithWhatTheyNeed) {
+  CausticSettings c;
+  c.method = CausticMethod::CausticMap;
+  c.mapResolution = 4096;
+  EXPECT_EQ(causticMapMemoryBytes(c, 8), 8ull * 4096 * 4096 * 132);
+  EXPECT_EQ(refusal([&] { checkCausticsFit(c, 8, k16GiB); }),
+            "caustic maps of 8 lights at 4096 texels a side (one view a light, at least) needs "
+            "16.5 GiB (17716740096 bytes); the memory limit is 16.0 GiB (17179869184 bytes, "
+            "test): reduce --map-resolution");
+  EXPECT_NO_THROW(checkCausticsFit(c, 2, k16GiB));  // 4.1 GiB
+  c.mapResolution = 512;
+  EXPECT_EQ(causticMapMemoryBytes(c, 2), 69206016u);
+  c.method = CausticMethod::PhotonMap;  // no maps, whatever the resolution says
+  c.mapResolution = 4096;
+  EXPECT_EQ(causticMapMemoryBytes(c, 8), 0u);
+  // The run's total counts them too.
+  SceneDescription d;
+  d.caustics.method = CausticMethod::CausticMap;
+  d.caustics.mapResolution = 512;
+  d.lights.resize(2);
+  d.render.width = d.render.height = 16;
+  EXPECT_THAT(refusal([&] {
+                checkSceneFits(d, 0, {60000000, "test"});
+              }),
+              ::testing::HasSubstr("caustics 66.0 MiB"));
 }
 
 TEST(ResourceCheck, GeometryCountsTrianglesVerticesAndPrimitives) {
@@ -94,7 +125,7 @@ TEST(ResourceCheck, GeometryCountsTrianglesVerticesAndPrimitives) {
   EXPECT_EQ(refusal([&] {
               checkSceneFits(d, 0, {500000, "test"});
             }),
-            "the run (geometry 272.8 KiB, frame 234.4 KiB, photons 0 B) needs 517.7 KiB (530112 "
+            "the run (geometry 272.8 KiB, frame 234.4 KiB, caustics 0 B) needs 517.7 KiB (530112 "
             "bytes); the memory limit is 488.3 KiB (500000 bytes, test): reduce what is largest");
 }
 
