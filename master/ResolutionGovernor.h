@@ -41,7 +41,6 @@ class ResolutionGovernor {
   double fixedSeconds() const { return fixed_; }
 
   double targetSeconds() const { return target_; }
-  const std::vector<FrameScale>& ladder() const { return ladder_; }
 
  private:
   static constexpr size_t kWindow = 8;  // recent frames kept
