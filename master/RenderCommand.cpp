@@ -159,6 +159,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     // The description's cube-map faces move into the scene: nothing below reads them.
     const Scene scene(description, std::exchange(description.environment, std::nullopt));
     summary.buildSeconds = secondsSince(buildStart);
+    checkBuiltSceneFits(scene, memoryLimitOrPhysical(options.memoryLimit));
 
     FrameOptions frameOptions;
     frameOptions.distribution = options.distribution;

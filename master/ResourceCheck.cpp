@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "caustics/CausticMap.h"
+#include "caustics/CausticMapMemory.h"
 
 namespace prism {
 namespace {
@@ -63,12 +63,10 @@ uint64_t photonMemoryBytes(const CausticSettings& c) {
 uint64_t causticMapMemoryBytes(const CausticSettings& c, size_t lights) {
   if (c.method != CausticMethod::CausticMap) return 0;
   constexpr uint64_t kMinViews = 1;
-  constexpr uint64_t kBytesPerTexel = sizeof(ReceiverTexel) + sizeof(CasterTexel) +
-                                      CausticMap::kLookupTexelBytes + 3 * sizeof(Color);
   const uint64_t side = static_cast<uint64_t>(std::max(c.mapResolution, 0));
   const uint64_t texels =
       saturatingMultiply(saturatingMultiply(side, side), saturatingMultiply(lights, kMinViews));
-  return saturatingMultiply(texels, kBytesPerTexel);
+  return saturatingMultiply(texels, kCausticMapBytesPerTexel);
 }
 
 void checkCausticsFit(const CausticSettings& c, size_t lights, const MemoryLimit& limit) {
@@ -95,6 +93,11 @@ void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& 
               formatBytes(static_cast<double>(frame)) + ", caustics " +
               formatBytes(static_cast<double>(caustics)) + ")",
           "reduce what is largest");
+}
+
+void checkBuiltSceneFits(const Scene& scene, const MemoryLimit& limit) {
+  const CausticSettings& c = scene.causticSettings();
+  if (c.method == CausticMethod::CausticMap) checkCausticMapsFit(scene, c.mapResolution, limit);
 }
 
 }  // namespace prism

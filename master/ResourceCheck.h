@@ -10,6 +10,7 @@
 #include <string>
 
 #include "scene/GeometryMemory.h"
+#include "scene/Scene.h"
 #include "scene/SceneDescription.h"
 #include "util/MemorySize.h"
 #include "util/PhysicalMemory.h"
@@ -37,9 +38,10 @@ void checkTilesFit(const RenderSettings& settings, int tileSize, const MemoryLim
 uint64_t photonMemoryBytes(const CausticSettings& caustics);
 
 // Bytes the caustic maps of `lights` point lights need at least: one view a light (a light
-// among its casters takes six, which only the built scene tells), each texel with its receiver,
-// caster and lookup records and the build's flux and blur buffers. Requests past the limit even
-// so are refused before the scene is sent or built.
+// among its casters takes six, which only the built scene tells: caustics/CausticMapMemory.h
+// checks that on every rank), each texel with its receiver, caster and lookup records and the
+// build's flux and blur buffers. Requests past the limit even so are refused before the scene
+// is sent or built.
 uint64_t causticMapMemoryBytes(const CausticSettings& caustics, size_t lights);
 
 // Throws when the photon map, or the caustic maps of `lights` lights, cannot fit, naming the
@@ -49,5 +51,9 @@ void checkCausticsFit(const CausticSettings& caustics, size_t lights, const Memo
 // Throws when the geometry cannot fit, and then when everything together cannot (caustic maps
 // counted at their worst).
 void checkSceneFits(const SceneDescription& description, int tileSize, const MemoryLimit& limit);
+
+// Once the scene is built: its caustic maps with every light's views counted, when the scene
+// uses caustic mapping (caustics/CausticMapMemory.h). Throws ResourceLimitError.
+void checkBuiltSceneFits(const Scene& scene, const MemoryLimit& limit);
 
 }  // namespace prism

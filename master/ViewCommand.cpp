@@ -38,6 +38,7 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Tr
       session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
     }
     const Scene scene(description);
+    checkBuiltSceneFits(scene, memoryLimitOrPhysical(options.render.memoryLimit));
     exitCode = viewer(scene, description, options, session, out, err);
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";

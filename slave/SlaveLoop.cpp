@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "caustics/CausticMapEstimator.h"
+#include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/TileWorkerPool.h"
@@ -218,6 +219,9 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
     checkGeometryFits(description, memoryLimit);
     scene =
         std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
+    if (scene->causticSettings().method == CausticMethod::CausticMap) {  // before they are built
+      checkCausticMapsFit(*scene, scene->causticSettings().mapResolution, memoryLimit);
+    }
     const int threads = options.threads > 0 ? options.threads : availableCores();
     session.send(0, wire::encodeReady(
                         {secondsSince(buildStart), threads, startSeconds, session.setUpSeconds()}));

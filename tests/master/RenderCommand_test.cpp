@@ -307,6 +307,36 @@ TEST_F(RenderCommandTest, MemoryLimitIsCheckedUnderMpiBeforeTheSlavesGetAScene) 
   EXPECT_TRUE(fs::is_empty(dir_));
 }
 
+// A light among its casters needs six caustic-map views, which only the built scene tells:
+// the check before the broadcast counts one (it passes), the one after the build six (refused),
+// in one process and with a slave, before any map is built.
+TEST_F(RenderCommandTest, CausticMapsOfALightAmongItsCastersAreCheckedOnceTheSceneIsBuilt) {
+  std::ofstream(path("lamp.yaml"))
+      << "camera: {position: [0, 3, 8], look_at: [0, 1, 0], fov: 40}\n"
+         "render: {width: 64, height: 48, samples: 1}\n"
+         "caustics: {method: caustic_map, map_resolution: 2048}\n"
+         "materials:\n"
+         "  - {name: glass, diffuse: 0, transmittance: 1, ior: 1.5}\n"
+         "  - {name: floor, diffuse: 0.8}\n"
+         "lights: [{position: [0, 2, 0], intensity: 50}]\n"
+         "objects:\n"
+         "  - sphere: {center: [0, 2, 0], radius: 0.5, material: glass}\n"
+         "  - plane: {point: [0, 0, 0], normal: [0, 1, 0], material: floor}\n";
+  const std::string refusal =
+      "prism: error: caustic maps of 1 light at 2048 texels a side (6 views) needs 3.1 GiB "
+      "(3321888768 bytes); the memory limit is 2.0 GiB (2147483648 bytes, --memory-limit): "
+      "reduce --map-resolution\n";
+  const std::string args =
+      "render " + path("lamp.yaml") + " -o " + path("o.png") + " --memory-limit 2G";
+  ProcessRun run = runPrism(args);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find(refusal), std::string::npos) << run.output;
+  run = runPrismMpi(2, args);
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_NE(run.output.find(refusal), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("o.png")));
+}
+
 TEST_F(RenderCommandTest, MemoryLimitMustBeASize) {
   const ProcessRun run = runPrism("render " + kSceneDir + "lambert-plane.yaml -o " + path("o.png") +
                                   " --memory-limit 12Q");

@@ -1,0 +1,43 @@
+#include "caustics/CausticMapMemory.h"
+
+#include <string>
+
+#include "caustics/LightFrustum.h"
+
+namespace prism {
+namespace {
+
+// Views over all lights: the frustums are cheap to make (no texel is allocated).
+uint64_t viewCount(const Scene& scene, int resolution) {
+  uint64_t views = 0;
+  for (const PointLightDesc& light : scene.lights()) {
+    views += LightFrustum(light.position, scene.causticCasters(), resolution).views().size();
+  }
+  return views;
+}
+
+uint64_t bytesFor(uint64_t views, int resolution) {
+  const uint64_t side = static_cast<uint64_t>(resolution > 0 ? resolution : 0);
+  return saturatingMultiply(saturatingMultiply(views, saturatingMultiply(side, side)),
+                            kCausticMapBytesPerTexel);
+}
+
+}  // namespace
+
+uint64_t causticMapBytes(const Scene& scene, int resolution) {
+  return bytesFor(viewCount(scene, resolution), resolution);
+}
+
+void checkCausticMapsFit(const Scene& scene, int resolution, const MemoryLimit& limit) {
+  const uint64_t views = viewCount(scene, resolution);
+  const uint64_t needed = bytesFor(views, resolution);
+  if (needed <= limit.bytes) return;
+  const size_t lights = scene.lights().size();
+  throw ResourceLimitError(memoryRefusal(
+      "caustic maps of " + std::to_string(lights) + (lights == 1 ? " light" : " lights") + " at " +
+          std::to_string(resolution) + " texels a side (" + std::to_string(views) +
+          (views == 1 ? " view" : " views") + ")",
+      needed, limit, "reduce --map-resolution"));
+}
+
+}  // namespace prism

@@ -1,0 +1,23 @@
+// What a scene's caustic maps hold in memory, known exactly once the scene is built: each light's
+// frustum has one view, or six when its casters surround it. Checked against the run's memory
+// limit before any map is built, on every rank.
+#pragma once
+
+#include <cstdint>
+
+#include "caustics/CausticMap.h"
+#include "util/MemorySize.h"
+
+namespace prism {
+
+// A texel's receiver, caster and lookup records, and the build's flux and two blur buffers.
+inline constexpr uint64_t kCausticMapBytesPerTexel =
+    sizeof(ReceiverTexel) + sizeof(CasterTexel) + CausticMap::kLookupTexelBytes + 3 * sizeof(Color);
+
+// Bytes the maps of every light of the scene take at `resolution` texels a side.
+uint64_t causticMapBytes(const Scene& scene, int resolution);
+
+// Throws ResourceLimitError, naming the bytes, the views and the limit, when they cannot fit.
+void checkCausticMapsFit(const Scene& scene, int resolution, const MemoryLimit& limit);
+
+}  // namespace prism

@@ -1,0 +1,52 @@
+// The caustic maps' memory, counted with every light's views once the scene is built: a light
+// outside its casters has one view, a light among them six, and the check refuses what does not
+// fit under the limit before any map is built.
+#include "caustics/CausticMapMemory.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/common/caustics/BallOverFloorScene.h"
+
+namespace prism {
+namespace {
+
+// The ball-over-floor scene with its light inside the ball: the casters surround it.
+SceneDescription lampInsideBall() {
+  SceneDescription d = test::ballOverFloorScene(1.5f);
+  d.lights[0].position = {0, 2, 0};
+  d.caustics.method = CausticMethod::CausticMap;
+  return d;
+}
+
+TEST(CausticMapMemory, CountsSixViewsForALightAmongItsCasters) {
+  EXPECT_EQ(kCausticMapBytesPerTexel, 132u);  // receiver 36, caster 28, lookup 32, buffers 36
+  SceneDescription outside = test::ballOverFloorScene(1.5f);
+  outside.caustics.method = CausticMethod::CausticMap;
+  const Scene above(outside);
+  EXPECT_EQ(causticMapBytes(above, 512), 1ull * 512 * 512 * 132);
+  const Scene inside(lampInsideBall());
+  EXPECT_EQ(causticMapBytes(inside, 512), 6ull * 512 * 512 * 132);
+  // The maps really have those views (at a resolution that builds quickly).
+  CausticSettings small = inside.causticSettings();
+  small.mapResolution = 32;
+  EXPECT_EQ(CausticMap(inside, 0, small, 1).frustum().views().size(), 6u);
+  EXPECT_EQ(CausticMap(above, 0, small, 1).frustum().views().size(), 1u);
+}
+
+TEST(CausticMapMemory, RefusesMapsThatDoNotFitWithTheBytesTheViewsAndTheLimit) {
+  const Scene inside(lampInsideBall());
+  const MemoryLimit limit{2ull << 30, "test"};
+  EXPECT_NO_THROW(checkCausticMapsFit(inside, 1024, limit));  // 792 MiB
+  try {
+    checkCausticMapsFit(inside, 2048, limit);
+    FAIL() << "6 views of 2048² texels fit in 2 GiB";
+  } catch (const ResourceLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "caustic maps of 1 light at 2048 texels a side (6 views) needs 3.1 GiB "
+                 "(3321888768 bytes); the memory limit is 2.0 GiB (2147483648 bytes, test): "
+                 "reduce --map-resolution");
+  }
+}
+
+}  // namespace
+}  // namespace prism
