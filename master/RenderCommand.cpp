@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "caustics/CausticMapImages.h"
+#include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonImage.h"
 #include "image/ImageIo.h"
 #include "master/CausticPasses.h"
@@ -159,7 +160,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
     // The description's cube-map faces move into the scene: nothing below reads them.
     const Scene scene(description, std::exchange(description.environment, std::nullopt));
     summary.buildSeconds = secondsSince(buildStart);
-    checkBuiltSceneFits(scene, memoryLimitOrPhysical(options.memoryLimit));
+    checkCausticMapsFit(scene, memoryLimitOrPhysical(options.memoryLimit));
 
     FrameOptions frameOptions;
     frameOptions.distribution = options.distribution;

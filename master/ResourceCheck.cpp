@@ -62,11 +62,7 @@ uint64_t photonMemoryBytes(const CausticSettings& c) {
 
 uint64_t causticMapMemoryBytes(const CausticSettings& c, size_t lights) {
   if (c.method != CausticMethod::CausticMap) return 0;
-  constexpr uint64_t kMinViews = 1;
-  const uint64_t side = static_cast<uint64_t>(std::max(c.mapResolution, 0));
-  const uint64_t texels =
-      saturatingMultiply(saturatingMultiply(side, side), saturatingMultiply(lights, kMinViews));
-  return saturatingMultiply(texels, kCausticMapBytesPerTexel);
+  return causticMapBytes(lights, c.mapResolution);  // one view a light: the fewest there can be
 }
 
 void checkCausticsFit(const CausticSettings& c, size_t lights, const MemoryLimit& limit) {
@@ -93,11 +89,6 @@ void checkSceneFits(const SceneDescription& d, int tileSize, const MemoryLimit& 
               formatBytes(static_cast<double>(frame)) + ", caustics " +
               formatBytes(static_cast<double>(caustics)) + ")",
           "reduce what is largest");
-}
-
-void checkBuiltSceneFits(const Scene& scene, const MemoryLimit& limit) {
-  const CausticSettings& c = scene.causticSettings();
-  if (c.method == CausticMethod::CausticMap) checkCausticMapsFit(scene, c.mapResolution, limit);
 }
 
 }  // namespace prism

@@ -10,7 +10,6 @@
 #include <string>
 
 #include "scene/GeometryMemory.h"
-#include "scene/Scene.h"
 #include "scene/SceneDescription.h"
 #include "util/MemorySize.h"
 #include "util/PhysicalMemory.h"
@@ -51,9 +50,5 @@ void checkCausticsFit(const CausticSettings& caustics, size_t lights, const Memo
 // Throws when the geometry cannot fit, and then when everything together cannot (caustic maps
 // counted at their worst).
 void checkSceneFits(const SceneDescription& description, int tileSize, const MemoryLimit& limit);
-
-// Once the scene is built: its caustic maps with every light's views counted, when the scene
-// uses caustic mapping (caustics/CausticMapMemory.h). Throws ResourceLimitError.
-void checkBuiltSceneFits(const Scene& scene, const MemoryLimit& limit);
 
 }  // namespace prism

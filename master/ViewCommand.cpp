@@ -2,6 +2,7 @@
 
 #include <ostream>
 
+#include "caustics/CausticMapMemory.h"
 #include "image/ImageIo.h"
 #include "master/PartialFrame.h"
 #include "master/ResourceCheck.h"
@@ -38,7 +39,7 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Tr
       session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
     }
     const Scene scene(description);
-    checkBuiltSceneFits(scene, memoryLimitOrPhysical(options.render.memoryLimit));
+    checkCausticMapsFit(scene, memoryLimitOrPhysical(options.render.memoryLimit));
     exitCode = viewer(scene, description, options, session, out, err);
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";

@@ -219,9 +219,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
     checkGeometryFits(description, memoryLimit);
     scene =
         std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
-    if (scene->causticSettings().method == CausticMethod::CausticMap) {  // before they are built
-      checkCausticMapsFit(*scene, scene->causticSettings().mapResolution, memoryLimit);
-    }
+    checkCausticMapsFit(*scene, memoryLimit);  // before any map is built
     const int threads = options.threads > 0 ? options.threads : availableCores();
     session.send(0, wire::encodeReady(
                         {secondsSince(buildStart), threads, startSeconds, session.setUpSeconds()}));

@@ -16,21 +16,23 @@ uint64_t viewCount(const Scene& scene, int resolution) {
   return views;
 }
 
-uint64_t bytesFor(uint64_t views, int resolution) {
+}  // namespace
+
+uint64_t causticMapBytes(uint64_t views, int resolution) {
   const uint64_t side = static_cast<uint64_t>(resolution > 0 ? resolution : 0);
   return saturatingMultiply(saturatingMultiply(views, saturatingMultiply(side, side)),
                             kCausticMapBytesPerTexel);
 }
 
-}  // namespace
-
 uint64_t causticMapBytes(const Scene& scene, int resolution) {
-  return bytesFor(viewCount(scene, resolution), resolution);
+  return causticMapBytes(viewCount(scene, resolution), resolution);
 }
 
-void checkCausticMapsFit(const Scene& scene, int resolution, const MemoryLimit& limit) {
+void checkCausticMapsFit(const Scene& scene, const MemoryLimit& limit) {
+  if (scene.causticSettings().method != CausticMethod::CausticMap) return;
+  const int resolution = scene.causticSettings().mapResolution;
   const uint64_t views = viewCount(scene, resolution);
-  const uint64_t needed = bytesFor(views, resolution);
+  const uint64_t needed = causticMapBytes(views, resolution);
   if (needed <= limit.bytes) return;
   const size_t lights = scene.lights().size();
   throw ResourceLimitError(memoryRefusal(

@@ -14,10 +14,13 @@ namespace prism {
 inline constexpr uint64_t kCausticMapBytesPerTexel =
     sizeof(ReceiverTexel) + sizeof(CasterTexel) + CausticMap::kLookupTexelBytes + 3 * sizeof(Color);
 
+// Bytes `views` light views take at `resolution` texels a side.
+uint64_t causticMapBytes(uint64_t views, int resolution);
 // Bytes the maps of every light of the scene take at `resolution` texels a side.
 uint64_t causticMapBytes(const Scene& scene, int resolution);
 
-// Throws ResourceLimitError, naming the bytes, the views and the limit, when they cannot fit.
-void checkCausticMapsFit(const Scene& scene, int resolution, const MemoryLimit& limit);
+// When the scene uses caustic mapping: throws ResourceLimitError, naming the bytes, the views and
+// the limit, if its maps (at its map resolution) cannot fit.
+void checkCausticMapsFit(const Scene& scene, const MemoryLimit& limit);
 
 }  // namespace prism

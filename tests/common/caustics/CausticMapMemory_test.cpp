@@ -11,10 +11,11 @@ namespace prism {
 namespace {
 
 // The ball-over-floor scene with its light inside the ball: the casters surround it.
-SceneDescription lampInsideBall() {
+SceneDescription lampInsideBall(int resolution = 512) {
   SceneDescription d = test::ballOverFloorScene(1.5f);
   d.lights[0].position = {0, 2, 0};
   d.caustics.method = CausticMethod::CausticMap;
+  d.caustics.mapResolution = resolution;
   return d;
 }
 
@@ -34,11 +35,13 @@ TEST(CausticMapMemory, CountsSixViewsForALightAmongItsCasters) {
 }
 
 TEST(CausticMapMemory, RefusesMapsThatDoNotFitWithTheBytesTheViewsAndTheLimit) {
-  const Scene inside(lampInsideBall());
   const MemoryLimit limit{2ull << 30, "test"};
-  EXPECT_NO_THROW(checkCausticMapsFit(inside, 1024, limit));  // 792 MiB
+  EXPECT_NO_THROW(checkCausticMapsFit(Scene(lampInsideBall(1024)), limit));  // 792 MiB
+  SceneDescription photons = lampInsideBall(4096);
+  photons.caustics.method = CausticMethod::PhotonMap;  // no maps: nothing to check
+  EXPECT_NO_THROW(checkCausticMapsFit(Scene(photons), limit));
   try {
-    checkCausticMapsFit(inside, 2048, limit);
+    checkCausticMapsFit(Scene(lampInsideBall(2048)), limit);
     FAIL() << "6 views of 2048² texels fit in 2 GiB";
   } catch (const ResourceLimitError& e) {
     EXPECT_STREQ(e.what(),
