@@ -191,7 +191,17 @@ QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
 }
 
 void MainWindow::setCausticMethod(CausticMethod method) {
-  if (settings_.caustics == method) return;
+  if (method == CausticMethod::CausticMap && !causticMapsRefusal_.isEmpty()) {
+    statusBar()->showMessage("caustic maps refused: " + causticMapsRefusal_, 15000);
+    method = settings_.caustics;  // the button goes back to the method in use
+  }
+  if (settings_.caustics == method) {
+    (method == CausticMethod::PhotonMap    ? photonMapButton_
+     : method == CausticMethod::CausticMap ? causticMapButton_
+                                           : noCausticsButton_)
+        ->setChecked(true);
+    return;
+  }
   settings_.caustics = method;
   (method == CausticMethod::PhotonMap    ? photonMapButton_
    : method == CausticMethod::CausticMap ? causticMapButton_
@@ -208,11 +218,25 @@ void MainWindow::setCausticMapBlur(bool blur) {
   if (lightSpace_) showLightSpace(*lightSpace_);  // the irradiance map changes with the blur
 }
 
+void MainWindow::refuseCausticMaps(const QString& why) {
+  causticMapsRefusal_ = why;
+  for (QRadioButton* button :
+       {causticMapButton_, castersButton_, receiversButton_, causticMapViewButton_}) {
+    button->setEnabled(false);
+    button->setToolTip("Not available: " + why);
+  }
+}
+
 void MainWindow::showLightSpace(LightSpaceMap which) {
   lightSpace_ = which;
   checkDebugButton();
   if (!causticMaps_) {
     view_->setOverlay({}, "caustic maps are not available in this window · n: back to the image");
+    return;
+  }
+  if (!causticMapsRefusal_.isEmpty()) {
+    view_->setOverlay({},
+                      "caustic maps refused: " + causticMapsRefusal_ + " · n: back to the image");
     return;
   }
   updateLightSpace();

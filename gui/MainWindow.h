@@ -57,8 +57,12 @@ class MainWindow : public QMainWindow {
   // Sends the current camera and settings as a new view.
   void viewChanged();
 
-  // The caustics switch and photon budget of the side panel; a change is a new view.
+  // The caustics switch and photon budget of the side panel; a change is a new view. Caustic
+  // maps refused (refuseCausticMaps) leave the method as it was and say why in the status bar.
   void setCausticMethod(CausticMethod method);
+  // Caustic maps cannot be built here (they would not fit in memory, LiveRenderer::
+  // causticMapsRefusal): their switch and light-space views are disabled, with `why` on them.
+  void refuseCausticMaps(const QString& why);
   void setPhotonsPerPass(uint64_t photons);
   // The caustic map's Gaussian blur (b); a change is a new view when caustic mapping is on.
   void setCausticMapBlur(bool blur);
@@ -124,6 +128,7 @@ class MainWindow : public QMainWindow {
   int fullPassesDone_ = 0;
 
   CausticMapSource causticMaps_;
+  QString causticMapsRefusal_;  // empty: they may be built
   std::optional<LightSpaceMap> lightSpace_;
   std::future<std::shared_ptr<const CausticMapEstimator>> pendingMaps_;  // being built
   bool pendingBlur_ = true;

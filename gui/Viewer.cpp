@@ -23,6 +23,7 @@
 #include "gui/StatsPanel.h"
 #include "image/ImageIo.h"
 #include "util/Percentile.h"
+#include "util/PhysicalMemory.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -207,12 +208,16 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   live.maxPasses = options.maxPasses;
   live.frameTimeSeconds = options.frameTimeMilliseconds / 1000.0;
   live.pipeline = options.pipeline;
+  live.memoryLimit = memoryLimitOrPhysical(options.render.memoryLimit);
   LiveRenderer renderer(scene, live, session);
   RenderBridge bridge;
   MainWindow window(
       description, QFileInfo(QString::fromStdString(options.render.scenePath)).fileName(),
       [&renderer](const ViewSettings& v) { renderer.setView(v); },
       [&renderer](bool blur) { return renderer.causticMaps(blur); });
+  if (const std::optional<std::string>& why = renderer.causticMapsRefusal()) {
+    window.refuseCausticMaps(QString::fromStdString(*why));
+  }
   // Queued: the bridge emits on the coordinator thread, the window lives on this one.
   QObject::connect(&bridge, &RenderBridge::passStartedSignal, &window, &MainWindow::onPassStarted,
                    Qt::QueuedConnection);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
 #include "master/CausticPasses.h"
 #include "master/PhotonPass.h"
@@ -74,7 +75,8 @@ LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, Trans
       governor_(options.frameTimeSeconds, options.previewScale),
       lastStats_(start_),
       maxRadius_(scene.causticSettings().maxRadius > 0.0f ? scene.causticSettings().maxRadius
-                                                          : automaticMaxRadius(scene)) {}
+                                                          : automaticMaxRadius(scene)),
+      mapsRefusal_(prism::causticMapsRefusal(scene, options.memoryLimit)) {}
 
 LiveRenderer::~LiveRenderer() {
   stop();
@@ -215,9 +217,11 @@ void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
 }
 
 std::shared_ptr<const CausticMapEstimator> LiveRenderer::causticMaps(bool blur) {
+  if (mapsRefusal_) throw ResourceLimitError(*mapsRefusal_);
   const std::lock_guard<std::mutex> lock(mapsMutex_);
   std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
   if (!maps) {
+    causticMaps_.erase(!blur);  // frames still rendering with them hold their own reference
     const auto start = SteadyClock::now();
     maps = std::make_shared<const CausticMapEstimator>(
         scene_, causticMapSettings(scene_.causticSettings(), blur), dispatcher_.localThreads());

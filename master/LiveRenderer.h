@@ -57,6 +57,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "caustics/CausticMapEstimator.h"
@@ -71,6 +72,7 @@
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
+#include "util/MemorySize.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -85,6 +87,8 @@ struct LiveOptions {
   double statsInterval = 0.25;         // seconds between LiveListener::statsUpdated calls
   double frameTimeSeconds = 1.0 / 30;  // target for frames while moving; ≤ 0: none
   bool pipeline = true;                // queue the next frame before the current one returns
+  // Caustic maps the user switches on are refused when they cannot fit (causticMapsRefusal).
+  MemoryLimit memoryLimit;
 };
 
 // What the user controls.
@@ -188,8 +192,12 @@ class LiveRenderer final : private FrameListener {
   LiveStats stats();
 
   // The scene's caustic maps with the blur on or off, built on first use (by whichever thread
-  // asks first; others wait) and kept. Any thread: the viewer's debug images use them.
+  // asks first; others wait) and kept until the maps of the other blur setting are built: one
+  // set at a time is what the memory check counts. Any thread: the viewer's debug images use
+  // them. Throws ResourceLimitError when causticMapsRefusal() says why not.
   std::shared_ptr<const CausticMapEstimator> causticMaps(bool blur);
+  // Why the scene's caustic maps would not fit in LiveOptions::memoryLimit; nothing when they do.
+  const std::optional<std::string>& causticMapsRefusal() const { return mapsRefusal_; }
 
   // The seed of full-resolution pass p ≥ 1: pass 1 keeps the scene's seed.
   static uint64_t passSeed(uint64_t sceneSeed, int pass);
@@ -254,6 +262,7 @@ class LiveRenderer final : private FrameListener {
   float maxRadius_;
   PhotonGatherSettings gather_;  // the last photon pass's gather, for the next one's
 
+  std::optional<std::string> mapsRefusal_;
   std::mutex mapsMutex_;  // guards the two below; mutex_ is never taken while holding it
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
   std::map<bool, double> mapBuildSeconds_;

@@ -68,8 +68,12 @@ class Outbox {
 // for the tiles that need it, and builds the caustic maps.
 class PhotonWork {
  public:
-  PhotonWork(const Scene& scene, int threads, Transport& session)
-      : scene_(scene), threads_(threads), session_(session) {
+  // memoryLimit: this rank's, against which caustic maps the viewer switches on are checked.
+  PhotonWork(const Scene& scene, int threads, Transport& session, const MemoryLimit& memoryLimit)
+      : scene_(scene),
+        threads_(threads),
+        session_(session),
+        mapsRefusal_(causticMapsRefusal(scene, memoryLimit)) {
     // A caustic-map scene: build the maps now, while rank 0 builds its own, rather than when
     // the first tile asks (which would put a second build on the frame's critical path).
     if (scene_.causticSettings().method == CausticMethod::CausticMap) {
@@ -129,8 +133,18 @@ class PhotonWork {
     const bool direct = (terms & wire::kTermDirect) != 0;
     if (terms & wire::kTermCausticMap) {
       // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
+      if (mapsRefusal_) throw ResourceLimitError(*mapsRefusal_);
       std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
-      if (!maps && blur && eagerMaps_.valid()) maps = eagerMaps_.get();
+      if (!maps) {
+        // One set of maps at a time, as the memory check counts: the other blur setting's go
+        // (tiles still rendering with them hold their own reference).
+        causticMaps_.erase(!blur);
+        std::erase_if(mapPasses_, [blur](const auto& entry) { return entry.first.second != blur; });
+        if (eagerMaps_.valid()) {
+          std::shared_ptr<const CausticMapEstimator> eager = eagerMaps_.get();  // the scene's blur
+          if (blur) maps = std::move(eager);
+        }
+      }
       if (!maps) {
         maps = std::make_shared<const CausticMapEstimator>(
             scene_, causticMapSettings(scene_.causticSettings(), blur), threads_);
@@ -171,6 +185,7 @@ class PhotonWork {
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
   // Caustic maps by blur switch, built on first use and kept: they depend on the scene alone.
+  std::optional<std::string> mapsRefusal_;  // why caustic maps cannot be built here, if so
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
   std::future<std::shared_ptr<const CausticMapEstimator>> eagerMaps_;  // with the scene's blur
   std::map<std::pair<uint8_t, bool>, std::shared_ptr<const RenderPass>> mapPasses_;
@@ -241,7 +256,8 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
                }
                outbox.add(job.frame, std::move(tile));
              });
-  PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores(), session);
+  PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores(), session,
+                     memoryLimit);
 
   const bool hang =
       options.fault.appliesTo(session.rank()) && options.fault.kind == FaultInjection::Kind::Hang;

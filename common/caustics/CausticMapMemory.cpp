@@ -28,18 +28,24 @@ uint64_t causticMapBytes(const Scene& scene, int resolution) {
   return causticMapBytes(viewCount(scene, resolution), resolution);
 }
 
-void checkCausticMapsFit(const Scene& scene, const MemoryLimit& limit) {
-  if (scene.causticSettings().method != CausticMethod::CausticMap) return;
+std::optional<std::string> causticMapsRefusal(const Scene& scene, const MemoryLimit& limit) {
   const int resolution = scene.causticSettings().mapResolution;
   const uint64_t views = viewCount(scene, resolution);
   const uint64_t needed = causticMapBytes(views, resolution);
-  if (needed <= limit.bytes) return;
+  if (needed <= limit.bytes) return std::nullopt;
   const size_t lights = scene.lights().size();
-  throw ResourceLimitError(memoryRefusal(
-      "caustic maps of " + std::to_string(lights) + (lights == 1 ? " light" : " lights") + " at " +
-          std::to_string(resolution) + " texels a side (" + std::to_string(views) +
-          (views == 1 ? " view" : " views") + ")",
-      needed, limit, "reduce --map-resolution"));
+  return memoryRefusal("caustic maps of " + std::to_string(lights) +
+                           (lights == 1 ? " light" : " lights") + " at " +
+                           std::to_string(resolution) + " texels a side (" + std::to_string(views) +
+                           (views == 1 ? " view" : " views") + ")",
+                       needed, limit, "reduce --map-resolution");
+}
+
+void checkCausticMapsFit(const Scene& scene, const MemoryLimit& limit) {
+  if (scene.causticSettings().method != CausticMethod::CausticMap) return;
+  if (const std::optional<std::string> why = causticMapsRefusal(scene, limit)) {
+    throw ResourceLimitError(*why);
+  }
 }
 
 }  // namespace prism

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "caustics/CausticMap.h"
 #include "util/MemorySize.h"
@@ -19,8 +21,12 @@ uint64_t causticMapBytes(uint64_t views, int resolution);
 // Bytes the maps of every light of the scene take at `resolution` texels a side.
 uint64_t causticMapBytes(const Scene& scene, int resolution);
 
-// When the scene uses caustic mapping: throws ResourceLimitError, naming the bytes, the views and
-// the limit, if its maps (at its map resolution) cannot fit.
+// Why the scene's caustic maps (at its map resolution, whatever its caustic method) cannot fit
+// in limit: the bytes, the views and the limit; nothing when they fit. The viewer asks before
+// the user switches to caustic maps.
+std::optional<std::string> causticMapsRefusal(const Scene& scene, const MemoryLimit& limit);
+// When the scene uses caustic mapping: throws ResourceLimitError with causticMapsRefusal's
+// message if its maps cannot fit.
 void checkCausticMapsFit(const Scene& scene, const MemoryLimit& limit);
 
 }  // namespace prism

@@ -10,6 +10,7 @@
 #include <QRadioButton>
 #include <QScreen>
 #include <QSpinBox>
+#include <QStatusBar>
 #include <QTableWidget>
 #include <QTest>
 #include <QtCharts/QLineSeries>
@@ -41,10 +42,12 @@ bool waitUntil(const std::function<bool()>& done, int milliseconds = 20000) {
 
 class LiveWindow {
  public:
-  LiveWindow(const std::string& scenePath, int width, int height, int spp, int maxPasses = 3)
+  // memoryLimit: what caustic maps switched on must fit in (runViewer's is --memory-limit).
+  LiveWindow(const std::string& scenePath, int width, int height, int spp, int maxPasses = 3,
+             const MemoryLimit& memoryLimit = {})
       : description_(load(scenePath, width, height, spp)),
         scene_(description_),
-        renderer_(scene_, options(maxPasses)),
+        renderer_(scene_, options(maxPasses, memoryLimit)),
         window_(
             description_, "test", [this](const ViewSettings& v) { renderer_.setView(v); },
             [this](bool blur) { return renderer_.causticMaps(blur); }) {
@@ -58,6 +61,9 @@ class LiveWindow {
                      &MainWindow::onPassFinished, Qt::QueuedConnection);
     QObject::connect(&bridge_, &RenderBridge::statsUpdatedSignal, &window_, &MainWindow::onStats,
                      Qt::QueuedConnection);
+    if (const std::optional<std::string>& why = renderer_.causticMapsRefusal()) {
+      window_.refuseCausticMaps(QString::fromStdString(*why));  // as runViewer does
+    }
     coordinator_ = std::thread([this] { renderer_.run(bridge_); });
     window_.show();
     window_.startRendering();
@@ -84,8 +90,9 @@ class LiveWindow {
     d.render.samplesPerPixel = spp;
     return d;
   }
-  static LiveOptions options(int maxPasses) {
+  static LiveOptions options(int maxPasses, const MemoryLimit& memoryLimit) {
     LiveOptions o;
+    o.memoryLimit = memoryLimit;
     o.distribution.threads = 2;
     o.previewScale = 4;
     o.maxPasses = maxPasses;
@@ -399,6 +406,40 @@ TEST(MainWindow, CausticMapSwitchBlurKeyAndLightSpaceViews) {
   EXPECT_FALSE(w.lightSpaceShown().has_value());
   EXPECT_EQ(w.viewSettings().debugView, DebugView::Image);
   EXPECT_EQ(w.viewId(), view + 2);  // leaving a light-space view re-renders nothing
+}
+
+// Caustic maps that would not fit in memory (the scene uses photon maps; LiveRenderer::
+// causticMapsRefusal) cannot be switched on: the switch and the light-space views are disabled
+// with the reason, choosing them anyway keeps the method and says why, and no new view starts.
+TEST(MainWindow, CausticMapsThatCannotFitAreRefusedWithTheReason) {
+  LiveWindow live(PRISM_SOURCE_DIR "/tests/data/scenes/caustic-small.yaml", 40, 30, 1, 2,
+                  MemoryLimit{1 << 20, "test"});
+  MainWindow& w = live.window();
+  ASSERT_TRUE(live.renderer().causticMapsRefusal());
+  auto* causticMap = w.findChild<QRadioButton*>("causticsCausticMap");
+  auto* photonMap = w.findChild<QRadioButton*>("causticsPhotonMap");
+  auto* irradiance = w.findChild<QRadioButton*>("debugCausticMap");
+  ASSERT_TRUE(causticMap && photonMap && irradiance);
+  const QString why = "caustic maps of 1 light at 512 texels a side (1 view) needs";
+  EXPECT_FALSE(causticMap->isEnabled());
+  EXPECT_FALSE(irradiance->isEnabled());
+  EXPECT_TRUE(causticMap->toolTip().contains(why)) << causticMap->toolTip().toStdString();
+  ASSERT_TRUE(live.waitForFullPasses(1));
+  const uint64_t view = w.viewId();
+
+  w.setCausticMethod(CausticMethod::CausticMap);
+  EXPECT_EQ(w.viewSettings().caustics, CausticMethod::PhotonMap);
+  EXPECT_TRUE(photonMap->isChecked());
+  EXPECT_FALSE(causticMap->isChecked());
+  EXPECT_TRUE(w.statusBar()->currentMessage().startsWith("caustic maps refused: " + why))
+      << w.statusBar()->currentMessage().toStdString();
+  QTest::keyClicks(w.frameView(), "C");
+  EXPECT_TRUE(w.frameView()->overlayCaption().startsWith("caustic maps refused: " + why))
+      << w.frameView()->overlayCaption().toStdString();
+  QTest::keyClicks(w.frameView(), "n");
+  EXPECT_FALSE(w.frameView()->showsOverlay());
+  QApplication::processEvents();
+  EXPECT_EQ(w.viewId(), view);  // nothing was re-rendered
 }
 
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
@@ -23,6 +24,7 @@
 #include "master/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "render/TileRenderer.h"
+#include "tests/common/caustics/BallOverFloorScene.h"
 #include "transport/LoopbackTransport.h"
 
 namespace prism {
@@ -719,6 +721,91 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   }
   EXPECT_GT(stats.ranks[1].tiles, 0u);
   EXPECT_FALSE(stats.ranks[1].retired);
+}
+
+// Caustic maps the viewer may switch on (the scene itself uses photon maps) are checked against
+// the memory limit: refused with the reason when they cannot fit, and held one set at a time
+// (the blur on or off), which is what the check counts.
+TEST(LiveRenderer, RefusesCausticMapsThatCannotFitAndHoldsOneSetAtATime) {
+  SceneDescription d = test::ballOverFloorScene(1.5f);
+  d.caustics.method = CausticMethod::PhotonMap;
+  d.caustics.mapResolution = 64;
+  const Scene scene(d);
+  const uint64_t bytes = causticMapBytes(scene, 64);
+  LiveOptions tight;
+  tight.memoryLimit = {bytes - 1, "test"};
+  LiveRenderer refusing(scene, tight);
+  ASSERT_TRUE(refusing.causticMapsRefusal());
+  EXPECT_NE(refusing.causticMapsRefusal()->find("caustic maps of 1 light at 64 texels a side"),
+            std::string::npos);
+  EXPECT_THROW(refusing.causticMaps(true), ResourceLimitError);
+
+  LiveOptions roomy;
+  roomy.memoryLimit = {bytes, "test"};
+  LiveRenderer renderer(scene, roomy);
+  EXPECT_FALSE(renderer.causticMapsRefusal());
+  std::weak_ptr<const CausticMapEstimator> blurred = renderer.causticMaps(true);
+  EXPECT_FALSE(blurred.expired());                        // kept for the next frame
+  EXPECT_EQ(renderer.causticMaps(true), blurred.lock());  // and not built again
+  const std::shared_ptr<const CausticMapEstimator> sharp = renderer.causticMaps(false);
+  EXPECT_FALSE(sharp->empty());
+  EXPECT_TRUE(blurred.expired());  // the other blur setting's maps went
+}
+
+// A slave checks such maps against its own limit (it may be a smaller machine than rank 0) and
+// reports the refusal instead of building them; the viewer's run ends with its reason.
+TEST(LiveRenderer, OverTheLoopbackASlaveRefusesCausticMapsBeyondItsOwnLimit) {
+  SceneDescription d = test::ballOverFloorScene(1.5f);
+  d.caustics.method = CausticMethod::PhotonMap;
+  d.caustics.mapResolution = 64;
+  d.render.width = 32;
+  d.render.height = 24;
+  const Scene scene(d);
+  LoopbackNetwork network(2);
+  int slaveExit = -1;
+  std::thread slaveThread =
+      test::startRealSlave(network, 1, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  network.endpoint(0).broadcast(bytes, 10.0);
+  LiveOptions options;
+  options.distribution.threads = 1;
+  options.distribution.tileSize = 8;
+  options.distribution.schedule = Schedule::Static;  // the slave gets tiles of its own
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  std::string failure;
+  {
+    LiveRenderer renderer(scene, options, &network.endpoint(0));
+    ASSERT_FALSE(renderer.causticMapsRefusal());  // rank 0 has no limit
+    Recorder recorder;
+    std::atomic<bool> ended = false;
+    std::thread coordinator([&] {
+      try {
+        renderer.run(recorder);
+      } catch (const std::exception& e) {
+        failure = e.what();
+      }
+      ended = true;
+    });
+    ViewSettings view{d.camera, 1, DebugView::Image};
+    view.caustics = CausticMethod::CausticMap;
+    renderer.setView(view);
+    // run() ends on the slave's error; without one it would idle after the pass until stopped.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (!ended && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    renderer.stop();
+    coordinator.join();
+    std::ostringstream err;
+    shutDownSlaves(&network.endpoint(0), 1, {}, err);
+  }
+  slaveThread.join();
+  EXPECT_EQ(slaveExit, 1);
+  EXPECT_NE(failure.find("rank 1: caustic maps of 1 light at 64 texels a side (1 view) needs"),
+            std::string::npos)
+      << failure;
+  EXPECT_NE(failure.find("slave test"), std::string::npos) << failure;
 }
 
 }  // namespace

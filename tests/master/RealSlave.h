@@ -11,12 +11,14 @@
 namespace prism::test {
 
 // Runs rank `rank` of `network` until it ends; its exit code lands in *exitCode (join first).
-inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitCode) {
-  return std::thread([&network, rank, exitCode] {
+// memoryLimit: the slave's own (--memory-limit on that rank).
+inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitCode,
+                                  MemoryLimit memoryLimit = {}) {
+  return std::thread([&network, rank, exitCode, memoryLimit] {
     DistributionOptions options;
     options.threads = 1;
     options.masterTimeoutSeconds = 30.0;
-    *exitCode = runSlave(network.endpoint(rank), options).exitCode;
+    *exitCode = runSlave(network.endpoint(rank), options, memoryLimit).exitCode;
   });
 }
 

@@ -51,5 +51,21 @@ TEST(CausticMapMemory, RefusesMapsThatDoNotFitWithTheBytesTheViewsAndTheLimit) {
   }
 }
 
+// What the viewer asks before caustic maps are switched on: the same count and message whatever
+// the scene's own method, and nothing when the maps fit.
+TEST(CausticMapMemory, SaysWhyMapsCannotFitWhateverTheScenesMethod) {
+  const MemoryLimit limit{2ull << 30, "test"};
+  SceneDescription photons = lampInsideBall(2048);
+  photons.caustics.method = CausticMethod::PhotonMap;
+  const std::optional<std::string> why = causticMapsRefusal(Scene(photons), limit);
+  ASSERT_TRUE(why);
+  EXPECT_EQ(*why,
+            "caustic maps of 1 light at 2048 texels a side (6 views) needs 3.1 GiB "
+            "(3321888768 bytes); the memory limit is 2.0 GiB (2147483648 bytes, test): "
+            "reduce --map-resolution");
+  photons.caustics.mapResolution = 1024;
+  EXPECT_FALSE(causticMapsRefusal(Scene(photons), limit));
+}
+
 }  // namespace
 }  // namespace prism
