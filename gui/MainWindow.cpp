@@ -193,20 +193,14 @@ QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
 void MainWindow::setCausticMethod(CausticMethod method) {
   if (method == CausticMethod::CausticMap && !causticMapsRefusal_.isEmpty()) {
     statusBar()->showMessage("caustic maps refused: " + causticMapsRefusal_, 15000);
-    method = settings_.caustics;  // the button goes back to the method in use
+    method = settings_.caustics;  // the switch goes back to the method in use
   }
-  if (settings_.caustics == method) {
-    (method == CausticMethod::PhotonMap    ? photonMapButton_
-     : method == CausticMethod::CausticMap ? causticMapButton_
-                                           : noCausticsButton_)
-        ->setChecked(true);
-    return;
-  }
-  settings_.caustics = method;
   (method == CausticMethod::PhotonMap    ? photonMapButton_
    : method == CausticMethod::CausticMap ? causticMapButton_
                                          : noCausticsButton_)
       ->setChecked(true);
+  if (settings_.caustics == method) return;
+  settings_.caustics = method;
   viewChanged();
 }
 

@@ -184,8 +184,9 @@ class PhotonWork {
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
-  // Caustic maps by blur switch, built on first use and kept: they depend on the scene alone.
   std::optional<std::string> mapsRefusal_;  // why caustic maps cannot be built here, if so
+  // Caustic maps by blur switch, built on first use and kept until the other setting's are
+  // built: they depend on the scene alone.
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
   std::future<std::shared_ptr<const CausticMapEstimator>> eagerMaps_;  // with the scene's blur
   std::map<std::pair<uint8_t, bool>, std::shared_ptr<const RenderPass>> mapPasses_;
