@@ -5,6 +5,7 @@
 
 #include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
+#include "image/DisplayBytes.h"
 #include "master/CausticPasses.h"
 #include "master/PhotonPass.h"
 #include "master/TilePlan.h"
@@ -140,6 +141,11 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   view->debugView = plan.view.debugView;
   view->jitterSingleSample = index >= 2;  // else every 1-spp pass would repeat pass 1
   view->causticMapBlur = plan.view.causticMapBlur;
+  // A frame while moving is shown and replaced, never averaged: other ranks send it as the
+  // bytes the window shows (3 a pixel, not 12), at the scene's exposure, the window's.
+  if (index == 0 && displayBytesInvertible(settings.exposure)) {
+    view->displayExposure = settings.exposure;
+  }
   info.view = view;
   info.light = std::move(light);
   const int tileSize = options_.distribution.tileSize > 0
@@ -188,10 +194,14 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
     live_.photons.method = view_.caustics;
     // The first frame of a view, at the resolution that meets the frame-time target and 1 spp.
     // At full resolution it is pass 1 when that is what pass 1 renders (the view's samples per
-    // pixel, and no photon pass, which a moving camera would wait for).
+    // pixel, and no photon pass, which a moving camera would wait for) — in one process. With
+    // slaves it stays a frame only shown (pass 0), whose tiles come as display bytes, a quarter
+    // of radiance's: while the camera moves that is what the link carries, and when it stops
+    // pass 1 follows one frame later.
     const RenderSettings& r = scene_.settings();
     const FrameScale scale = governor_.scaleFor(r.width, r.height);
-    const bool isPassOne = scale.full() && view_.samplesPerPixel == 1 && !tracesPhotons(view_);
+    const bool isPassOne =
+        scale.full() && view_.samplesPerPixel == 1 && !tracesPhotons(view_) && !link_.hasSlaves();
     lastIndex_ = isPassOne ? 1 : 0;
     return PassPlan{lastIndex_, nextFrame_++, viewId_, view_, scale, true};
   }

@@ -10,12 +10,15 @@
 namespace prism {
 namespace {
 
+// displayBytes: results of frames only shown (tileResultBytes).
 ScheduleSimulation simulationOf(std::vector<double> tileSeconds, const std::vector<TileRect>& tiles,
                                 int ranks, Schedule schedule, double cpuShare,
-                                const SpeedupReport& r) {
+                                const SpeedupReport& r, bool displayBytes = false) {
   ScheduleSimulation s;
   s.tileSeconds = std::move(tileSeconds);
-  for (const TileRect& t : tiles) s.resultBytes.push_back(tileResultBytes(t.pixelCount()));
+  for (const TileRect& t : tiles) {
+    s.resultBytes.push_back(tileResultBytes(t.pixelCount(), displayBytes));
+  }
   s.jobBytes = tileJobBytes();
   s.workers = ranks;
   s.threadsPerWorker = r.threadsPerRank;
@@ -32,10 +35,11 @@ double tileJobBytes() {
   return static_cast<double>(wire::encodeTileJob({}).size());
 }
 
-double tileResultBytes(int pixels) {
-  // The envelope and fixed fields, measured on an empty tile, then 3 floats a pixel.
+double tileResultBytes(int pixels, bool displayBytes) {
+  // The envelope and fixed fields, measured on an empty tile (the same either way), then 3
+  // floats or 3 bytes a pixel.
   static const double fixed = static_cast<double>(wire::encodeTileResult({}).size());
-  return fixed + 3.0 * sizeof(float) * pixels;
+  return fixed + (displayBytes ? 3.0 : 3.0 * sizeof(float)) * pixels;
 }
 
 double cpuShareOf(int renderThreads, int cores) {
@@ -82,7 +86,7 @@ std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const Proje
 double streamBytesPerSecond(int width, int height, int tileSize, double framesPerSecond) {
   double bytes = 0.0;
   for (const TileRect& t : planTiles(width, height, tileSize)) {
-    bytes += tileResultBytes(t.pixelCount());
+    bytes += tileResultBytes(t.pixelCount(), true);
   }
   return bytes * framesPerSecond;
 }
@@ -104,10 +108,10 @@ std::vector<FrameRatePoint> projectFrameRates(const TileCostMap& costs, const Pr
     }
     for (int ranks = 1; ranks * report.threadsPerRank <= plan.maxWorkers; ranks *= 2) {
       const double one = simulateTileSchedule(simulationOf(tileSeconds, tiles, ranks,
-                                                           Schedule::Dynamic, 1.0, report))
+                                                           Schedule::Dynamic, 1.0, report, true))
                              .seconds;
       const double many = simulateTileSchedule(simulationOf(stream, streamTiles, ranks,
-                                                            Schedule::Dynamic, 1.0, report))
+                                                            Schedule::Dynamic, 1.0, report, true))
                               .seconds;
       FrameRatePoint p;
       p.width = width;

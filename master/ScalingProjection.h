@@ -13,9 +13,11 @@
 
 namespace prism {
 
-// Sizes of the wire messages the master and a slave exchange per tile (common/wire).
+// Sizes of the wire messages the master and a slave exchange per tile (common/wire): a result
+// carries radiance, 12 bytes a pixel, or, for a frame only shown (the viewer's frames while
+// the camera moves, RenderView::displayExposure), display bytes, 3 a pixel.
 double tileJobBytes();
-double tileResultBytes(int pixels);
+double tileResultBytes(int pixels, bool displayBytes = false);
 
 // The fraction of a core each of `renderThreads` threads gets on `cores` cores.
 double cpuShareOf(int renderThreads, int cores);
@@ -41,6 +43,7 @@ std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const Proje
 // The viewer's real-time frame rate at every size of the plan and worker count (doubling from
 // one rank of report.threadsPerRank threads up to plan.maxWorkers), dynamic schedule, the
 // measured link. Tile costs are the measured ones scaled from report.samplesPerPixel to 1.
+// Results come as display bytes: a moving camera's frames, which a cluster only shows.
 // Pipelined (TileDispatcher::queueFrame): kPipelinedFrames frames' tiles in one queue, their
 // count over the time until the last result (the first frame's start-up included, so slightly
 // low); unpipelined: one frame on its own, round trip included.
@@ -49,7 +52,7 @@ std::vector<FrameRatePoint> projectFrameRates(const TileCostMap& costs, const Pr
                                               const SpeedupReport& report);
 
 // Bytes per second of tile results a stream of width×height frames at framesPerSecond puts on
-// rank 0's link (tiles of tileSize).
+// rank 0's link (tiles of tileSize, display bytes as above).
 double streamBytesPerSecond(int width, int height, int tileSize, double framesPerSecond);
 
 }  // namespace prism

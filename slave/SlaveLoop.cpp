@@ -45,10 +45,11 @@ constexpr double kIdleCheckSeconds = 0.1;
 class Outbox {
  public:
   explicit Outbox(Transport& session) : session_(session) {}
-  void add(uint32_t frame, TileResult&& tile) {
+  // displayExposure: the frame's RenderView::displayExposure (0: send radiance).
+  void add(uint32_t frame, TileResult&& tile, float displayExposure) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      tiles_.push_back({frame, std::move(tile)});
+      tiles_.push_back({frame, std::move(tile), displayExposure});
     }
     session_.wake();
   }
@@ -255,7 +256,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
                if (slow) {  // the render thread stays taken, as on a slower machine
                  std::this_thread::sleep_for(std::chrono::duration<double>(kSlowTileDelaySeconds));
                }
-               outbox.add(job.frame, std::move(tile));
+               outbox.add(job.frame, std::move(tile), job.view ? job.view->displayExposure : 0.0f);
              });
   PhotonWork photons(*scene, options.threads > 0 ? options.threads : availableCores(), session,
                      memoryLimit);

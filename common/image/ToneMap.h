@@ -41,6 +41,10 @@ class DisplayEncoder {
     for (int b = 1; b < 256; ++b) {
       thresholds_[b - 1] = srgbToLinear((static_cast<float>(b) - 0.5f) / 255.0f) / exposure;
     }
+    invertible_ = std::isnormal(thresholds_.front()) && std::isnormal(thresholds_.back());
+    for (int b = 1; b < 255 && invertible_; ++b) {
+      invertible_ = thresholds_[b - 1] < thresholds_[b];
+    }
     const float first = thresholds_.front(), last = thresholds_.back();
     // The table needs positive, finite, increasing thresholds (any positive finite exposure).
     if (!(first > 0.0f) || !(last < std::numeric_limits<float>::infinity())) return;
@@ -62,6 +66,13 @@ class DisplayEncoder {
     return static_cast<uint8_t>(b);
   }
 
+  // The smallest radiance that gives `byte`: when invertible(), encoding it gives `byte` back, so
+  // an image sent as bytes and turned back into radiance this way shows as it was sent.
+  float lowestRadianceOf(uint8_t byte) const { return byte == 0 ? 0.0f : thresholds_[byte - 1]; }
+  // Whether every byte has a radiance of its own: the thresholds are normal floats, strictly
+  // increasing (not so for an exposure so extreme that they overflow or underflow).
+  bool invertible() const { return invertible_; }
+
   // The reference: the thresholds at or below the radiance, by binary search; NaN gives 0.
   uint8_t encode(float radiance) const {
     const auto it = std::upper_bound(thresholds_.begin(), thresholds_.end(), radiance,
@@ -74,6 +85,7 @@ class DisplayEncoder {
   std::array<float, 255> thresholds_;
   uint32_t firstBits_ = 0;
   std::vector<uint8_t> bucketStart_;  // the byte at each bucket's lowest radiance
+  bool invertible_ = false;
 };
 
 }  // namespace prism

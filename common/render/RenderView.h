@@ -28,6 +28,10 @@ struct RenderView {
   // One sample per pixel through a jittered point instead of the centre: the viewer's passes
   // after the first, which must differ from it to average to more samples.
   bool jitterSingleSample = false;
+  // > 0: the frame is only shown until the next replaces it, never averaged (a moving camera's
+  // frame), so tiles rendered on other ranks travel as the 8-bit display bytes this exposure
+  // gives (3 bytes a pixel, not 12; wire::TileResultMessage): what the window shows is the same.
+  float displayExposure = 0.0f;
 };
 
 }  // namespace prism

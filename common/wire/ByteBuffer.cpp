@@ -65,6 +65,11 @@ void ByteWriter::writeVec3s(const std::vector<Vec3>& v) {
   }
 }
 
+void ByteWriter::writeU8s(const std::vector<uint8_t>& v) {
+  writeCount(v.size());
+  bytes_.insert(bytes_.end(), v.begin(), v.end());
+}
+
 void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
   writeCount(v.size());
   if constexpr (kWireOrderIsNative) {
@@ -158,6 +163,10 @@ std::vector<Vec3> ByteReader::readVec3s() {
 
 std::vector<uint32_t> ByteReader::readU32s() {
   return readArray<uint32_t>([this] { return readU32(); });
+}
+
+std::vector<uint8_t> ByteReader::readU8s() {
+  return readArray<uint8_t>([this] { return readU8(); });
 }
 
 void ByteReader::expectEnd() const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "image/DisplayBytes.h"
 #include "wire/SceneCodec.h"
 
 namespace prism::wire {
@@ -74,6 +75,16 @@ TileRect readRect(ByteReader& r) {
 void checkSeconds(double seconds, const char* what) {
   if (!(std::isfinite(seconds) && seconds >= 0.0)) {
     throw WireError(std::string("invalid ") + what + " " + std::to_string(seconds));
+  }
+}
+
+// 0 (radiance), or an exposure at which display bytes come back as they were sent.
+void checkDisplayExposure(float exposure) {
+  if (exposure == 0.0f && !std::signbit(exposure)) return;
+  if (!displayBytesInvertible(exposure)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", exposure);
+    throw WireError(std::string("invalid display exposure ") + text);
   }
 }
 
@@ -205,13 +216,18 @@ TileJobMessage decodeTileJob(const Message& message) {
 
 std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
   return encodeWith(MessageType::TileResult, [&](ByteWriter& w) {
-    const auto& [frame, result] = message;
+    const auto& [frame, result, displayExposure] = message;
     const auto& [tileIndex, rect, pixels, rays, seconds] = result;
     const auto& [primary, shadow, secondary, nonFinite] = rays;
     w.writeU32(frame);
     w.writeU32(tileIndex);
     writeRect(w, rect);
-    w.writeVec3s(pixels);
+    w.writeF32(displayExposure);
+    if (displayExposure > 0.0f) {
+      w.writeU8s(toDisplayBytes(pixels, displayExposure));
+    } else {
+      w.writeVec3s(pixels);
+    }
     w.writeU64(primary);
     w.writeU64(shadow);
     w.writeU64(secondary);
@@ -223,13 +239,24 @@ std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
 TileResultMessage decodeTileResult(const Message& message) {
   return decodePayload(message, MessageType::TileResult, [](ByteReader& r) {
     TileResultMessage m;
-    auto& [frame, result] = m;
+    auto& [frame, result, displayExposure] = m;
     auto& [tileIndex, rect, pixels, rays, seconds] = result;
     auto& [primary, shadow, secondary, nonFinite] = rays;
     frame = r.readU32();
     tileIndex = r.readU32();
     rect = readRect(r);
-    pixels = r.readVec3s();
+    displayExposure = r.readF32();
+    checkDisplayExposure(displayExposure);
+    if (displayExposure != 0.0f) {
+      const std::vector<uint8_t> bytes = r.readU8s();
+      if (bytes.size() % 3 != 0) {
+        throw WireError("display bytes of tile " + std::to_string(tileIndex) + " are " +
+                        std::to_string(bytes.size()) + ", not 3 a pixel");
+      }
+      pixels = fromDisplayBytes(bytes, displayExposure);
+    } else {
+      pixels = r.readVec3s();
+    }
     if (pixels.size() != static_cast<size_t>(rect.pixelCount())) {
       throw WireError("tile " + std::to_string(tileIndex) + " is " + std::to_string(rect.width) +
                       "x" + std::to_string(rect.height) + " but carries " +
@@ -337,7 +364,7 @@ std::vector<uint8_t> encodeView(const ViewMessage& message) {
   return encodeWith(MessageType::View, [&](ByteWriter& w) {
     const auto& [frame, liveFrom, view] = message;
     const auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
-                 jitterSingleSample] = view;
+                 jitterSingleSample, displayExposure] = view;
     w.writeU32(frame);
     w.writeU32(liveFrom);
     writeCamera(w, camera);
@@ -348,6 +375,7 @@ std::vector<uint8_t> encodeView(const ViewMessage& message) {
     w.writeU32(static_cast<uint32_t>(debugView));
     w.writeU8(causticMapBlur ? 1 : 0);
     w.writeU8(jitterSingleSample ? 1 : 0);
+    w.writeF32(displayExposure);
   });
 }
 
@@ -356,7 +384,7 @@ ViewMessage decodeView(const Message& message) {
     ViewMessage m;
     auto& [frame, liveFrom, view] = m;
     auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
-           jitterSingleSample] = view;
+           jitterSingleSample, displayExposure] = view;
     frame = r.readU32();
     liveFrom = r.readU32();
     if (liveFrom > frame) {
@@ -375,6 +403,8 @@ ViewMessage decodeView(const Message& message) {
     const uint8_t jitter = r.readU8();
     if (jitter > 1) throw WireError("invalid jitter flag " + std::to_string(jitter));
     jitterSingleSample = jitter == 1;
+    displayExposure = r.readF32();
+    checkDisplayExposure(displayExposure);
     if (width <= 0 || height <= 0 || int64_t{width} * height > INT_MAX) {
       throw WireError("invalid view size " + std::to_string(width) + "x" + std::to_string(height));
     }

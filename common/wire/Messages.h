@@ -26,7 +26,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // message (`prism speedup` measures the links with it). 6: View names the oldest frame still
 // running (pipelined frames) and says whether one sample per pixel is jittered. 7: PhotonCancel.
 // 8: the automatic k (gather: auto) in the scene's caustics and the photon map's gather.
-inline constexpr uint16_t kVersion = 8;
+// 9: a View's display exposure, and TileResults as display bytes for frames only shown.
+inline constexpr uint16_t kVersion = 9;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -117,6 +118,10 @@ struct PhotonMapMessage {
 struct TileResultMessage {
   uint32_t frame = 0;
   TileResult result;  // result.pixels.size() == result.rect.pixelCount()
+  // > 0: the pixels travel as the 8-bit display bytes this exposure gives (RenderView::
+  // displayExposure), 3 bytes a pixel, and arrive as the smallest radiance that gives each byte
+  // (DisplayEncoder::lowestRadianceOf): shown with the same exposure, they show the same.
+  float displayExposure = 0.0f;
 };
 
 struct ReadyMessage {

@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
   result.result.rays = {4, 8, 16};
   result.result.seconds = 0.01;
   writeSeed(dir, "tile-result", encodeTileResult(result));
+  result.displayExposure = 1.5f;  // a frame only shown: display bytes
+  writeSeed(dir, "tile-result-display", encodeTileResult(result));
   writeSeed(dir, "shutdown", encodeShutdown());
   writeSeed(dir, "error", encodeError({"slave 2: out of memory"}));
   writeSeed(dir, "progress", encodeProgress({3, 12, {4, 5, 9}}));
@@ -87,6 +89,7 @@ int main(int argc, char** argv) {
   view.view.height = 240;
   view.view.samplesPerPixel = 2;
   view.view.seed = 99;
+  view.view.displayExposure = 1.5f;
   writeSeed(dir, "view", encodeView(view));
   writeSeed(dir, "echo", encodeEcho({5, std::string(64, 'x')}));
   writeSeed(dir, "photon-cancel", encodePhotonCancel({3}));

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -16,6 +17,7 @@
 
 #include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
+#include "image/DisplayBytes.h"
 #include "master/CausticPasses.h"
 #include "master/FrameRenderer.h"
 #include "master/PhotonPass.h"
@@ -119,6 +121,25 @@ class Recorder : public LiveListener {
   size_t notCurrent_ = 0;
   size_t tilesSeen_ = 0;
 };
+
+// Polls done() until it holds or `seconds` pass; whether it held.
+bool waitUntil(const std::function<bool()>& done, double seconds = 30.0) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
+}
+
+// A real slave on rank 1 of `network` that has been sent the scene, as rank 0 sends it.
+std::thread startSlaveWithScene(LoopbackNetwork& network, const SceneDescription& d, int* exitCode,
+                                const MemoryLimit& memoryLimit = {}) {
+  std::thread slave = test::startRealSlave(network, 1, exitCode, memoryLimit);
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  network.endpoint(0).broadcast(bytes, 10.0);
+  return slave;
+}
 
 SceneDescription smallDefaultScene() {
   SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/default.yaml");
@@ -622,11 +643,13 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
   EXPECT_GT(stats.ranks[1].tiles, 0u);
   EXPECT_FALSE(stats.ranks[1].retired);
   const std::vector<PassInfo> passes = recorder.passes();
-  ASSERT_EQ(passes.size(), 1u);
+  ASSERT_GE(passes.size(), 1u);
+  EXPECT_EQ(passes[0].pass, 0);  // with slaves a view's first frame is only shown
+  // This slave sends radiance whatever the frame (the master takes either form): exact.
   const ImageRgb expected = renderFrame(scene, FrameOptions{}).image;
-  const ImageRgb pass1 = recorder.image(passes[0].frame);
-  ASSERT_EQ(pass1.pixels.size(), expected.pixels.size());
-  EXPECT_EQ(std::memcmp(pass1.pixels.data(), expected.pixels.data(),
+  const ImageRgb first = recorder.image(passes[0].frame);
+  ASSERT_EQ(first.pixels.size(), expected.pixels.size());
+  EXPECT_EQ(std::memcmp(first.pixels.data(), expected.pixels.data(),
                         expected.pixels.size() * sizeof(Color)),
             0);
 }
@@ -659,7 +682,9 @@ TEST(LiveRenderer, OverTheLoopbackADeadSlaveIsRetiredWithinSeconds) {
   slaveThread.join();
   ASSERT_TRUE(finished);  // within the recorder's 30 s; the lease is 120 s
   EXPECT_TRUE(stats.ranks[1].retired);
-  EXPECT_EQ(stats.ranks[0].tiles, recorder.passes()[0].tiles.size());
+  // Rank 0 rendered every tile of the frame, the dead slave's too (and maybe some of pass 1,
+  // which follows the shown-only first frame when there are slaves).
+  EXPECT_GE(stats.ranks[0].tiles, recorder.passes()[0].tiles.size());
 }
 
 // Pipelined frames across real slaves (runSlave on a thread): a slave goes on to the next
@@ -670,9 +695,7 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread = test::startRealSlave(network, 1, &slaveExit);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
+  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;
@@ -692,12 +715,10 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
       renderer.setView({c, 1, DebugView::Image});
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (std::chrono::steady_clock::now() < deadline) {  // the last view's three passes
+    waitUntil([&] {  // the last view's three passes
       const std::vector<PassInfo> p = recorder.passes();
-      if (!p.empty() && p.back().pass == 3 && recorder.finished(p.back().frame)) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+      return !p.empty() && p.back().pass == 3 && recorder.finished(p.back().frame);
+    });
     stats = renderer.stats();
     renderer.stop();
     coordinator.join();
@@ -710,17 +731,91 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
     ASSERT_GE(passes.size(), 3u);
     ASSERT_EQ(passes.back().pass, 3);
     EXPECT_EQ(passes.back().view->camera.position, cameras.back().position);
+    int shownOnly = 0;
     for (const PassInfo& p : passes) {
       if (!recorder.finished(p.frame)) continue;
       SceneDescription from = d;
       from.camera = p.view->camera;
       const ImageRgb expected = p.pass <= 1 ? renderFrame(Scene(from), FrameOptions{}).image
                                             : renderPassFrame(from, p.pass, nullptr);
-      EXPECT_TRUE(sameImage(recorder.image(p.frame), expected)) << "pass " << p.pass;
+      if (p.pass == 0) {
+        // A frame while moving is only shown: the slave's tiles came as display bytes, and the
+        // frame shows exactly as `prism render`'s image does.
+        ++shownOnly;
+        EXPECT_EQ(p.view->displayExposure, d.render.exposure);
+        const float exposure = d.render.exposure;
+        EXPECT_EQ(toDisplayBytes(recorder.image(p.frame).pixels, exposure),
+                  toDisplayBytes(expected.pixels, exposure));
+      } else {
+        EXPECT_EQ(p.view->displayExposure, 0.0f);
+        EXPECT_TRUE(sameImage(recorder.image(p.frame), expected)) << "pass " << p.pass;
+      }
     }
   }
   EXPECT_GT(stats.ranks[1].tiles, 0u);
   EXPECT_FALSE(stats.ranks[1].retired);
+}
+
+// Frames while the camera moves (pass 0: reduced, shown and replaced) come from a slave as display
+// bytes, 3 a pixel: the radiance that arrives is not the slave's, but the frame shows exactly as
+// `prism render` of the same view does.
+TEST(LiveRenderer, OverTheLoopbackFramesWhileMovingComeAsDisplayBytesAndShowAsRendered) {
+  SceneDescription d = smallDefaultScene();
+  d.render.exposure = 1.7f;
+  const Scene scene(d);
+  LoopbackNetwork network(2);
+  int slaveExit = -1;
+  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
+  LiveOptions options;
+  options.distribution.threads = 1;
+  options.distribution.tileSize = 8;
+  options.distribution.schedule = Schedule::Static;  // the slave renders its share of each frame
+  options.previewScale = 2;
+  options.frameTimeSeconds = 1e-6;  // no frame fits: every view starts at 1/2
+  options.maxPasses = 1;
+  std::vector<PassInfo> passes;
+  Recorder recorder;
+  LiveStats stats;
+  {
+    LiveRenderer renderer(scene, options, &network.endpoint(0));
+    std::thread coordinator([&] { renderer.run(recorder); });
+    const auto movingFramesShown = [&] {
+      int n = 0;
+      for (const PassInfo& p : recorder.passes()) n += p.pass == 0 && recorder.finished(p.frame);
+      return n;
+    };
+    for (int i = 0; i < 3; ++i) {
+      CameraDesc c = d.camera;
+      c.position.x += 0.2f * static_cast<float>(i);
+      renderer.setView({c, 1, DebugView::Image});
+      waitUntil([&] { return movingFramesShown() > i; });
+    }
+    stats = renderer.stats();
+    renderer.stop();
+    coordinator.join();
+    passes = recorder.passes();
+    std::ostringstream err;
+    EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, {}, err), 0) << err.str();
+  }
+  slaveThread.join();
+  EXPECT_EQ(slaveExit, 0);
+  EXPECT_GT(stats.ranks[1].tiles, 0u);
+  int moving = 0;
+  for (const PassInfo& p : passes) {
+    if (p.pass != 0 || !recorder.finished(p.frame)) continue;
+    ++moving;
+    EXPECT_EQ(p.view->displayExposure, 1.7f);
+    SceneDescription from = d;
+    from.camera = p.view->camera;
+    from.render.width = p.view->width;
+    from.render.height = p.view->height;
+    const ImageRgb expected = renderFrame(Scene(from), FrameOptions{}).image;
+    const ImageRgb shown = recorder.image(p.frame);
+    EXPECT_EQ(shown.width, d.render.width / 2);
+    EXPECT_EQ(toDisplayBytes(shown.pixels, 1.7f), toDisplayBytes(expected.pixels, 1.7f));
+    EXPECT_FALSE(sameImage(shown, expected));  // the slave's tiles came as bytes
+  }
+  EXPECT_EQ(moving, 3);
 }
 
 // Caustic maps the viewer may switch on (the scene itself uses photon maps) are checked against
@@ -764,9 +859,7 @@ TEST(LiveRenderer, OverTheLoopbackASlaveRefusesCausticMapsBeyondItsOwnLimit) {
   LoopbackNetwork network(2);
   int slaveExit = -1;
   std::thread slaveThread =
-      test::startRealSlave(network, 1, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
+      startSlaveWithScene(network, d, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;
@@ -791,10 +884,7 @@ TEST(LiveRenderer, OverTheLoopbackASlaveRefusesCausticMapsBeyondItsOwnLimit) {
     view.caustics = CausticMethod::CausticMap;
     renderer.setView(view);
     // run() ends on the slave's error; without one it would idle after the pass until stopped.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (!ended && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    waitUntil([&] { return ended.load(); }, 20.0);
     renderer.stop();
     coordinator.join();
     std::ostringstream err;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "master/TilePlan.h"
+#include "wire/Messages.h"
 
 namespace prism {
 namespace {
@@ -88,11 +89,22 @@ TEST(ProjectFrameRates, MeasuredCostsAreScaledToOneSamplePerPixel) {
   EXPECT_NEAR(points[0].framesPerSecond, 1.0 / (16 * kTileSeconds), 1e-6);
 }
 
-TEST(StreamBytesPerSecond, IsTheResultMessagesOfEveryTile) {
-  // 12 bytes a pixel plus each tile's fixed part: 16 tiles here.
+TEST(StreamBytesPerSecond, IsTheResultMessagesOfEveryTileAsDisplayBytes) {
+  // A moving camera's frames come as display bytes: 3 a pixel plus each tile's fixed part, 16
+  // tiles here; radiance would be 12 a pixel.
   const double perFrame = streamBytesPerSecond(kSize, kSize, kTile, 1.0);
-  EXPECT_NEAR(perFrame, 16 * tileResultBytes(kTile * kTile), 1e-9);
-  EXPECT_GT(perFrame, 12.0 * kSize * kSize);
+  EXPECT_NEAR(perFrame, 16 * tileResultBytes(kTile * kTile, true), 1e-9);
+  EXPECT_GT(perFrame, 3.0 * kSize * kSize);
+  EXPECT_LT(perFrame, 3.0 * kSize * kSize + 16 * 200);
+  EXPECT_NEAR(tileResultBytes(kTile * kTile) - tileResultBytes(kTile * kTile, true),
+              9.0 * kTile * kTile, 1e-9);
+  // The sizes are those of real messages.
+  wire::TileResultMessage m;
+  m.result.rect = {0, 0, kTile, kTile};
+  m.result.pixels.assign(static_cast<size_t>(kTile) * kTile, Color(0.25f));
+  EXPECT_EQ(tileResultBytes(kTile * kTile), wire::encodeTileResult(m).size());
+  m.displayExposure = 1.0f;
+  EXPECT_EQ(tileResultBytes(kTile * kTile, true), wire::encodeTileResult(m).size());
   EXPECT_NEAR(streamBytesPerSecond(kSize, kSize, kTile, 30.0), 30 * perFrame, 1e-6);
 }
 

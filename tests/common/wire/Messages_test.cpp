@@ -8,6 +8,8 @@
 #include <functional>
 #include <limits>
 
+#include "image/DisplayBytes.h"
+
 namespace prism::wire {
 namespace {
 
@@ -150,11 +152,11 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
-  // liveFrom; 6: before PhotonCancel; 7: before the automatic k.
-  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 9}) {
+  // liveFrom; 6: before PhotonCancel; 7: before the automatic k; 8: before display bytes.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 10}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 8");
+                    "message version " + std::to_string(version) + ", this build speaks 9");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel; 14 is the
@@ -231,10 +233,53 @@ TEST(Messages, TileResultWithAHugePixelCountThrowsWithoutAllocating) {
     w.writeU32(0);
     w.writeU32(0);
     for (int v : {0, 0, 4, 4}) w.writeI32(v);
+    w.writeF32(0.0f);  // radiance
     w.writeU64(uint64_t{1} << 60);
     w.writeU64(0);
   });
   expectWireError([&] { decodeTileResult(m); }, "corrupt element count 1152921504606846976");
+}
+
+// A frame that is only shown travels as display bytes: 3 a pixel, and what arrives shows as
+// what was sent (the same bytes at the same exposure), whatever the radiance was.
+TEST(Messages, ATileShownOnlyTravelsAsDisplayBytesThatShowTheSame) {
+  TileResultMessage sent = sampleTileResult();
+  sent.result.rect = {0, 0, 16, 16};
+  sent.result.pixels.resize(256);
+  for (size_t i = 0; i < 256; ++i) {
+    const float v = 1e-4f * static_cast<float>(i * i);  // 0 to 6.5: dark, mid-tones, clipped
+    sent.result.pixels[i] = Color(v, 0.5f * v, 2.0f * v);
+  }
+  sent.result.pixels[3] = Color(std::numeric_limits<float>::quiet_NaN(), -1.0f, 1e30f);
+  const size_t asRadiance = encodeTileResult(sent).size();
+  sent.displayExposure = 1.5f;
+  const std::vector<uint8_t> bytes = encodeTileResult(sent);
+  EXPECT_EQ(asRadiance - bytes.size(), 256u * (12 - 3));
+  const TileResultMessage back = decodeTileResult(decodeMessage(bytes));
+  EXPECT_EQ(back.displayExposure, 1.5f);
+  EXPECT_EQ(back.result.rays.shadow, sent.result.rays.shadow);
+  ASSERT_EQ(back.result.pixels.size(), 256u);
+  EXPECT_EQ(toDisplayBytes(back.result.pixels, 1.5f), toDisplayBytes(sent.result.pixels, 1.5f));
+  EXPECT_NE(back.result.pixels, sent.result.pixels);  // radiance itself is not kept
+
+  for (const float exposure : {-1.0f, std::numeric_limits<float>::infinity()}) {
+    const Message m = handMade(MessageType::TileResult, [&](ByteWriter& w) {
+      w.writeU32(0);
+      w.writeU32(0);
+      for (int v : {0, 0, 1, 1}) w.writeI32(v);
+      w.writeF32(exposure);
+    });
+    expectWireError([&] { decodeTileResult(m); }, "invalid display exposure");
+  }
+  const Message ragged = handMade(MessageType::TileResult, [](ByteWriter& w) {
+    w.writeU32(0);
+    w.writeU32(5);
+    for (int v : {0, 0, 1, 1}) w.writeI32(v);
+    w.writeF32(1.0f);
+    w.writeU8s({1, 2, 3, 4});
+  });
+  expectWireError([&] { decodeTileResult(ragged); },
+                  "display bytes of tile 5 are 4, not 3 a pixel");
 }
 
 TEST(Messages, TrailingPayloadBytesAreRejected) {
@@ -304,7 +349,9 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   m.view.debugView = DebugView::Normals;
   m.view.causticMapBlur = false;
   m.view.jitterSingleSample = true;
+  m.view.displayExposure = 0.75f;
   const ViewMessage back = decodeView(decodeMessage(encodeView(m)));
+  EXPECT_EQ(back.view.displayExposure, 0.75f);
   EXPECT_EQ(back.frame, 41u);
   EXPECT_EQ(back.liveFrom, 40u);
   EXPECT_EQ(back.view.camera.position, m.view.camera.position);
@@ -335,23 +382,29 @@ TEST(Messages, ViewRoundTripsAndRejectsNonsense) {
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); },
                   "invalid samples per pixel -2");
   bad = m;
+  bad.view.displayExposure = std::numeric_limits<float>::quiet_NaN();
+  expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); },
+                  "invalid display exposure nan");
+  bad = m;
   bad.view.debugView = static_cast<DebugView>(77);
   expectWireError([&] { decodeView(decodeMessage(encodeView(bad))); }, "invalid debug view 77");
   Message flag = decodeMessage(encodeView(m));
-  // The debug view is a u32 before the last two bytes; DebugView is a byte, so 256 must not read
-  // as Image (tests/fuzz/regressions/wire/view-debug-view-256).
+  // The payload ends: debug view (u32), blur switch, jitter flag (bytes), display exposure
+  // (f32). DebugView is a byte, so 256 must not read as Image
+  // (tests/fuzz/regressions/wire/view-debug-view-256).
+  const size_t end = flag.payload.size() - sizeof(float);
   Message wide = flag;
-  wide.payload[wide.payload.size() - 6] = 0;  // little-endian: 0 + 1 * 256
-  wide.payload[wide.payload.size() - 5] = 1;
+  wide.payload[end - 6] = 0;  // little-endian: 0 + 1 * 256
+  wide.payload[end - 5] = 1;
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, wide.payload))); },
       "invalid debug view 256");
   Message blur = flag;
-  blur.payload[blur.payload.size() - 2] = 2;  // the blur switch, then the jitter flag
+  blur.payload[end - 2] = 2;
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, blur.payload))); },
       "invalid caustic-map blur flag 2");
-  flag.payload.back() = 3;
+  flag.payload[end - 1] = 3;
   expectWireError(
       [&] { decodeView(decodeMessage(encodeMessage(MessageType::View, flag.payload))); },
       "invalid jitter flag 3");
@@ -586,7 +639,7 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(PhotonJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
   EXPECT_EQ(sizeof(PhotonMapMessage), 56u) << update;
-  EXPECT_EQ(sizeof(TileResultMessage), 96u) << update;
+  EXPECT_EQ(sizeof(TileResultMessage), 104u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 32u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
   EXPECT_EQ(sizeof(ProgressMessage), 40u) << update;
