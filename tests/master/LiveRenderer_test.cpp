@@ -141,6 +141,18 @@ std::thread startSlaveWithScene(LoopbackNetwork& network, const SceneDescription
   return slave;
 }
 
+// Ends a run over the loopback: the renderer's numbers as it stands, then it stops and the
+// slaves shut down cleanly.
+LiveStats endLoopbackRun(LiveRenderer& renderer, std::thread& coordinator,
+                         LoopbackNetwork& network) {
+  const LiveStats stats = renderer.stats();
+  renderer.stop();
+  coordinator.join();
+  std::ostringstream err;
+  EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, {}, err), 0) << err.str();
+  return stats;
+}
+
 SceneDescription smallDefaultScene() {
   SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/default.yaml");
   d.render.width = 80;
@@ -719,12 +731,8 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
       const std::vector<PassInfo> p = recorder.passes();
       return !p.empty() && p.back().pass == 3 && recorder.finished(p.back().frame);
     });
-    stats = renderer.stats();
-    renderer.stop();
-    coordinator.join();
+    stats = endLoopbackRun(renderer, coordinator, network);
     passes = recorder.passes();
-    std::ostringstream err;
-    EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, {}, err), 0) << err.str();
     slaveThread.join();
     EXPECT_EQ(slaveExit, 0);
 
@@ -790,12 +798,8 @@ TEST(LiveRenderer, OverTheLoopbackFramesWhileMovingComeAsDisplayBytesAndShowAsRe
       renderer.setView({c, 1, DebugView::Image});
       waitUntil([&] { return movingFramesShown() > i; });
     }
-    stats = renderer.stats();
-    renderer.stop();
-    coordinator.join();
+    stats = endLoopbackRun(renderer, coordinator, network);
     passes = recorder.passes();
-    std::ostringstream err;
-    EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, {}, err), 0) << err.str();
   }
   slaveThread.join();
   EXPECT_EQ(slaveExit, 0);
