@@ -71,6 +71,7 @@ struct Bins {
   Box4 boxes[3][kBinCount];
   uint32_t counts[3][kBinCount] = {};
   uint32_t singles[3][kBinCount] = {};
+  uint32_t occupied[3] = {};  // bit k: bin k of that axis holds a primitive
 
   // Min/max and sums: merging bins filled apart gives the bins filled together.
   void merge(const Bins& other) {
@@ -80,6 +81,7 @@ struct Bins {
         counts[a][k] += other.counts[a][k];
         singles[a][k] += other.singles[a][k];
       }
+      occupied[a] |= other.occupied[a];
     }
   }
 };
@@ -187,6 +189,7 @@ struct Builder {
         target.upper = simd::maxLanes(b.upper, target.upper);
         ++bins.counts[a][bin[a]];
         bins.singles[a][bin[a]] += single;
+        bins.occupied[a] |= 1u << bin[a];
       }
     }
   }
@@ -198,6 +201,13 @@ struct Builder {
   void chooseSplit(uint32_t begin, uint32_t end, const NodeExtent& node, size_t depth, int& axis,
                    uint32_t& middle, NodeExtent& leftOut, NodeExtent& rightOut) {
     const uint32_t count = end - begin;
+    if (count <= kMaxLeafSize) {
+      // A leaf that costs no more than visiting a node beats every split (which costs that
+      // visit plus its children's tests), so it needs no binning.
+      uint32_t leafSingles = 0;
+      for (uint32_t i = begin; i < end; ++i) leafSingles += boxes[i].lower[3] == kSingle;
+      if (kIntersectionCost * tests(count, leafSingles) <= kTraversalCost) return;
+    }
     uint32_t singles = 0;  // primitives tested on their own, counted by the binning
     const Aabb centerBox = node.centers.aabb();
     const Vec3 extent = centerBox.extent();
@@ -242,8 +252,8 @@ struct Builder {
         // equal costs is the one taken, so skipping those changes nothing.
         int occupied[kBinCount];
         int used = 0;
-        for (int b = 0; b < kBinCount; ++b) {
-          if (binCounts[a][b] != 0) occupied[used++] = b;
+        for (uint32_t mask = bins.occupied[a]; mask != 0; mask &= mask - 1) {
+          occupied[used++] = __builtin_ctz(mask);
         }
         // Sweep from the right for the area and count of every right-hand side: rightArea[j]
         // for the primitives in occupied[j..].

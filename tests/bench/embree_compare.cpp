@@ -399,12 +399,12 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   const EmbreeScene& embree = *embreeScene;
   const SceneBuildStats& st = prism.buildStats();
   std::printf(
-      "build (wall s, all cores, median of %d alternating): Prism scene %.3f (binary SAH %.3f, "
-      "collapse %.3f), Embree %.3f, Prism/Embree %.2f; CPU s of all threads: Prism %.3f, Embree "
-      "%.3f, Prism/Embree %.2f\n",
-      options.runs, median(prismBuilds), median(prismBvh), median(prismCollapse),
-      median(embreeBuilds), median(prismBuilds) / median(embreeBuilds), median(prismCpu),
-      median(embreeCpu), median(prismCpu) / median(embreeCpu));
+      "build (wall ms, all cores, median of %d alternating): Prism scene %.2f (binary SAH %.2f, "
+      "collapse %.2f), Embree %.2f, Prism/Embree %.2f; CPU ms of all threads: Prism %.2f, Embree "
+      "%.2f, Prism/Embree %.2f\n",
+      options.runs, 1e3 * median(prismBuilds), 1e3 * median(prismBvh), 1e3 * median(prismCollapse),
+      1e3 * median(embreeBuilds), median(prismBuilds) / median(embreeBuilds),
+      1e3 * median(prismCpu), 1e3 * median(embreeCpu), median(prismCpu) / median(embreeCpu));
   std::printf(
       "memory held (MiB): Prism %.1f (binary nodes+order %.1f, wide nodes %.1f, packs %.1f, "
       "shading and other geometry %.1f), Embree %.1f, Prism/Embree %.2f\n",
