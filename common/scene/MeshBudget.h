@@ -11,7 +11,8 @@
 namespace prism {
 
 // Per triangle, at the peak (the binary BVH build): indices in the wire bytes and the
-// description (12 + 12), the Scene's gathered Triangle (44), its box and reference (24 + 4), the
+// description (12 + 12), the Scene's gathered Triangle (44; only for the walks without packs,
+// whose packs are filled from the description), its box and reference (24 + 4), the
 // builder's SIMD copy of the box and the BVH order (32 + 4), up to two 32-byte BVH nodes (64),
 // the parallel build's second node array (at most 32) and its shading indices (12): 240.
 // While the triangles are reordered into BVH order the builder's copy and the second node array

@@ -1,5 +1,7 @@
 #include "scene/Scene.h"
 
+#include <algorithm>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 
@@ -12,6 +14,7 @@
 #include "geometry/TriangleWatertight4.h"
 #include "scene/PrimitiveRef.h"
 #include "util/HugePages.h"
+#include "util/Parallel.h"
 
 namespace prism {
 namespace {
@@ -25,6 +28,24 @@ CasterBounds boundingSphere(const Aabb& b) {
   c.center = b.center();
   c.radius = 0.5f * glm::length(b.extent());
   return c;
+}
+
+Triangle meshTriangle(const MeshDesc& mesh, uint32_t meshIndex, uint32_t face) {
+  return {mesh.positions[mesh.indices[3 * size_t{face}]],
+          mesh.positions[mesh.indices[3 * size_t{face} + 1]],
+          mesh.positions[mesh.indices[3 * size_t{face} + 2]], meshIndex, face};
+}
+
+// Below this many triangles a scene is gathered and packed on one thread: starting another
+// costs more than it saves.
+constexpr uint64_t kParallelGatherMinTriangles = 32768;
+
+// body(begin, end) over [0, count) in chunks of `chunk`, on `threads` threads when `parallel`.
+// Every item has its own slot, so the result is the same for any number of threads.
+void forChunks(uint64_t count, uint64_t chunk, bool parallel, unsigned threads,
+               const std::function<void(uint64_t, uint64_t)>& body) {
+  parallelFor((count + chunk - 1) / chunk, parallel ? static_cast<int>(threads) : 1,
+              [&](uint64_t c) { body(c * chunk, std::min(count, (c + 1) * chunk)); });
 }
 
 }  // namespace
@@ -62,8 +83,17 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   if (environment) environment_.emplace(std::move(*environment));
   if (materials_.empty()) materials_.emplace_back();  // primitives default to material 0
 
+  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs. Spheres and
+  // cones, gathered before the triangles, are tested one at a time.
+  const bool packed =
+      traversal_ == Traversal::WideSimd && settings_.triangleTest != TriangleTest::PlaneThenInside;
+  BvhBuildOptions buildOptions;
+  buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
+  const bool gatherInParallel = d.triangleCount() >= kParallelGatherMinTriangles;
+
   // Gather every bounded primitive in description order, then reorder by BVH leaf order so a
-  // leaf's primitives sit together in memory.
+  // leaf's primitives sit together in memory. Packed triangles are not gathered: the packs read
+  // them from the description.
   std::vector<Triangle> triangles;
   std::vector<Sphere> spheres;
   std::vector<Cone> cones;
@@ -71,7 +101,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   std::vector<uint32_t> refs;
   std::vector<uint8_t> sphereCaustic, coneCaustic;
   const size_t bounded = d.spheres.size() + d.cones.size() + d.triangleCount();
-  reserveOnHugePages(triangles, d.triangleCount());
+  if (!packed) reserveOnHugePages(triangles, d.triangleCount());
   reserveOnHugePages(bounds, bounded);
   reserveOnHugePages(refs, bounded);
   const auto materialOf = [&](MaterialId id) -> const MaterialDesc& {
@@ -100,24 +130,36 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
       coneCaustic.push_back(caustic);
     }
   }
+  uint32_t triangleNumber = 0;  // over all meshes, in order
   for (uint32_t m = 0; m < d.meshes.size(); ++m) {
     const MeshDesc& mesh = d.meshes[m];
     const uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
-    meshes_.push_back({mesh.normals, mesh.indices, mesh.material, caustic,
-                       static_cast<uint32_t>(triangles.size())});
+    MeshShading shading{{}, {}, mesh.material, caustic, triangleNumber};
+    reserveOnHugePages(shading.normals, mesh.normals.size());
+    shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
+    reserveOnHugePages(shading.indices, mesh.indices.size());
+    shading.indices.assign(mesh.indices.begin(), mesh.indices.end());
+    meshes_.push_back(std::move(shading));
     if (caustic & kCastsCaustics) {
       Aabb meshBounds;
       for (const Vec3& p : mesh.positions) meshBounds.extend(p);
       if (!meshBounds.empty()) casters_.push_back(boundingSphere(meshBounds));
     }
-    for (uint32_t f = 0; f < mesh.triangleCount(); ++f) {
-      const Vec3& a = mesh.positions[mesh.indices[3 * f]];
-      const Vec3& b = mesh.positions[mesh.indices[3 * f + 1]];
-      const Vec3& c = mesh.positions[mesh.indices[3 * f + 2]];
-      refs.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles.size()));
-      triangles.push_back({a, b, c, m, f});
-      bounds.push_back(triangles.back().bounds());
-    }
+    const uint32_t faces = static_cast<uint32_t>(mesh.triangleCount());
+    const size_t firstEntry = refs.size();
+    refs.resize(firstEntry + faces);
+    bounds.resize(firstEntry + faces);
+    if (!packed) triangles.resize(size_t{triangleNumber} + faces);
+    forChunks(
+        faces, 16384, gatherInParallel, buildOptions.threads, [&](uint64_t begin, uint64_t end) {
+          for (uint32_t f = static_cast<uint32_t>(begin); f < end; ++f) {
+            const Triangle tri = meshTriangle(mesh, m, f);
+            refs[firstEntry + f] = PrimitiveRef::make(PrimitiveKind::Triangle, triangleNumber + f);
+            bounds[firstEntry + f] = tri.bounds();
+            if (!packed) triangles[size_t{triangleNumber} + f] = tri;
+          }
+        });
+    triangleNumber += faces;
   }
   for (const PlaneDesc& p : d.planes) {
     const Vec3 n = glm::normalize(p.normal);
@@ -133,17 +175,11 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   }
   for (const Aabb& b : bounds) bounds_.extend(b);
 
-  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs. Spheres and
-  // cones, gathered before the triangles, are tested one at a time.
-  const bool packed =
-      traversal_ == Traversal::WideSimd && settings_.triangleTest != TriangleTest::PlaneThenInside;
-  BvhBuildOptions buildOptions;
-  buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
   buildOptions.blockedFrom = static_cast<uint32_t>(spheres.size() + cones.size());
   bvh_.build(bounds, buildOptions);
   std::vector<Aabb>().swap(bounds);
-  // Packed triangles go straight from the gathered array into their packs: their leaf entries
-  // point into it, and it is freed once the packs are built.
+  // Packed triangles go straight from the description into their packs: their leaf entries
+  // keep the triangle's number.
   reserveOnHugePages(leafRefs_, refs.size());
   if (!packed) reserveOnHugePages(triangles_, triangles.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
@@ -172,9 +208,9 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
         break;  // planes are unbounded and never enter the BVH
     }
   }
-  // The gathered copies are done with (but for packed triangles): free them before the wide
-  // BVH and its packs are built, so the build's peak stays within scene/MeshBudget.h's estimate.
-  if (!packed) std::vector<Triangle>().swap(triangles);
+  // The gathered copies are done with: free them before the wide BVH and its packs are built, so
+  // the build's peak stays within scene/MeshBudget.h's estimate.
+  std::vector<Triangle>().swap(triangles);
   std::vector<uint32_t>().swap(refs);
 
   stats_.bvh = bvh_.stats();
@@ -184,11 +220,10 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
     stats_.binaryBvhReleased = true;
   }
   if (packed) {
-    buildTrianglePacks(triangles);
+    buildTrianglePacks(d, gatherInParallel ? buildOptions.threads : 1);
     packed_ = true;
-    // The packs hold every triangle's vertices and source: the triangles and, unless spheres
-    // or cones share the leaves, the leaf entries are no longer read.
-    std::vector<Triangle>().swap(triangles);
+    // The packs hold every triangle's vertices and source: unless spheres or cones share the
+    // leaves, the leaf entries are no longer read.
     if (spheres_.empty() && cones_.empty()) std::vector<uint32_t>().swap(leafRefs_);
   }
 
@@ -207,7 +242,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   }
 }
 
-void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
+void Scene::buildTrianglePacks(const SceneDescription& d, unsigned threads) {
   const auto trianglesIn = [&](uint32_t first, uint32_t count) {
     uint32_t n = 0;
     for (uint32_t k = first; k < first + count; ++k) {
@@ -215,41 +250,57 @@ void Scene::buildTrianglePacks(const std::vector<Triangle>& triangles) {
     }
     return n;
   };
-  size_t packCount = 0;
-  for (const WideBvhNode& node : wideBvh_.nodes()) {
-    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-      if (node.count[i] != 0) packCount += (trianglesIn(node.child[i], node.count[i]) + 3) / 4;
-    }
-  }
   if (leafRefs_.size() >= kPacklessLeaf) {
     throw std::length_error("too many primitives for the BVH's leaf numbering");
   }
-  reserveOnHugePages(packs_, packCount);
   // Leaves are relabelled to (first pack, pack count), or to their entries if they hold no
-  // triangle.
+  // triangle, numbering the packs in the wide nodes' order; then every leaf's packs are filled,
+  // each in its own slots, on as many threads as were given.
+  struct LeafPacks {
+    uint32_t first, count, firstPack;
+  };
+  std::vector<LeafPacks> leaves;
+  uint32_t packCount = 0;
   wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
-    if (trianglesIn(first, count) == 0)
-      return std::pair<uint32_t, uint32_t>(first | kPacklessLeaf, count);
-    const uint32_t firstPack = static_cast<uint32_t>(packs_.size());
-    packs_.emplace_back();
-    packs_.back().leafFirst = first;
-    packs_.back().leafCount = static_cast<uint16_t>(count);
-    int lane = 0;
-    for (uint32_t i = first; i < first + count; ++i) {
-      const uint32_t ref = leafRefs_[i];
-      if (PrimitiveRef::kind(ref) != PrimitiveKind::Triangle) {
-        packs_[firstPack].hasOtherKinds = true;
-        continue;
+    const uint32_t triangles = trianglesIn(first, count);
+    if (triangles == 0) return std::pair<uint32_t, uint32_t>(first | kPacklessLeaf, count);
+    leaves.push_back({first, count, packCount});
+    const uint32_t packs = (triangles + TrianglePack4::kWidth - 1) / TrianglePack4::kWidth;
+    packCount += packs;
+    return std::pair<uint32_t, uint32_t>(leaves.back().firstPack, packs);
+  });
+  reserveOnHugePages(packs_, packCount);
+  packs_.resize(packCount);
+  // A triangle by its number over all meshes (the meshes' first numbers ascend).
+  const auto triangleNumbered = [&](uint32_t number) {
+    const auto next = std::upper_bound(
+        meshes_.begin(), meshes_.end(), number,
+        [](uint32_t n, const MeshShading& mesh) { return n < mesh.firstTriangle; });
+    const uint32_t m = static_cast<uint32_t>(next - meshes_.begin()) - 1;
+    return meshTriangle(d.meshes[m], m, number - meshes_[m].firstTriangle);
+  };
+  forChunks(leaves.size(), 4096, threads > 1, threads, [&](uint64_t begin, uint64_t end) {
+    for (uint64_t l = begin; l < end; ++l) {
+      const LeafPacks& leaf = leaves[l];
+      LeafPack& head = packs_[leaf.firstPack];
+      head.leafFirst = leaf.first;
+      head.leafCount = static_cast<uint16_t>(leaf.count);
+      uint32_t pack = leaf.firstPack;
+      int lane = 0;
+      for (uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+        const uint32_t ref = leafRefs_[i];
+        if (PrimitiveRef::kind(ref) != PrimitiveKind::Triangle) {
+          head.hasOtherKinds = true;
+          continue;
+        }
+        if (lane == TrianglePack4::kWidth) {
+          ++pack;
+          lane = 0;
+        }
+        const uint32_t number = PrimitiveRef::index(ref);
+        packs_[pack].triangles.set(lane++, triangleNumbered(number), number);
       }
-      if (lane == TrianglePack4::kWidth) {
-        packs_.emplace_back();
-        lane = 0;
-      }
-      const Triangle& tri = triangles[PrimitiveRef::index(ref)];
-      packs_.back().triangles.set(lane++, tri, meshes_[tri.mesh].firstTriangle + tri.face);
     }
-    return std::pair<uint32_t, uint32_t>(firstPack,
-                                         static_cast<uint32_t>(packs_.size()) - firstPack);
   });
 }
 

@@ -138,9 +138,9 @@ class Scene {
   WatertightRay shearFor(const Ray& ray) const;
   // A triangle by the index its hits carry: into triangles_, or pack · 4 + lane once packed.
   Triangle triangle(uint32_t index) const;
-  // Fills packs_ from the triangles the leaf entries point at and relabels the wide BVH's
-  // leaves to (first pack, pack count).
-  void buildTrianglePacks(const std::vector<Triangle>& triangles);
+  // Fills packs_ with the description's triangles the leaf entries point at (on `threads`
+  // threads) and relabels the wide BVH's leaves to (first pack, pack count).
+  void buildTrianglePacks(const SceneDescription& d, unsigned threads);
 
   RenderSettings settings_;
   CausticSettings caustics_;
