@@ -155,6 +155,18 @@ bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) c
           current = {node.child[i], node.count[i], entry[i]};
           continue;
         }
+        const int second = simd::firstLane(mask);
+        if ((mask & (mask - 1)) == 0) {
+          // Two children: go on with the one the sort below would pop first and push only the
+          // other, so the next node's address does not wait on a store and a load of the stack.
+          // (Nearest first, the later lane on a tie; any-hit walks: the later lane.) Both
+          // entries lie within tMax, as every entered child's does.
+          const bool secondFirst = kAnyHit || !(entry[i] < entry[second]);
+          const int next = secondFirst ? second : i, later = secondFirst ? i : second;
+          stack[stackSize++] = {node.child[later], node.count[later], entry[later]};
+          current = {node.child[next], node.count[next], entry[next]};
+          continue;
+        }
         const int base = stackSize;
         stack[stackSize++] = {node.child[i], node.count[i], entry[i]};
         while (mask != 0) {
