@@ -155,23 +155,19 @@ bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) c
           current = {node.child[i], node.count[i], entry[i]};
           continue;
         }
-        const int second = simd::firstLane(mask);
-        if ((mask & (mask - 1)) == 0) {
-          // Two children: go on with the one the sort below would pop first and push only the
-          // other, so the next node's address does not wait on a store and a load of the stack.
-          // (Nearest first, the later lane on a tie; any-hit walks: the later lane.) Both
-          // entries lie within tMax, as every entered child's does.
-          const bool secondFirst = kAnyHit || !(entry[i] < entry[second]);
-          const int next = secondFirst ? second : i, later = secondFirst ? i : second;
-          stack[stackSize++] = {node.child[later], node.count[later], entry[later]};
-          current = {node.child[next], node.count[next], entry[next]};
-          continue;
+        // Several children: go on with the one the stack would give next and push the others,
+        // so the next node's address does not wait on a store and a load of the stack. Any-hit
+        // walks take the last lane; closest-hit walks the nearest, the later lane on a tie, and
+        // keep the rest sorted (an entered child's entry always lies within tMax).
+        mask |= 1u << i;
+        int next = i;
+        for (uint32_t rest = mask & (mask - 1); rest != 0; rest &= rest - 1) {
+          const int lane = simd::firstLane(rest);
+          if (kAnyHit || !(entry[next] < entry[lane])) next = lane;
         }
         const int base = stackSize;
-        stack[stackSize++] = {node.child[i], node.count[i], entry[i]};
-        while (mask != 0) {
+        for (mask &= ~(1u << next); mask != 0; mask &= mask - 1) {
           i = simd::firstLane(mask);
-          mask &= mask - 1;
           const Pending incoming{node.child[i], node.count[i], entry[i]};
           if constexpr (kAnyHit) {
             stack[stackSize++] = incoming;  // any hit will do: no order needed
@@ -185,6 +181,8 @@ bool WideBvh::traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) c
             stack[at] = incoming;
           }
         }
+        current = {node.child[next], node.count[next], entry[next]};
+        continue;
       }
     }
     // Pop the next pending child that still starts before the closest hit.
