@@ -67,6 +67,7 @@ MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
   auto* splitter = new QSplitter(this);
   splitter->addWidget(view_);
   auto* scroll = new QScrollArea(splitter);
+  scroll->setObjectName("sidePanel");
   scroll->setWidget(buildSidePanel());
   scroll->setWidgetResizable(true);
   scroll->setMinimumWidth(540);

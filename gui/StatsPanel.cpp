@@ -35,7 +35,8 @@ QString causticMapLines(const PhotonLiveStats& p) {
   if (p.noCasters) return "\ncaustic map  none: no light reaches a caustic caster";
   if (p.mapResolution == 0) return "\ncaustic map  building";
   // (No "²" after a placeholder: QString::arg reads a superscript digit as part of it.)
-  return QString("\ncaustic map  %1x%1 x %2 view(s), blur %3, built in %4 (rank 0)")
+  // Two lines: as one it was the summary's widest, wider than the panel on a 1280-pixel screen.
+  return QString("\ncaustic map  %1x%1 x %2 view(s), blur %3\n             built in %4 on rank 0")
       .arg(p.mapResolution)
       .arg(p.mapViews)
       .arg(p.mapBlur ? "on" : "off")
@@ -51,10 +52,10 @@ QString photonLines(const PhotonLiveStats& p) {
   return QString("\nphotons/s    %1photons/s (%2 per pass)\n")
              .arg(siRate(p.photonsPerSecond))
              .arg(p.photonsPerPass) +
-         QString("stored       %1 photons, map %2, pass %3 of this view\n")
+         QString("stored       %1 photons, map %2\n")
              .arg(p.stored)
-             .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes))))
-             .arg(p.passes) +
+             .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes)))) +
+         QString("passes       %1 of this view\n").arg(p.passes) +
          QString("photon pass  trace %1, kd-tree %2, send %3\n")
              .arg(milliseconds(p.traceSeconds))
              .arg(milliseconds(p.buildSeconds))
@@ -188,14 +189,15 @@ void StatsPanel::showStats(const LiveStats& s) {
           .arg(s.pass)
           .arg(s.passesDone) +
       QString("rays/s       %1rays/s\n").arg(siRate(s.raysPerSecond)) +
-      QString("frame time   %1 median, %2 p95 (target %3)\n")
+      QString("frame time   %1 median, %2 p95\n")
           .arg(milliseconds(s.frameTimes.medianSeconds))
-          .arg(milliseconds(s.frameTimes.p95Seconds))
-          .arg(milliseconds(s.frameTimeTargetSeconds)) +
-      QString("frames/s     %1 at %2x%3   (moving: %4 full, %5 reduced)\n")
+          .arg(milliseconds(s.frameTimes.p95Seconds)) +
+      QString("target       %1 a frame\n").arg(milliseconds(s.frameTimeTargetSeconds)) +
+      QString("frames/s     %1 at %2x%3\n")
           .arg(s.frameTimes.framesPerSecond, 0, 'f', 1)
           .arg(s.frameTimes.shownWidth)
-          .arg(s.frameTimes.shownHeight)
+          .arg(s.frameTimes.shownHeight) +
+      QString("moving       %1 frames at full resolution, %2 reduced\n")
           .arg(s.frameTimes.fullResolutionFrames)
           .arg(s.frameTimes.reducedFrames) +
       QString("full pass    %1   (Σ busy %2 thread-s)\n")
