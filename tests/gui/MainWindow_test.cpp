@@ -251,13 +251,16 @@ TEST(MainWindow, TheSidePanelFitsWithoutScrollingSideways) {
   s.photons.mapBlur = true;
   s.photons.mapBuildSeconds = 1.2345;
   s.ranks.resize(2);
-  window.statsPanel()->showStats(s);
-  QApplication::processEvents();
   const auto* scroll = window.findChild<QScrollArea*>("sidePanel");
   ASSERT_NE(scroll, nullptr);
-  EXPECT_EQ(scroll->horizontalScrollBar()->maximum(), 0)
-      << "panel " << scroll->widget()->width() << " px in a viewport of "
-      << scroll->viewport()->width() << " px";
+  const auto showAndCheck = [&] {
+    window.statsPanel()->showStats(s);
+    QApplication::processEvents();
+    EXPECT_EQ(scroll->horizontalScrollBar()->maximum(), 0)
+        << "panel " << scroll->widget()->width() << " px in a viewport of "
+        << scroll->viewport()->width() << " px";
+  };
+  showAndCheck();
   // Photon mapping's lines, as long as they get.
   s.photons.method = CausticMethod::PhotonMap;
   s.photons.photonsPerPass = 10000000;
@@ -269,11 +272,7 @@ TEST(MainWindow, TheSidePanelFitsWithoutScrollingSideways) {
   s.photons.distributeSeconds = 0.1234;
   s.photons.photonsPerSecond = 123.4e6;
   s.photons.radius = 0.012345f;
-  window.statsPanel()->showStats(s);
-  QApplication::processEvents();
-  EXPECT_EQ(scroll->horizontalScrollBar()->maximum(), 0)
-      << "panel " << scroll->widget()->width() << " px in a viewport of "
-      << scroll->viewport()->width() << " px";
+  showAndCheck();
 }
 
 TEST(MainWindow, StaleTilesAreIgnored) {
