@@ -40,11 +40,11 @@ Triangle meshTriangle(const MeshDesc& mesh, uint32_t meshIndex, uint32_t face) {
 // costs more than it saves.
 constexpr uint64_t kParallelGatherMinTriangles = 32768;
 
-// body(begin, end) over [0, count) in chunks of `chunk`, on `threads` threads when `parallel`.
-// Every item has its own slot, so the result is the same for any number of threads.
-void forChunks(uint64_t count, uint64_t chunk, bool parallel, unsigned threads,
+// body(begin, end) over [0, count) in chunks of `chunk`, on up to `threads` threads. Every item
+// has its own slot, so the result is the same for any number of threads.
+void forChunks(uint64_t count, uint64_t chunk, unsigned threads,
                const std::function<void(uint64_t, uint64_t)>& body) {
-  parallelFor((count + chunk - 1) / chunk, parallel ? static_cast<int>(threads) : 1,
+  parallelFor((count + chunk - 1) / chunk, static_cast<int>(threads),
               [&](uint64_t c) { body(c * chunk, std::min(count, (c + 1) * chunk)); });
 }
 
@@ -89,7 +89,8 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
       traversal_ == Traversal::WideSimd && settings_.triangleTest != TriangleTest::PlaneThenInside;
   BvhBuildOptions buildOptions;
   buildOptions.primitiveBlock = packed ? TrianglePack4::kWidth : 1;
-  const bool gatherInParallel = d.triangleCount() >= kParallelGatherMinTriangles;
+  const unsigned gatherThreads =
+      d.triangleCount() >= kParallelGatherMinTriangles ? buildOptions.threads : 1;
 
   // Gather every bounded primitive in description order, then reorder by BVH leaf order so a
   // leaf's primitives sit together in memory. Packed triangles are not gathered: the packs read
@@ -150,15 +151,14 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
     refs.resize(firstEntry + faces);
     bounds.resize(firstEntry + faces);
     if (!packed) triangles.resize(size_t{triangleNumber} + faces);
-    forChunks(
-        faces, 16384, gatherInParallel, buildOptions.threads, [&](uint64_t begin, uint64_t end) {
-          for (uint32_t f = static_cast<uint32_t>(begin); f < end; ++f) {
-            const Triangle tri = meshTriangle(mesh, m, f);
-            refs[firstEntry + f] = PrimitiveRef::make(PrimitiveKind::Triangle, triangleNumber + f);
-            bounds[firstEntry + f] = tri.bounds();
-            if (!packed) triangles[size_t{triangleNumber} + f] = tri;
-          }
-        });
+    forChunks(faces, 16384, gatherThreads, [&](uint64_t begin, uint64_t end) {
+      for (uint32_t f = static_cast<uint32_t>(begin); f < end; ++f) {
+        const Triangle tri = meshTriangle(mesh, m, f);
+        refs[firstEntry + f] = PrimitiveRef::make(PrimitiveKind::Triangle, triangleNumber + f);
+        bounds[firstEntry + f] = tri.bounds();
+        if (!packed) triangles[size_t{triangleNumber} + f] = tri;
+      }
+    });
     triangleNumber += faces;
   }
   for (const PlaneDesc& p : d.planes) {
@@ -220,7 +220,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
     stats_.binaryBvhReleased = true;
   }
   if (packed) {
-    buildTrianglePacks(d, gatherInParallel ? buildOptions.threads : 1);
+    buildTrianglePacks(d, gatherThreads);
     packed_ = true;
     // The packs hold every triangle's vertices and source: unless spheres or cones share the
     // leaves, the leaf entries are no longer read.
@@ -279,7 +279,7 @@ void Scene::buildTrianglePacks(const SceneDescription& d, unsigned threads) {
     const uint32_t m = static_cast<uint32_t>(next - meshes_.begin()) - 1;
     return meshTriangle(d.meshes[m], m, number - meshes_[m].firstTriangle);
   };
-  forChunks(leaves.size(), 4096, threads > 1, threads, [&](uint64_t begin, uint64_t end) {
+  forChunks(leaves.size(), 4096, threads, [&](uint64_t begin, uint64_t end) {
     for (uint64_t l = begin; l < end; ++l) {
       const LeafPacks& leaf = leaves[l];
       LeafPack& head = packs_[leaf.firstPack];
