@@ -2,6 +2,7 @@
 // same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
 //
 //   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
+//                                    [--kinds primary,incoherent,shadow] [--no-generated]
 //                                    [--build-only] [--embree-config CFG] [mesh.obj ...]
 //
 // Meshes: a subdivided sphere and a displaced grid generated here, plus any OBJ named. Rays:
@@ -331,6 +332,8 @@ struct Options {
   bool withVariants = true;  // also time the intermediate Prism traversals
   bool buildOnly = false;    // only the build and memory lines
   std::string embreeConfig;  // rtcNewDevice's configuration string, e.g. "isa=sse2"
+  std::vector<std::string> kinds = {"primary", "incoherent", "shadow"};  // ray sets timed
+  bool generatedMeshes = true;  // the subdivided sphere and displaced grid besides any OBJ
 };
 
 struct Agreement {
@@ -439,6 +442,9 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   }
 
   for (const RaySet& set : sets) {
+    if (std::find(options.kinds.begin(), options.kinds.end(), set.kind) == options.kinds.end()) {
+      continue;
+    }
     const bool shadow = set.kind == "shadow";
     std::vector<Contender> contenders;
     auto prismTracer = [shadow](const Scene& scene) -> Tracer {
@@ -580,6 +586,16 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   }
 }
 
+std::vector<std::string> commaList(const std::string& list) {
+  std::vector<std::string> items;
+  for (size_t at = 0; at <= list.size();) {
+    const size_t comma = std::min(list.find(',', at), list.size());
+    items.push_back(list.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return items;
+}
+
 int run(int argc, char** argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
@@ -596,16 +612,27 @@ int run(int argc, char** argv) {
       options.withVariants = false;
     } else if (arg == "--threads" && i + 1 < argc) {
       options.threads.clear();
-      std::string list = argv[++i];
-      for (size_t at = 0; at <= list.size();) {
-        const size_t comma = std::min(list.find(',', at), list.size());
-        options.threads.push_back(std::max(1, std::atoi(list.substr(at, comma - at).c_str())));
-        at = comma + 1;
+      for (const std::string& n : commaList(argv[++i])) {
+        options.threads.push_back(std::max(1, std::atoi(n.c_str())));
       }
+    } else if (arg == "--kinds" && i + 1 < argc) {
+      options.kinds = commaList(argv[++i]);
+      for (const std::string& kind : options.kinds) {
+        if (kind != "primary" && kind != "incoherent" && kind != "shadow") {
+          std::fprintf(stderr, "%s: unknown ray kind '%s' (primary, incoherent, shadow)\n", argv[0],
+                       kind.c_str());
+          return 2;
+        }
+      }
+    } else if (arg == "--no-generated") {
+      options.generatedMeshes = false;
     } else if (arg == "--help" || arg == "-h") {
       std::printf(
           "usage: %s [--runs N] [--quick] [--no-variants] [--threads 1,2] [--build-only] "
-          "[--embree-config CFG, e.g. isa=sse2] [mesh.obj ...]\n",
+          "[--kinds primary,incoherent,shadow] [--no-generated] [--embree-config CFG, e.g. "
+          "isa=sse2] [mesh.obj ...]\n"
+          "  --kinds         time only these ray sets (all three by default)\n"
+          "  --no-generated  leave out the generated sphere and grid: only the OBJ files named\n",
           argv[0]);
       return 0;
     } else {
@@ -618,8 +645,10 @@ int run(int argc, char** argv) {
       simd::compiledInstructionSet(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
       options.embreeConfig.c_str(), options.runs);
   std::vector<MeshDesc> meshes;
-  meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
-  meshes.push_back(displacedGrid(options.quick ? 100 : 708));
+  if (options.generatedMeshes) {
+    meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
+    meshes.push_back(displacedGrid(options.quick ? 100 : 708));
+  }
   for (const std::string& path : options.objs) meshes.push_back(loadObjMesh(path, FileLoc{}));
   for (const MeshDesc& mesh : meshes) benchmarkMesh(mesh, options);
   return 0;
