@@ -73,6 +73,22 @@ inline Float8 maxLanes(Float8 a, Float8 b) {
 #endif
 }
 
+// Lane by lane, a where m is all ones and b where it is zero (m: a comparison's result).
+inline Float4 select(Int4 m, Float4 a, Float4 b) {
+  return reinterpret_cast<Float4>((reinterpret_cast<Int4>(a) & m) |
+                                  (reinterpret_cast<Int4>(b) & ~m));
+}
+
+inline Int4 select(Int4 m, Int4 a, Int4 b) {
+  return (a & m) | (b & ~m);
+}
+
+// Lane i all ones where bit i of `bits` is set: laneMask's inverse.
+inline Int4 lanesOf(uint32_t bits) {
+  return Int4{-static_cast<int32_t>(bits & 1u), -static_cast<int32_t>(bits >> 1 & 1u),
+              -static_cast<int32_t>(bits >> 2 & 1u), -static_cast<int32_t>(bits >> 3 & 1u)};
+}
+
 // Bit i is set when lane i of the comparison result is true (all ones).
 inline uint32_t laneMask(Int4 m) {
 #if defined(__SSE2__)

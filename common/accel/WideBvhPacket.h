@@ -25,49 +25,62 @@ struct RayPacket8 {
   // Per axis, the bounds of the packet's origins and reciprocal directions.
   float originLow[3], originHigh[3], invLow[3], invHigh[3];
   int nearSide[3];  // as in WideRay: 1 when every direction is negative on that axis
-  bool coherent;    // every axis has one direction sign and finite reciprocals
+  bool coherent;    // every axis has one direction sign and finite origins and reciprocals
   float tMin;       // the smallest tMin of the rays
-  // Each ray's own origin, reciprocal direction and tMin, for the per-ray test of leaf boxes.
-  float rayOrigin[3][kSize], rayInvDir[3][kSize], rayTMin[kSize];
+  // Each ray's own origin, direction, reciprocal direction and tMin, for the per-ray tests of
+  // leaf boxes and triangles. Lanes of dead rays repeat the first live ray, so bounds taken
+  // over all eight lanes are the live rays' bounds.
+  alignas(16) float rayOrigin[3][kSize];
+  alignas(16) float rayDirection[3][kSize];
+  alignas(16) float rayInvDir[3][kSize];
+  alignas(16) float rayTMin[kSize];
 
   RayPacket8(const Ray* rays, uint32_t live) {
-    coherent = live != 0;
-    tMin = std::numeric_limits<float>::infinity();
+    const int fill = simd::firstLane(live | 1u);
     for (int i = 0; i < kSize; ++i) {
-      const Ray& r = rays[(live >> i & 1u) ? i : simd::firstLane(live | 1u)];
+      const Ray& r = rays[(live >> i & 1u) ? i : fill];
       for (int a = 0; a < 3; ++a) {
         rayOrigin[a][i] = r.origin[a];
-        rayInvDir[a][i] = 1.0f / r.direction[a];
+        rayDirection[a][i] = r.direction[a];
       }
       rayTMin[i] = r.tMin;
     }
+    using simd::Float4;
+    using simd::load;
+    coherent = live != 0;
+    tMin = lowest(load<Float4>(&rayTMin[0]), load<Float4>(&rayTMin[4]));
     for (int a = 0; a < 3; ++a) {
-      originLow[a] = invLow[a] = std::numeric_limits<float>::infinity();
-      originHigh[a] = invHigh[a] = -std::numeric_limits<float>::infinity();
-      int negative = 0, count = 0;
-      for (uint32_t m = live; m != 0; m &= m - 1) {
-        const Ray& r = rays[simd::firstLane(m)];
-        const float inv = 1.0f / r.direction[a];
-        originLow[a] = std::min(originLow[a], r.origin[a]);
-        originHigh[a] = std::max(originHigh[a], r.origin[a]);
-        invLow[a] = std::min(invLow[a], inv);
-        invHigh[a] = std::max(invHigh[a], inv);
-        negative += std::signbit(inv) ? 1 : 0;
-        ++count;
-        if (!std::isfinite(inv)) coherent = false;
-        if (a == 0) tMin = std::min(tMin, r.tMin);
-      }
-      if (negative != 0 && negative != count) coherent = false;
+      const Float4 d0 = load<Float4>(&rayDirection[a][0]), d1 = load<Float4>(&rayDirection[a][4]);
+      // The same correctly rounded division as WideRay's, four lanes at a time.
+      const Float4 inv0 = 1.0f / d0, inv1 = 1.0f / d1;
+      std::memcpy(&rayInvDir[a][0], &inv0, sizeof(Float4));
+      std::memcpy(&rayInvDir[a][4], &inv1, sizeof(Float4));
+      const Float4 o0 = load<Float4>(&rayOrigin[a][0]), o1 = load<Float4>(&rayOrigin[a][4]);
+      originLow[a] = lowest(o0, o1);
+      originHigh[a] = highest(o0, o1);
+      invLow[a] = lowest(inv0, inv1);
+      invHigh[a] = highest(inv0, inv1);
+      // x - x is 0 for finite x and NaN for infinities and NaN: such rays take the single walk.
+      const uint32_t finite = simd::laneMask((o0 - o0 == 0.0f) & (inv0 - inv0 == 0.0f)) |
+                              simd::laneMask((o1 - o1 == 0.0f) & (inv1 - inv1 == 0.0f)) << 4;
+      // A finite reciprocal is never zero, so its sign bit is (inv < 0).
+      const uint32_t negative = simd::laneMask(inv0 < 0.0f) | simd::laneMask(inv1 < 0.0f) << 4;
+      if (finite != 0xFFu || (negative != 0 && negative != 0xFFu)) coherent = false;
       // Spread-out directions make the interval test pass nearly everywhere: such packets
       // would walk most of the tree, so they take the single-ray walk instead.
-      float low = std::numeric_limits<float>::infinity(), high = -low;
-      for (uint32_t m = live; m != 0; m &= m - 1) {
-        low = std::min(low, rays[simd::firstLane(m)].direction[a]);
-        high = std::max(high, rays[simd::firstLane(m)].direction[a]);
-      }
-      if (high - low > kMaxDirectionSpread) coherent = false;
+      if (highest(d0, d1) - lowest(d0, d1) > kMaxDirectionSpread) coherent = false;
       nearSide[a] = negative != 0 ? 1 : 0;
     }
+  }
+
+ private:
+  static float lowest(simd::Float4 a, simd::Float4 b) {
+    const simd::Float4 m = simd::minLanes(a, b);
+    return std::min(std::min(m[0], m[1]), std::min(m[2], m[3]));
+  }
+  static float highest(simd::Float4 a, simd::Float4 b) {
+    const simd::Float4 m = simd::maxLanes(a, b);
+    return std::max(std::max(m[0], m[1]), std::max(m[2], m[3]));
   }
 };
 

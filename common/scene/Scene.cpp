@@ -10,6 +10,7 @@
 #include "geometry/ConeSegments.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TriangleMollerTrumbore4.h"
+#include "geometry/TriangleMollerTrumboreRays4.h"
 #include "geometry/TrianglePlaneInside.h"
 #include "geometry/TriangleWatertight4.h"
 #include "scene/PrimitiveRef.h"
@@ -39,6 +40,10 @@ Triangle meshTriangle(const MeshDesc& mesh, uint32_t meshIndex, uint32_t face) {
 // Below this many triangles a scene is gathered and packed on one thread: starting another
 // costs more than it saves.
 constexpr uint64_t kParallelGatherMinTriangles = 32768;
+
+// A packet's leaf test puts four rays in the lanes (one triangle a test) when at least this many
+// of the four reach the leaf; fewer take the single-ray test (four triangles a test).
+constexpr int kMinRaysPerLaneTest = 3;
 
 // body(begin, end) over [0, count) in chunks of `chunk`, on up to `threads` threads. Every item
 // has its own slot, so the result is the same for any number of threads.
@@ -386,6 +391,94 @@ bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, ui
   return found;
 }
 
+template <bool kAnyHit>
+uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
+                                   uint32_t packCount, uint32_t mask, float* tMax,
+                                   HitRecord* hits) const {
+  using simd::Float4;
+  using simd::Int4;
+  uint32_t hitRays = 0;
+  auto oneByOne = [&](uint32_t rays4) {
+    for (; rays4 != 0; rays4 &= rays4 - 1) {
+      const int i = simd::firstLane(rays4);
+      if (intersectLeafPacked<kAnyHit>(rays[i], firstPack, packCount, tMax[i], hits[i])) {
+        hitRays |= 1u << i;
+      }
+    }
+  };
+  // Spheres or cones in the leaf, or the watertight test (its shear is the ray's own): the
+  // rays one by one.
+  if ((firstPack & kPacklessLeaf) || packs_[firstPack].hasOtherKinds ||
+      settings_.triangleTest == TriangleTest::Watertight) {
+    oneByOne(mask);
+    return hitRays;
+  }
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  // Four rays at a time, each triangle in the order a single ray tests them, every lane keeping
+  // its own shrinking tMax: the closest hit and its ties come out as they do ray by ray.
+  for (int at = 0; at < RayPacket8::kSize; at += 4) {
+    const uint32_t active = mask >> at & 0xFu;
+    if (active == 0) continue;
+    // With one or two rays of the four reaching the leaf, four triangles per test against one
+    // ray wastes fewer lanes than one triangle against four.
+    if (__builtin_popcount(active) < kMinRaysPerLaneTest) {
+      oneByOne(active << at);
+      continue;
+    }
+    auto lanes = [&](const float* values) { return simd::load<Float4>(values + at); };
+    const RayLanes4 r{lanes(packet.rayOrigin[0]),    lanes(packet.rayOrigin[1]),
+                      lanes(packet.rayOrigin[2]),    lanes(packet.rayDirection[0]),
+                      lanes(packet.rayDirection[1]), lanes(packet.rayDirection[2]),
+                      lanes(packet.rayTMin)};
+    // Lanes of rays outside the mask look no further than -inf: nothing hits there.
+    Float4 limit =
+        simd::select(simd::lanesOf(active), lanes(tMax), simd::broadcast<Float4>(-kInfinity));
+    Float4 bestU{}, bestV{};
+    Int4 bestIndex{};
+    uint32_t hit4 = 0;
+    // Any-hit: stop once every ray of these four has hit.
+    for (uint32_t p = firstPack; p < firstPack + packCount && !(kAnyHit && hit4 == active); ++p) {
+      const TrianglePack4& pack = packs_[p].triangles;
+      for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
+        if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
+        float v0[3], e1[3], e2[3];
+        for (int a = 0; a < 3; ++a) {
+          v0[a] = pack.v0[a][lane];
+          e1[a] = pack.v1[a][lane] - v0[a];
+          e2[a] = pack.v2[a][lane] - v0[a];
+        }
+        Float4 t, u, v;
+        Int4 inside;
+        const uint32_t m = intersectMollerTrumboreRays4(r, v0, e1, e2, limit, t, u, v, inside);
+        if (m == 0) continue;
+        hit4 |= m;
+        if constexpr (kAnyHit) {
+          if (hit4 == active) break;
+          limit = simd::select(inside, simd::broadcast<Float4>(-kInfinity), limit);
+        } else {
+          limit = simd::select(inside, t, limit);
+          bestU = simd::select(inside, u, bestU);
+          bestV = simd::select(inside, v, bestV);
+          const int32_t index = static_cast<int32_t>(p * TrianglePack4::kWidth + lane);
+          bestIndex = simd::select(inside, Int4{} + index, bestIndex);
+        }
+      }
+    }
+    if constexpr (!kAnyHit) {
+      for (uint32_t m = hit4; m != 0; m &= m - 1) {
+        const int lane = simd::firstLane(m);
+        tMax[at + lane] = limit[lane];
+        hits[at + lane] = {
+            limit[lane],
+            PrimitiveRef::make(PrimitiveKind::Triangle, static_cast<uint32_t>(bestIndex[lane])),
+            bestU[lane], bestV[lane]};
+      }
+    }
+    hitRays |= hit4 << at;
+  }
+  return hitRays;
+}
+
 WatertightRay Scene::shearFor(const Ray& ray) const {
   return settings_.triangleTest == TriangleTest::Watertight ? WatertightRay(ray.direction)
                                                             : WatertightRay();
@@ -484,14 +577,7 @@ void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found)
   const uint32_t hitMask = traversePacket<false>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
-        uint32_t hitRays = 0;
-        for (; mask != 0; mask &= mask - 1) {
-          const int i = simd::firstLane(mask);
-          if (intersectLeafPacked<false>(rays[i], firstPack, packCount, rayTMax[i], hits[i])) {
-            hitRays |= 1u << i;
-          }
-        }
-        return hitRays;
+        return intersectLeafRays8<false>(rays, packet, firstPack, packCount, mask, rayTMax, hits);
       });
   for (int i = 0; i < count; ++i) {
     if (!(live >> i & 1u)) continue;
@@ -521,18 +607,11 @@ void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
   }
   float tMax[RayPacket8::kSize];
   for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
-  HitRecord ignored;
+  HitRecord ignored[RayPacket8::kSize];
   const uint32_t hitMask = traversePacket<true>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
-        uint32_t hitRays = 0;
-        for (; mask != 0; mask &= mask - 1) {
-          const int i = simd::firstLane(mask);
-          if (intersectLeafPacked<true>(rays[i], firstPack, packCount, rayTMax[i], ignored)) {
-            hitRays |= 1u << i;
-          }
-        }
-        return hitRays;
+        return intersectLeafRays8<true>(rays, packet, firstPack, packCount, mask, rayTMax, ignored);
       });
   for (int i = 0; i < count; ++i) blocked[i] = (hitMask >> i & 1u) != 0;
 }

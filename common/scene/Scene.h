@@ -22,6 +22,8 @@
 namespace prism {
 
 // A caustic caster as the photon emitter sees it: a bounding sphere, or an infinite plane.
+struct RayPacket8;
+
 struct CasterBounds {
   bool plane = false;
   Vec3 center{0.0f};  // sphere
@@ -134,6 +136,13 @@ class Scene {
   template <bool kAnyHit>
   bool intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
                            uint32_t packCount, float& tMax, HitRecord& hit) const;
+  // A packet's leaf test: the rays in `mask` (bit i: rays[i]) against the leaf, each ray's
+  // closest hit (tMax[i], hits[i]) or, any-hit, whether it hits, exactly as
+  // intersectLeafPacked finds it alone. Returns the rays that hit.
+  template <bool kAnyHit>
+  uint32_t intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
+                              uint32_t packCount, uint32_t mask, float* tMax,
+                              HitRecord* hits) const;
   // The watertight test's per-ray shear, or nothing computed when another test is chosen.
   WatertightRay shearFor(const Ray& ray) const;
   // A triangle by the index its hits carry: into triangles_, or pack · 4 + lane once packed.
