@@ -73,6 +73,23 @@ inline Float8 maxLanes(Float8 a, Float8 b) {
 #endif
 }
 
+// Rows to columns: afterwards a holds the first lanes of the old a, b, c, d, b the second...
+inline void transpose(Float4& a, Float4& b, Float4& c, Float4& d) {
+  const Float4 ab0 = __builtin_shufflevector(a, b, 0, 4, 1, 5);
+  const Float4 cd0 = __builtin_shufflevector(c, d, 0, 4, 1, 5);
+  const Float4 ab1 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+  const Float4 cd1 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+  a = __builtin_shufflevector(ab0, cd0, 0, 1, 4, 5);
+  b = __builtin_shufflevector(ab0, cd0, 2, 3, 6, 7);
+  c = __builtin_shufflevector(ab1, cd1, 0, 1, 4, 5);
+  d = __builtin_shufflevector(ab1, cd1, 2, 3, 6, 7);
+}
+
+template <class V>
+inline void store(float* p, V v) {
+  std::memcpy(p, &v, sizeof(V));
+}
+
 // Lane by lane, a where m is all ones and b where it is zero (m: a comparison's result).
 inline Float4 select(Int4 m, Float4 a, Float4 b) {
   return reinterpret_cast<Float4>((reinterpret_cast<Int4>(a) & m) |

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -27,34 +28,48 @@ struct RayPacket8 {
   int nearSide[3];  // as in WideRay: 1 when every direction is negative on that axis
   bool coherent;    // every axis has one direction sign and finite origins and reciprocals
   float tMin;       // the smallest tMin of the rays
-  // Each ray's own origin, direction, reciprocal direction and tMin, for the per-ray tests of
-  // leaf boxes and triangles. Lanes of dead rays repeat the first live ray, so bounds taken
+  // Each ray's own origin, direction, reciprocal direction, tMin and tMax, for the per-ray tests
+  // of leaf boxes and triangles. Lanes of dead rays repeat the first live ray, so bounds taken
   // over all eight lanes are the live rays' bounds.
   alignas(16) float rayOrigin[3][kSize];
   alignas(16) float rayDirection[3][kSize];
   alignas(16) float rayInvDir[3][kSize];
   alignas(16) float rayTMin[kSize];
+  alignas(16) float rayTMax[kSize];
 
   RayPacket8(const Ray* rays, uint32_t live) {
-    const int fill = simd::firstLane(live | 1u);
-    for (int i = 0; i < kSize; ++i) {
-      const Ray& r = rays[(live >> i & 1u) ? i : fill];
-      for (int a = 0; a < 3; ++a) {
-        rayOrigin[a][i] = r.origin[a];
-        rayDirection[a][i] = r.direction[a];
-      }
-      rayTMin[i] = r.tMin;
-    }
     using simd::Float4;
     using simd::load;
+    static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMax) == 7 * sizeof(float));
+    // Each ray is two rows of four floats (origin, direction x; direction y, z, tMin, tMax);
+    // four rays' rows transposed in registers give the columns. Writing the floats one by one
+    // and reading them four at a time would stall every read on its stores.
+    const int fill = simd::firstLane(live | 1u);
+    for (int at = 0; at < kSize; at += 4) {
+      Float4 row[2][4];
+      for (int k = 0; k < 4; ++k) {
+        const int i = at + k;
+        const float* ray = reinterpret_cast<const float*>(&rays[(live >> i & 1u) ? i : fill]);
+        row[0][k] = load<Float4>(ray);
+        row[1][k] = load<Float4>(ray + 4);
+      }
+      simd::transpose(row[0][0], row[0][1], row[0][2], row[0][3]);
+      simd::transpose(row[1][0], row[1][1], row[1][2], row[1][3]);
+      for (int a = 0; a < 3; ++a) simd::store(&rayOrigin[a][at], row[0][a]);
+      simd::store(&rayDirection[0][at], row[0][3]);
+      simd::store(&rayDirection[1][at], row[1][0]);
+      simd::store(&rayDirection[2][at], row[1][1]);
+      simd::store(&rayTMin[at], row[1][2]);
+      simd::store(&rayTMax[at], row[1][3]);
+    }
     coherent = live != 0;
     tMin = lowest(load<Float4>(&rayTMin[0]), load<Float4>(&rayTMin[4]));
     for (int a = 0; a < 3; ++a) {
       const Float4 d0 = load<Float4>(&rayDirection[a][0]), d1 = load<Float4>(&rayDirection[a][4]);
       // The same correctly rounded division as WideRay's, four lanes at a time.
       const Float4 inv0 = 1.0f / d0, inv1 = 1.0f / d1;
-      std::memcpy(&rayInvDir[a][0], &inv0, sizeof(Float4));
-      std::memcpy(&rayInvDir[a][4], &inv1, sizeof(Float4));
+      simd::store(&rayInvDir[a][0], inv0);
+      simd::store(&rayInvDir[a][4], inv1);
       const Float4 o0 = load<Float4>(&rayOrigin[a][0]), o1 = load<Float4>(&rayOrigin[a][4]);
       originLow[a] = lowest(o0, o1);
       originHigh[a] = highest(o0, o1);

@@ -1,6 +1,7 @@
 #include "scene/Scene.h"
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
 #include <stdexcept>
 #include <utility>
@@ -465,9 +466,10 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
       }
     }
     if constexpr (!kAnyHit) {
+      // One store of the four: the next box test reads them four at a time.
+      simd::store(tMax + at, simd::select(simd::lanesOf(hit4), limit, lanes(tMax)));
       for (uint32_t m = hit4; m != 0; m &= m - 1) {
         const int lane = simd::firstLane(m);
-        tMax[at + lane] = limit[lane];
         hits[at + lane] = {
             limit[lane],
             PrimitiveRef::make(PrimitiveKind::Triangle, static_cast<uint32_t>(bestIndex[lane])),
@@ -572,8 +574,8 @@ void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found)
     for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
     return;
   }
-  float tMax[RayPacket8::kSize];
-  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  alignas(16) float tMax[RayPacket8::kSize];
+  std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
   const uint32_t hitMask = traversePacket<false>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
@@ -605,8 +607,8 @@ void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
   }
-  float tMax[RayPacket8::kSize];
-  for (int i = 0; i < RayPacket8::kSize; ++i) tMax[i] = i < count ? rays[i].tMax : 0.0f;
+  alignas(16) float tMax[RayPacket8::kSize];
+  std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
   HitRecord ignored[RayPacket8::kSize];
   const uint32_t hitMask = traversePacket<true>(
       wideBvh_, packet, live, tMax,
