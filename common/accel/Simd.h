@@ -90,20 +90,40 @@ inline void store(float* p, V v) {
   std::memcpy(p, &v, sizeof(V));
 }
 
+// The comparison result (integer lanes) of each float vector.
+template <class V>
+struct MaskFor;
+template <>
+struct MaskFor<Float4> {
+  using Type = Int4;
+};
+template <>
+struct MaskFor<Float8> {
+  using Type = Int8;
+};
+template <class V>
+using MaskOf = typename MaskFor<V>::Type;
+
 // Lane by lane, a where m is all ones and b where it is zero (m: a comparison's result).
-inline Float4 select(Int4 m, Float4 a, Float4 b) {
-  return reinterpret_cast<Float4>((reinterpret_cast<Int4>(a) & m) |
-                                  (reinterpret_cast<Int4>(b) & ~m));
+template <class V>
+inline V select(MaskOf<V> m, V a, V b) {
+  using M = MaskOf<V>;
+  return reinterpret_cast<V>((reinterpret_cast<M>(a) & m) | (reinterpret_cast<M>(b) & ~m));
 }
 
-inline Int4 select(Int4 m, Int4 a, Int4 b) {
+template <class M>
+inline M selectInt(M m, M a, M b) {
   return (a & m) | (b & ~m);
 }
 
 // Lane i all ones where bit i of `bits` is set: laneMask's inverse.
-inline Int4 lanesOf(uint32_t bits) {
-  return Int4{-static_cast<int32_t>(bits & 1u), -static_cast<int32_t>(bits >> 1 & 1u),
-              -static_cast<int32_t>(bits >> 2 & 1u), -static_cast<int32_t>(bits >> 3 & 1u)};
+template <class M>
+inline M lanesOf(uint32_t bits) {
+  M m;
+  for (int i = 0; i < static_cast<int>(sizeof(M) / sizeof(int32_t)); ++i) {
+    m[i] = -static_cast<int32_t>(bits >> i & 1u);
+  }
+  return m;
 }
 
 // Bit i is set when lane i of the comparison result is true (all ones).
@@ -163,6 +183,17 @@ inline bool cpuRunsThisBuild() {
 #endif
 #endif
   return true;
+}
+
+// Whether this CPU has AVX2 (and the operating system keeps its registers), so kernels compiled
+// for it with a target attribute may run. Asked once.
+inline bool cpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+#else
+  return false;
+#endif
 }
 
 }  // namespace prism::simd

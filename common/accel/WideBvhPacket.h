@@ -31,11 +31,11 @@ struct RayPacket8 {
   // Each ray's own origin, direction, reciprocal direction, tMin and tMax, for the per-ray tests
   // of leaf boxes and triangles. Lanes of dead rays repeat the first live ray, so bounds taken
   // over all eight lanes are the live rays' bounds.
-  alignas(16) float rayOrigin[3][kSize];
-  alignas(16) float rayDirection[3][kSize];
-  alignas(16) float rayInvDir[3][kSize];
-  alignas(16) float rayTMin[kSize];
-  alignas(16) float rayTMax[kSize];
+  alignas(32) float rayOrigin[3][kSize];
+  alignas(32) float rayDirection[3][kSize];
+  alignas(32) float rayInvDir[3][kSize];
+  alignas(32) float rayTMin[kSize];
+  alignas(32) float rayTMax[kSize];
 
   RayPacket8(const Ray* rays, uint32_t live) {
     using simd::Float4;
@@ -102,57 +102,56 @@ struct RayPacket8 {
 // Children (bit i) that some ray of the packet may enter within [packet.tMin, tMax], with a
 // lower bound of the entry distance. For an axis, the distance to a plane is (plane - o) * inv
 // with o and inv in intervals; its bounds are the extreme products of the interval ends, and
-// float rounding is monotone, so each ray's own slab distances lie within them.
+// float rounding is monotone, so each ray's own slab distances lie within them. V
+// (simd::Float4 or Float8) is how many children one vector tests; the answer is the same.
+template <class V>
 inline uint32_t packetEntersChildren(const WideBvhNode& node, const RayPacket8& packet, float tMax,
                                      float entry[WideBvhNode::kWidth]) {
-  using simd::Float4;
+  constexpr int kLanes = sizeof(V) / sizeof(float);
   uint32_t mask = 0;
-  for (int half = 0; half < 2; ++half) {
-    const int at = 4 * half;
-    Float4 enter = simd::broadcast<Float4>(packet.tMin);
-    Float4 leave = simd::broadcast<Float4>(tMax);
+  for (int at = 0; at < WideBvhNode::kWidth; at += kLanes) {
+    V enter = simd::broadcast<V>(packet.tMin);
+    V leave = simd::broadcast<V>(tMax);
     for (int a = 0; a < 3; ++a) {
-      const Float4 nearPlane = simd::load<Float4>(&node.bounds[2 * a + packet.nearSide[a]][at]);
-      const Float4 farPlane = simd::load<Float4>(&node.bounds[2 * a + 1 - packet.nearSide[a]][at]);
-      const Float4 invLow = simd::broadcast<Float4>(packet.invLow[a]);
-      const Float4 invHigh = simd::broadcast<Float4>(packet.invHigh[a]);
+      const V nearPlane = simd::load<V>(&node.bounds[2 * a + packet.nearSide[a]][at]);
+      const V farPlane = simd::load<V>(&node.bounds[2 * a + 1 - packet.nearSide[a]][at]);
+      const V invLow = simd::broadcast<V>(packet.invLow[a]);
+      const V invHigh = simd::broadcast<V>(packet.invHigh[a]);
       // Near plane: the smallest product; far plane: the largest.
-      const Float4 nearA = nearPlane - simd::broadcast<Float4>(packet.originHigh[a]);
-      const Float4 nearB = nearPlane - simd::broadcast<Float4>(packet.originLow[a]);
-      const Float4 tNear = simd::minLanes(simd::minLanes(nearA * invLow, nearA * invHigh),
-                                          simd::minLanes(nearB * invLow, nearB * invHigh));
-      const Float4 farA = farPlane - simd::broadcast<Float4>(packet.originHigh[a]);
-      const Float4 farB = farPlane - simd::broadcast<Float4>(packet.originLow[a]);
-      const Float4 tFar = simd::maxLanes(simd::maxLanes(farA * invLow, farA * invHigh),
-                                         simd::maxLanes(farB * invLow, farB * invHigh)) *
-                          kSlabFarScale;
+      const V nearA = nearPlane - simd::broadcast<V>(packet.originHigh[a]);
+      const V nearB = nearPlane - simd::broadcast<V>(packet.originLow[a]);
+      const V tNear = simd::minLanes(simd::minLanes(nearA * invLow, nearA * invHigh),
+                                     simd::minLanes(nearB * invLow, nearB * invHigh));
+      const V farA = farPlane - simd::broadcast<V>(packet.originHigh[a]);
+      const V farB = farPlane - simd::broadcast<V>(packet.originLow[a]);
+      const V tFar = simd::maxLanes(simd::maxLanes(farA * invLow, farA * invHigh),
+                                    simd::maxLanes(farB * invLow, farB * invHigh)) *
+                     kSlabFarScale;
       enter = simd::maxLanes(tNear, enter);
       leave = simd::minLanes(tFar, leave);
     }
-    std::memcpy(entry + at, &enter, sizeof(Float4));
+    simd::store(entry + at, enter);
     mask |= simd::laneMask(enter <= leave) << at;
   }
   return mask;
 }
 
 // The rays (bit i) that enter child `slot` of the node within their own [tMin, tMax]: the
-// single-ray slab test, eight rays at a time. Run on leaves only, so that a leaf is tested
+// single-ray slab test, a vector V of rays at a time. Run on leaves only, so that a leaf is tested
 // against just the rays that reach it.
+template <class V>
 inline uint32_t raysEnteringChild(const WideBvhNode& node, int slot, const RayPacket8& packet,
                                   const float tMax[RayPacket8::kSize]) {
-  using simd::Float4;
+  constexpr int kLanes = sizeof(V) / sizeof(float);
   uint32_t mask = 0;
-  for (int half = 0; half < 2; ++half) {
-    const int at = 4 * half;
-    Float4 enter = simd::load<Float4>(&packet.rayTMin[at]);
-    Float4 leave = simd::load<Float4>(&tMax[at]);
+  for (int at = 0; at < RayPacket8::kSize; at += kLanes) {
+    V enter = simd::load<V>(&packet.rayTMin[at]);
+    V leave = simd::load<V>(&tMax[at]);
     for (int a = 0; a < 3; ++a) {
-      const Float4 origin = simd::load<Float4>(&packet.rayOrigin[a][at]);
-      const Float4 invDir = simd::load<Float4>(&packet.rayInvDir[a][at]);
-      const Float4 nearPlane =
-          simd::broadcast<Float4>(node.bounds[2 * a + packet.nearSide[a]][slot]);
-      const Float4 farPlane =
-          simd::broadcast<Float4>(node.bounds[2 * a + 1 - packet.nearSide[a]][slot]);
+      const V origin = simd::load<V>(&packet.rayOrigin[a][at]);
+      const V invDir = simd::load<V>(&packet.rayInvDir[a][at]);
+      const V nearPlane = simd::broadcast<V>(node.bounds[2 * a + packet.nearSide[a]][slot]);
+      const V farPlane = simd::broadcast<V>(node.bounds[2 * a + 1 - packet.nearSide[a]][slot]);
       enter = simd::maxLanes((nearPlane - origin) * invDir, enter);
       leave = simd::minLanes((farPlane - origin) * invDir * kSlabFarScale, leave);
     }
@@ -164,8 +163,9 @@ inline uint32_t raysEnteringChild(const WideBvhNode& node, int slot, const RayPa
 // Walks the tree with the rays in `live` (the packet must be coherent). leafVisitor(first,
 // count, rays, tMax) tests the leaf against the rays in the mask `rays`, shrinks their tMax on
 // hits and returns the mask of rays it hit. Returns the rays that hit anything; any-hit walks
-// stop testing a ray at its first hit.
-template <bool kAnyHit, class LeafVisitor>
+// stop testing a ray at its first hit. V: the vector of the box tests (the answers do not
+// depend on it).
+template <bool kAnyHit, class V, class LeafVisitor>
 uint32_t traversePacket(const WideBvh& bvh, const RayPacket8& packet, uint32_t live,
                         float tMax[RayPacket8::kSize], LeafVisitor&& leafVisitor) {
   const std::vector<WideBvhNode>& nodes = bvh.nodes();
@@ -201,13 +201,13 @@ uint32_t traversePacket(const WideBvh& bvh, const RayPacket8& packet, uint32_t l
     } else {
       const WideBvhNode& node = nodes[current.child];
       float entry[WideBvhNode::kWidth];
-      uint32_t mask = packetEntersChildren(node, packet, reach, entry);
+      uint32_t mask = packetEntersChildren<V>(node, packet, reach, entry);
       const int base = stackSize;
       for (; mask != 0; mask &= mask - 1) {
         const int i = simd::firstLane(mask);
         uint32_t rays = 0;
         if (node.count[i] > 0) {
-          rays = raysEnteringChild(node, i, packet, tMax) & looking;
+          rays = raysEnteringChild<V>(node, i, packet, tMax) & looking;
           if (rays == 0) continue;
         }
         const Pending incoming{node.child[i], node.count[i], entry[i], rays};

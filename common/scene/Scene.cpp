@@ -11,7 +11,7 @@
 #include "geometry/ConeSegments.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TriangleMollerTrumbore4.h"
-#include "geometry/TriangleMollerTrumboreRays4.h"
+#include "geometry/TriangleMollerTrumboreRays.h"
 #include "geometry/TrianglePlaneInside.h"
 #include "geometry/TriangleWatertight4.h"
 #include "scene/PrimitiveRef.h"
@@ -392,16 +392,17 @@ bool Scene::intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, ui
   return found;
 }
 
-template <bool kAnyHit>
+template <bool kAnyHit, class V>
 uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
                                    uint32_t packCount, uint32_t mask, float* tMax,
                                    HitRecord* hits) const {
-  using simd::Float4;
-  using simd::Int4;
+  using M = simd::MaskOf<V>;
+  constexpr int kLanes = sizeof(V) / sizeof(float);
+  constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
   uint32_t hitRays = 0;
-  auto oneByOne = [&](uint32_t rays4) {
-    for (; rays4 != 0; rays4 &= rays4 - 1) {
-      const int i = simd::firstLane(rays4);
+  auto oneByOne = [&](uint32_t some) {
+    for (; some != 0; some &= some - 1) {
+      const int i = simd::firstLane(some);
       if (intersectLeafPacked<kAnyHit>(rays[i], firstPack, packCount, tMax[i], hits[i])) {
         hitRays |= 1u << i;
       }
@@ -415,30 +416,31 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
     return hitRays;
   }
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
-  // Four rays at a time, each triangle in the order a single ray tests them, every lane keeping
-  // its own shrinking tMax: the closest hit and its ties come out as they do ray by ray.
-  for (int at = 0; at < RayPacket8::kSize; at += 4) {
-    const uint32_t active = mask >> at & 0xFu;
+  // The rays a vector at a time, each triangle in the order a single ray tests them, every lane
+  // keeping its own shrinking tMax: the closest hit and its ties come out as they do ray by ray.
+  for (int at = 0; at < RayPacket8::kSize; at += kLanes) {
+    const uint32_t active = mask >> at & kAllLanes;
     if (active == 0) continue;
-    // With one or two rays of the four reaching the leaf, four triangles per test against one
-    // ray wastes fewer lanes than one triangle against four.
+    // With few of the lanes' rays reaching the leaf, four triangles per test against one ray
+    // wastes fewer lanes than one triangle against all of them.
     if (__builtin_popcount(active) < kMinRaysPerLaneTest) {
       oneByOne(active << at);
       continue;
     }
-    auto lanes = [&](const float* values) { return simd::load<Float4>(values + at); };
-    const RayLanes4 r{lanes(packet.rayOrigin[0]),    lanes(packet.rayOrigin[1]),
-                      lanes(packet.rayOrigin[2]),    lanes(packet.rayDirection[0]),
-                      lanes(packet.rayDirection[1]), lanes(packet.rayDirection[2]),
-                      lanes(packet.rayTMin)};
+    auto lanes = [&](const float* values) { return simd::load<V>(values + at); };
+    const RayLanes<V> r{lanes(packet.rayOrigin[0]),    lanes(packet.rayOrigin[1]),
+                        lanes(packet.rayOrigin[2]),    lanes(packet.rayDirection[0]),
+                        lanes(packet.rayDirection[1]), lanes(packet.rayDirection[2]),
+                        lanes(packet.rayTMin)};
     // Lanes of rays outside the mask look no further than -inf: nothing hits there.
-    Float4 limit =
-        simd::select(simd::lanesOf(active), lanes(tMax), simd::broadcast<Float4>(-kInfinity));
-    Float4 bestU{}, bestV{};
-    Int4 bestIndex{};
-    uint32_t hit4 = 0;
-    // Any-hit: stop once every ray of these four has hit.
-    for (uint32_t p = firstPack; p < firstPack + packCount && !(kAnyHit && hit4 == active); ++p) {
+    V limit =
+        simd::select<V>(simd::lanesOf<M>(active), lanes(tMax), simd::broadcast<V>(-kInfinity));
+    V bestU{}, bestV{};
+    M bestIndex{};
+    uint32_t hitLanes = 0;
+    // Any-hit: stop once every ray of these lanes has hit.
+    for (uint32_t p = firstPack; p < firstPack + packCount && !(kAnyHit && hitLanes == active);
+         ++p) {
       const TrianglePack4& pack = packs_[p].triangles;
       for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
         if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
@@ -448,27 +450,27 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
           e1[a] = pack.v1[a][lane] - v0[a];
           e2[a] = pack.v2[a][lane] - v0[a];
         }
-        Float4 t, u, v;
-        Int4 inside;
-        const uint32_t m = intersectMollerTrumboreRays4(r, v0, e1, e2, limit, t, u, v, inside);
+        V t, u, v;
+        M inside;
+        const uint32_t m = intersectMollerTrumboreRays(r, v0, e1, e2, limit, t, u, v, inside);
         if (m == 0) continue;
-        hit4 |= m;
+        hitLanes |= m;
         if constexpr (kAnyHit) {
-          if (hit4 == active) break;
-          limit = simd::select(inside, simd::broadcast<Float4>(-kInfinity), limit);
+          if (hitLanes == active) break;
+          limit = simd::select<V>(inside, simd::broadcast<V>(-kInfinity), limit);
         } else {
-          limit = simd::select(inside, t, limit);
-          bestU = simd::select(inside, u, bestU);
-          bestV = simd::select(inside, v, bestV);
+          limit = simd::select<V>(inside, t, limit);
+          bestU = simd::select<V>(inside, u, bestU);
+          bestV = simd::select<V>(inside, v, bestV);
           const int32_t index = static_cast<int32_t>(p * TrianglePack4::kWidth + lane);
-          bestIndex = simd::select(inside, Int4{} + index, bestIndex);
+          bestIndex = simd::selectInt<M>(inside, M{} + index, bestIndex);
         }
       }
     }
     if constexpr (!kAnyHit) {
-      // One store of the four: the next box test reads them four at a time.
-      simd::store(tMax + at, simd::select(simd::lanesOf(hit4), limit, lanes(tMax)));
-      for (uint32_t m = hit4; m != 0; m &= m - 1) {
+      // One store for the lanes: the next box test reads them as a vector.
+      simd::store(tMax + at, simd::select<V>(simd::lanesOf<M>(hitLanes), limit, lanes(tMax)));
+      for (uint32_t m = hitLanes; m != 0; m &= m - 1) {
         const int lane = simd::firstLane(m);
         hits[at + lane] = {
             limit[lane],
@@ -476,7 +478,7 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
             bestU[lane], bestV[lane]};
       }
     }
-    hitRays |= hit4 << at;
+    hitRays |= hitLanes << at;
   }
   return hitRays;
 }
@@ -562,7 +564,8 @@ uint32_t liveRays(const Ray* rays, int count) {
 
 }  // namespace
 
-void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
+template <class V>
+void Scene::intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* found) const {
   const uint32_t live = liveRays(rays, count);
   for (int i = 0; i < count; ++i) found[i] = false;
   if (!packed_) {  // no packed wide walk: one ray at a time
@@ -574,12 +577,13 @@ void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found)
     for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
     return;
   }
-  alignas(16) float tMax[RayPacket8::kSize];
+  alignas(32) float tMax[RayPacket8::kSize];
   std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
-  const uint32_t hitMask = traversePacket<false>(
+  const uint32_t hitMask = traversePacket<false, V>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
-        return intersectLeafRays8<false>(rays, packet, firstPack, packCount, mask, rayTMax, hits);
+        return intersectLeafRays8<false, V>(rays, packet, firstPack, packCount, mask, rayTMax,
+                                            hits);
       });
   for (int i = 0; i < count; ++i) {
     if (!(live >> i & 1u)) continue;
@@ -595,7 +599,8 @@ void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found)
   }
 }
 
-void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
+template <class V>
+void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
   const uint32_t live = liveRays(rays, count);
   for (int i = 0; i < count; ++i) blocked[i] = false;
   if (!packed_ || !planes_.empty()) {  // planes first, as occluded() does: one at a time
@@ -607,15 +612,60 @@ void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
   }
-  alignas(16) float tMax[RayPacket8::kSize];
+  alignas(32) float tMax[RayPacket8::kSize];
   std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
   HitRecord ignored[RayPacket8::kSize];
-  const uint32_t hitMask = traversePacket<true>(
+  const uint32_t hitMask = traversePacket<true, V>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
-        return intersectLeafRays8<true>(rays, packet, firstPack, packCount, mask, rayTMax, ignored);
+        return intersectLeafRays8<true, V>(rays, packet, firstPack, packCount, mask, rayTMax,
+                                           ignored);
       });
   for (int i = 0; i < count; ++i) blocked[i] = (hitMask >> i & 1u) != 0;
+}
+
+// The packet walks, eight rays to a vector, compiled for AVX2 whatever the build targets and
+// chosen at run time on CPUs that have it (Scene::packetLanes). `flatten` inlines the whole walk
+// into these two functions, so all of it is compiled for AVX2: templates instantiated here would
+// otherwise be compiled for the build's own target. No fused multiply-add either way
+// (-ffp-contract=off), so the answers are the same bit for bit.
+#if defined(__x86_64__) && !defined(__AVX2__)
+#define PRISM_AVX2_KERNEL __attribute__((target("avx2"), flatten))
+#else
+#define PRISM_AVX2_KERNEL
+#endif
+
+PRISM_AVX2_KERNEL void Scene::intersect8Wide(const Ray* rays, int count, HitRecord* hits,
+                                             bool* found) const {
+  intersect8Lanes<simd::Float8>(rays, count, hits, found);
+}
+
+PRISM_AVX2_KERNEL void Scene::occluded8Wide(const Ray* rays, int count, bool* blocked) const {
+  occluded8Lanes<simd::Float8>(rays, count, blocked);
+}
+
+void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
+  if (packetLanes_ == 8) {
+    intersect8Wide(rays, count, hits, found);
+  } else {
+    intersect8Lanes<simd::Float4>(rays, count, hits, found);
+  }
+}
+
+void Scene::occluded8(const Ray* rays, int count, bool* blocked) const {
+  if (packetLanes_ == 8) {
+    occluded8Wide(rays, count, blocked);
+  } else {
+    occluded8Lanes<simd::Float4>(rays, count, blocked);
+  }
+}
+
+void Scene::setPacketLanes(int lanes) {
+  if (lanes != 4 && lanes != 8) throw std::invalid_argument("packet lanes must be 4 or 8");
+  if (lanes == 8 && !simd::cpuHasAvx2()) {
+    throw std::invalid_argument("8 packet lanes need a CPU with AVX2");
+  }
+  packetLanes_ = lanes;
 }
 
 SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {

@@ -79,6 +79,11 @@ class Scene {
   // skipped (found/blocked false).
   void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   void occluded8(const Ray* rays, int count, bool* blocked) const;
+  // How many rays the packet walks test in one vector: 8 (AVX2, chosen at run time where the
+  // CPU has it) or 4 (SSE2, any x86-64). The answers are the same; tests and benchmarks set it
+  // to compare the two. Throws std::invalid_argument for other counts, or 8 without AVX2.
+  int packetLanes() const { return packetLanes_; }
+  void setPacketLanes(int lanes);
   // Position, oriented normals and material of a hit found by intersect().
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
@@ -139,7 +144,13 @@ class Scene {
   // A packet's leaf test: the rays in `mask` (bit i: rays[i]) against the leaf, each ray's
   // closest hit (tMax[i], hits[i]) or, any-hit, whether it hits, exactly as
   // intersectLeafPacked finds it alone. Returns the rays that hit.
-  template <bool kAnyHit>
+  template <class V>
+  void intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* found) const;
+  template <class V>
+  void occluded8Lanes(const Ray* rays, int count, bool* blocked) const;
+  void intersect8Wide(const Ray* rays, int count, HitRecord* hits, bool* found) const;
+  void occluded8Wide(const Ray* rays, int count, bool* blocked) const;
+  template <bool kAnyHit, class V>
   uint32_t intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
                               uint32_t packCount, uint32_t mask, float* tMax,
                               HitRecord* hits) const;
@@ -173,6 +184,7 @@ class Scene {
   WideBvh wideBvh_;
   std::vector<LeafPack> packs_;
   bool packed_ = false;  // the wide walk's leaves point at packs (or are packless)
+  int packetLanes_ = simd::cpuHasAvx2() ? 8 : 4;
   SceneBuildStats stats_;
 };
 

@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "../geometry/TestMeshes.h"
 #include "master/FrameRenderer.h"
@@ -523,12 +526,20 @@ TEST(SceneTraversal, ImagesAreBitIdenticalToTheBinaryWalk) {
 
 // Packets of eight give each ray the answer it gets alone, bit for bit (t, triangle, u, v):
 // coherent packets (a 4 × 2 pixel block of a camera) and incoherent ones (random rays), some rays
-// dead (tMax < tMin), under both triangle tests the packs serve.
+// dead (tMax < tMin), under both triangle tests the packs serve, with four rays to a vector
+// (SSE2) and, where the CPU has AVX2, eight (the walk compiled for AVX2, chosen at run time).
 TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
   int hits = 0;
+  std::vector<std::pair<TriangleTest, int>> cases;
   for (TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight}) {
+    cases.push_back({test, 4});
+    if (simd::cpuHasAvx2()) cases.push_back({test, 8});
+  }
+  for (const auto& [test, lanes] : cases) {
     const SceneDescription d = traversalScene(test);
-    const Scene scene(d);
+    Scene scene(d);
+    scene.setPacketLanes(lanes);
+    ASSERT_EQ(scene.packetLanes(), lanes);
     Pcg32 rng(23, 4);
     for (int round = 0; round < 4000; ++round) {
       Ray rays[8];
@@ -551,15 +562,26 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
         HitRecord single;
         const bool live = rays[i].tMax >= rays[i].tMin;
         const bool singleFound = live && scene.intersect(rays[i], single);
-        ASSERT_EQ(found[i], singleFound) << round << " ray " << i;
-        ASSERT_EQ(blocked[i], live && scene.occluded(rays[i])) << round << " ray " << i;
+        ASSERT_EQ(found[i], singleFound) << lanes << " lanes, round " << round << " ray " << i;
+        ASSERT_EQ(blocked[i], live && scene.occluded(rays[i]))
+            << lanes << " lanes, round " << round << " ray " << i;
         if (!singleFound) continue;
         ++hits;
-        ASSERT_EQ(std::memcmp(&packetHits[i], &single, sizeof(HitRecord)), 0) << round;
+        ASSERT_EQ(std::memcmp(&packetHits[i], &single, sizeof(HitRecord)), 0)
+            << lanes << " lanes, round " << round;
       }
     }
   }
   EXPECT_GT(hits, 10000);
+}
+
+TEST(SceneTraversal, PacketLanesAreFourOrEight) {
+  Scene scene(traversalScene(TriangleTest::MollerTrumbore));
+  EXPECT_EQ(scene.packetLanes(), simd::cpuHasAvx2() ? 8 : 4);
+  EXPECT_THROW(scene.setPacketLanes(16), std::invalid_argument);
+  if (!simd::cpuHasAvx2()) EXPECT_THROW(scene.setPacketLanes(8), std::invalid_argument);
+  scene.setPacketLanes(4);
+  EXPECT_EQ(scene.packetLanes(), 4);
 }
 
 }  // namespace
