@@ -579,7 +579,9 @@ TEST(SceneTraversal, PacketLanesAreFourOrEight) {
   Scene scene(traversalScene(TriangleTest::MollerTrumbore));
   EXPECT_EQ(scene.packetLanes(), simd::cpuHasAvx2() ? 8 : 4);
   EXPECT_THROW(scene.setPacketLanes(16), std::invalid_argument);
-  if (!simd::cpuHasAvx2()) EXPECT_THROW(scene.setPacketLanes(8), std::invalid_argument);
+  if (!simd::cpuHasAvx2()) {
+    EXPECT_THROW(scene.setPacketLanes(8), std::invalid_argument);
+  }
   scene.setPacketLanes(4);
   EXPECT_EQ(scene.packetLanes(), 4);
 }
