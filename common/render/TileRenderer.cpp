@@ -1,5 +1,8 @@
 #include "render/TileRenderer.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "render/DebugShading.h"
 #include "util/Stopwatch.h"
 
@@ -20,6 +23,22 @@ TileRenderer::TileRenderer(const Scene& scene, const RenderView& view, const Lig
       integrator_(scene, terms),
       sampler_(view.samplesPerPixel, view.jitterSingleSample) {}
 
+void TileRenderer::addSample(const Color& sample, Color& sum, RayCounters& rays) {
+  // One NaN or infinite sample would poison the pixel and every average it enters.
+  if (isFinite(sample)) {
+    sum += sample;
+  } else {
+    ++rays.nonFinite;
+  }
+}
+
+Color TileRenderer::pixelValue(const Color& sum, RayCounters& rays) const {
+  const Color pixel = sum / static_cast<float>(sampler_.count());
+  if (isFinite(pixel)) return pixel;
+  ++rays.nonFinite;  // finite samples that summed past the float range
+  return Color(0.0f);
+}
+
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   Pcg32 rng = Pcg32::forKey(seed_, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
   Color sum(0.0f);
@@ -36,17 +55,38 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
           integrator_.usesDifferentials() ? camera_.pixelDifferential(ray) : RayDifferential{};
       sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
     }
-    // One NaN or infinite sample would poison the pixel and every average it enters.
-    if (isFinite(sample)) {
-      sum += sample;
-    } else {
-      ++rays.nonFinite;
-    }
+    addSample(sample, sum, rays);
   }
-  const Color pixel = sum / static_cast<float>(sampler_.count());
-  if (isFinite(pixel)) return pixel;
-  ++rays.nonFinite;  // finite samples that summed past the float range
-  return Color(0.0f);
+  return pixelValue(sum, rays);
+}
+
+void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, int outStride,
+                               RayCounters& rays) const {
+  constexpr int kSize = Scene::kPacketSize;
+  const int count = columns * rows;
+  // Each pixel keeps its own random stream, so its samples are the ones renderPixel() draws.
+  std::optional<Pcg32> rng[kSize];
+  Color sum[kSize];
+  for (int k = 0; k < count; ++k) {
+    rng[k].emplace(Pcg32::forKey(seed_, static_cast<uint64_t>(x + k % columns),
+                                 static_cast<uint64_t>(y + k / columns)));
+    sum[k] = Color(0.0f);
+  }
+  for (int i = 0; i < sampler_.count(); ++i) {
+    Ray packet[kSize];
+    for (int k = 0; k < count; ++k) {
+      const Vec2 offset = sampler_.offset(i, *rng[k]);
+      packet[k] = camera_.generateRay(static_cast<float>(x + k % columns) + offset.x,
+                                      static_cast<float>(y + k / columns) + offset.y);
+    }
+    rays.primary += static_cast<uint64_t>(count);
+    Color samples[kSize];
+    integrator_.radiance8(packet, count, samples, rays);
+    for (int k = 0; k < count; ++k) addSample(samples[k], sum[k], rays);
+  }
+  for (int k = 0; k < count; ++k) {
+    out[(k / columns) * outStride + k % columns] = pixelValue(sum[k], rays);
+  }
 }
 
 TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
@@ -56,11 +96,28 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
   result.tileIndex = tileIndex;
   result.rect = rect;
   result.pixels.resize(static_cast<size_t>(rect.pixelCount()));
-  size_t i = 0;
-  for (int y = rect.y; y < rect.y + rect.height; ++y) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) break;
-    for (int x = rect.x; x < rect.x + rect.width; ++x) {
-      result.pixels[i++] = renderPixel(x, y, result.rays);
+  const bool packets = cameraRays_ == CameraRays::Packets && debugView_ == DebugView::Image &&
+                       !integrator_.usesDifferentials();
+  if (packets) {
+    // 4 × 2 pixel blocks, so a packet's directions stay close (RayPacket8); a tile's last
+    // columns or row take narrower or shorter blocks.
+    constexpr int kBlockWidth = 4, kBlockHeight = Scene::kPacketSize / kBlockWidth;
+    for (int y = rect.y; y < rect.y + rect.height; y += kBlockHeight) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) break;
+      const int rows = std::min(kBlockHeight, rect.y + rect.height - y);
+      for (int x = rect.x; x < rect.x + rect.width; x += kBlockWidth) {
+        const int columns = std::min(kBlockWidth, rect.x + rect.width - x);
+        Color* out = &result.pixels[static_cast<size_t>(y - rect.y) * rect.width + (x - rect.x)];
+        renderBlock(x, y, columns, rows, out, rect.width, result.rays);
+      }
+    }
+  } else {
+    size_t i = 0;
+    for (int y = rect.y; y < rect.y + rect.height; ++y) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) break;
+      for (int x = rect.x; x < rect.x + rect.width; ++x) {
+        result.pixels[i++] = renderPixel(x, y, result.rays);
+      }
     }
   }
   result.seconds = secondsSince(start);

@@ -12,6 +12,11 @@
 
 namespace prism {
 
+// How a tile's camera rays are traced: in packets of eight (4 × 2 pixel blocks,
+// Scene::intersect8) or one at a time. The images are bit-identical. Debug views and
+// integrators that carry ray differentials (photon gathers) always go one ray at a time.
+enum class CameraRays { Packets, OneByOne };
+
 class TileRenderer {
  public:
   // terms: which light the tiles add up (direct, caustics), see render/RenderPass.h.
@@ -25,8 +30,19 @@ class TileRenderer {
   TileResult render(uint32_t tileIndex, const TileRect& rect,
                     const std::atomic<bool>* cancel = nullptr) const;
 
+  // Packets by default; one at a time to compare against or to measure what packets buy.
+  void setCameraRays(CameraRays mode) { cameraRays_ = mode; }
+
  private:
   Color renderPixel(int x, int y, RayCounters& rays) const;
+  // The pixels of a block of at most Scene::kPacketSize (columns x..x+columns-1 of rows
+  // y..y+rows-1), each sample's camera rays traced as one packet; written to out in row order
+  // with the given row stride.
+  void renderBlock(int x, int y, int columns, int rows, Color* out, int outStride,
+                   RayCounters& rays) const;
+  // A sample as the pixel sums it: NaN or infinite samples are counted and add nothing.
+  static void addSample(const Color& sample, Color& sum, RayCounters& rays);
+  Color pixelValue(const Color& sum, RayCounters& rays) const;
 
   const Scene& scene_;
   Camera camera_;
@@ -34,6 +50,7 @@ class TileRenderer {
   DebugView debugView_ = DebugView::Image;
   WhittedIntegrator integrator_;
   PixelSampler sampler_;
+  CameraRays cameraRays_ = CameraRays::Packets;
 };
 
 }  // namespace prism

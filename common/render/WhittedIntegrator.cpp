@@ -50,7 +50,25 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
   if (!scene_.intersect(ray, hit)) {
     return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
   }
+  return shade(ray, hit, depth, weight, counters, differential);
+}
 
+void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
+                                  RayCounters& counters) const {
+  HitRecord hits[Scene::kPacketSize];
+  bool found[Scene::kPacketSize];
+  scene_.intersect8(rays, count, hits, found);
+  for (int i = 0; i < count; ++i) {
+    if (found[i]) {
+      results[i] = shade(rays[i], hits[i], 0, Color(1.0f), counters, {});
+    } else {
+      results[i] = terms_.direct ? scene_.escapedRadiance(rays[i].direction) : Color(0.0f);
+    }
+  }
+}
+
+Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
+                               RayCounters& counters, const RayDifferential& differential) const {
   const SurfaceHit s = scene_.surface(ray, hit);
   const MaterialDesc& m = scene_.materials()[s.material];
   const Color albedo = diffuseAlbedo(m, s.position);

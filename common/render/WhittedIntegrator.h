@@ -24,6 +24,11 @@ class WhittedIntegrator {
   // default) the estimate is taken at the point.
   Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
                  const RayDifferential& differential = {}) const;
+  // The same for up to Scene::kPacketSize camera rays at once (depth 0, weight 1, no
+  // differential): their first hits found as one packet (Scene::intersect8), everything after
+  // ray by ray. Each result is bit-identical to radiance() of its ray. Only for integrators
+  // that use no differentials.
+  void radiance8(const Ray* rays, int count, Color* results, RayCounters& counters) const;
   // Whether radiance() uses a differential: only a caustic estimate that averages over the
   // pixel's footprint does (photon gathers; not the caustic map), so otherwise the tracing loop
   // need not compute them.
@@ -32,6 +37,9 @@ class WhittedIntegrator {
   }
 
  private:
+  // Radiance leaving the ray's hit towards its origin: radiance() once the hit is found.
+  Color shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
+              RayCounters& counters, const RayDifferential& differential) const;
   Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,
                        const Vec3& toViewer, RayCounters& counters) const;
 

@@ -566,6 +566,8 @@ uint32_t liveRays(const Ray* rays, int count) {
 
 }  // namespace
 
+static_assert(Scene::kPacketSize == RayPacket8::kSize);
+
 template <class V>
 void Scene::intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* found) const {
   const uint32_t live = liveRays(rays, count);

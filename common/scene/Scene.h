@@ -77,6 +77,7 @@ class Scene {
   // Up to eight rays at once, for coherent rays (a pixel tile's primary rays or their shadow
   // rays): the same answers as intersect() and occluded() ray by ray. A ray with tMax < tMin is
   // skipped (found/blocked false).
+  static constexpr int kPacketSize = 8;  // rays in one intersect8/occluded8 call, at most
   void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   void occluded8(const Ray* rays, int count, bool* blocked) const;
   // How many rays the packet walks test in one vector: 8 (AVX2, chosen at run time where the
