@@ -42,8 +42,9 @@ Triangle meshTriangle(const MeshDesc& mesh, uint32_t meshIndex, uint32_t face) {
 // costs more than it saves.
 constexpr uint64_t kParallelGatherMinTriangles = 32768;
 
-// A packet's leaf test puts four rays in the lanes (one triangle a test) when at least this many
-// of the four reach the leaf; fewer take the single-ray test (four triangles a test).
+// A packet's leaf test puts a vector's rays (four or eight) in the lanes, one triangle a test,
+// when at least this many of them reach the leaf; fewer take their single-ray test (four
+// triangles a test). Measured with four lanes: 2 cost the big meshes more than 3.
 constexpr int kMinRaysPerLaneTest = 3;
 
 // body(begin, end) over [0, count) in chunks of `chunk`, on up to `threads` threads. Every item

@@ -142,15 +142,17 @@ class Scene {
   template <bool kAnyHit>
   bool intersectLeafPacked(const Ray& ray, const WatertightRay& sheared, uint32_t firstPack,
                            uint32_t packCount, float& tMax, HitRecord& hit) const;
-  // A packet's leaf test: the rays in `mask` (bit i: rays[i]) against the leaf, each ray's
-  // closest hit (tMax[i], hits[i]) or, any-hit, whether it hits, exactly as
-  // intersectLeafPacked finds it alone. Returns the rays that hit.
+  // The packet walks with V (simd::Float4 or Float8) as the vector of their tests; the *Wide
+  // ones are the Float8 walks compiled for AVX2 (Scene.cpp), called where the CPU has it.
   template <class V>
   void intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   template <class V>
   void occluded8Lanes(const Ray* rays, int count, bool* blocked) const;
   void intersect8Wide(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   void occluded8Wide(const Ray* rays, int count, bool* blocked) const;
+  // A packet's leaf test: the rays in `mask` (bit i: rays[i]) against the leaf, each ray's
+  // closest hit (tMax[i], hits[i]) or, any-hit, whether it hits, exactly as
+  // intersectLeafPacked finds it alone. Returns the rays that hit.
   template <bool kAnyHit, class V>
   uint32_t intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
                               uint32_t packCount, uint32_t mask, float* tMax,
