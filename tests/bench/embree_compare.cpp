@@ -650,10 +650,11 @@ int run(int argc, char** argv) {
     }
   }
   std::printf(
-      "# Prism (%s kernels) against Embree %d.%d.%d (device config \"%s\"); %d rounds, "
-      "medians\n",
-      simd::compiledInstructionSet(), RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
-      options.embreeConfig.c_str(), options.runs);
+      "# Prism (%s kernels, packets %s) against Embree %d.%d.%d (device config \"%s\"); %d "
+      "rounds, medians\n",
+      simd::compiledInstructionSet(),
+      simd::cpuHasAvx2() ? "avx2 chosen at run time" : "as the kernels", RTC_VERSION_MAJOR,
+      RTC_VERSION_MINOR, RTC_VERSION_PATCH, options.embreeConfig.c_str(), options.runs);
   std::vector<MeshDesc> meshes;
   if (options.generatedMeshes) {
     meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
