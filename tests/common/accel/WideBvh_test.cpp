@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "math/Random.h"
 
@@ -153,6 +155,62 @@ TEST(WideBvh, SimdSlabTestMatchesTheScalarOne) {
     entered += __builtin_popcount(mask);
   }
   EXPECT_GT(entered, 1000);
+}
+
+// The order a walk that never hits visits leaves in, worked out one node at a time with the
+// scalar slab test: entered children nearest first, the later lane first on equal entry
+// distances, each subtree finished before the next sibling.
+void expectedVisits(const WideBvh& wide, uint32_t node, const Ray& ray,
+                    std::vector<uint32_t>& visits, int& ties) {
+  const WideBvhNode& n = wide.nodes()[node];
+  float entry[WideBvhNode::kWidth];
+  const uint32_t mask = intersectChildrenScalar(n, ray, ray.tMin, ray.tMax, entry);
+  std::vector<int> lanes;
+  for (int lane = 0; lane < WideBvhNode::kWidth; ++lane) {
+    if (mask & (1u << lane)) lanes.push_back(lane);
+  }
+  std::sort(lanes.begin(), lanes.end(),
+            [&](int a, int b) { return entry[a] != entry[b] ? entry[a] < entry[b] : a > b; });
+  for (size_t i = 1; i < lanes.size(); ++i) ties += entry[lanes[i]] == entry[lanes[i - 1]];
+  for (int lane : lanes) {
+    if (n.count[lane] > 0) {
+      visits.push_back(n.child[lane]);
+    } else {
+      expectedVisits(wide, n.child[lane], ray, visits, ties);
+    }
+  }
+}
+
+// Which of two equally near children a closest-hit walk visits first decides, when their leaves
+// also hit at the same t, which primitive an image shows: the rule (the later lane first) is
+// part of what keeps images the same from build to build. Nested boxes sharing a corner give
+// equal entry distances to every ray that enters them through the shared faces.
+TEST(WideBvh, ClosestHitWalkVisitsEqualEntriesLaterLaneFirst) {
+  std::vector<Aabb> boxes;
+  Pcg32 rng(41, 2);
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 corner(static_cast<float>(i % 4) * 3.0f, 0.0f, static_cast<float>(i % 3) * 3.0f);
+    boxes.push_back({corner, corner + Vec3(0.5f + 4.0f * rng.nextFloat())});
+  }
+  Bvh binary;
+  binary.build(boxes);
+  WideBvh wide;
+  wide.build(binary);
+  int ties = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 origin = Vec3(-4.0f, -4.0f, -4.0f) + randomVec(rng, -2, 2);
+    const Vec3 target = randomVec(rng, 0.0f, 9.0f);
+    const Ray ray{origin, glm::normalize(target - origin)};
+    std::vector<uint32_t> visits, expected;
+    float tMax = ray.tMax;
+    wide.traverse<false>(ray, tMax, [&](uint32_t first, uint32_t, float&) {
+      visits.push_back(first);
+      return false;
+    });
+    expectedVisits(wide, 0, ray, expected, ties);
+    ASSERT_EQ(visits, expected) << "ray " << i;
+  }
+  EXPECT_GT(ties, 1000);
 }
 
 TEST(WideBvh, ReportsTheInstructionSetItWasBuiltFor) {
