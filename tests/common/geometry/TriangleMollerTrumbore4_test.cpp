@@ -4,20 +4,15 @@
 
 #include <cstring>
 
+#include "KernelTesting.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "math/Random.h"
 
 namespace prism {
 namespace {
 
-Vec3 randomVec(Pcg32& rng, float lo, float hi) {
-  return {lo + (hi - lo) * rng.nextFloat(), lo + (hi - lo) * rng.nextFloat(),
-          lo + (hi - lo) * rng.nextFloat()};
-}
-
-bool sameBits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof(float)) == 0;
-}
+using test::randomVec;
+using test::sameBits;
 
 // Each lane must reproduce the scalar test bit for bit, and the pack's pick must be the one a
 // sequential scalar loop with a shrinking tMax makes.

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "KernelTesting.h"
 #include "geometry/Triangle.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "math/Random.h"
@@ -12,14 +13,8 @@
 namespace prism {
 namespace {
 
-Vec3 randomVec(Pcg32& rng, float lo, float hi) {
-  return {lo + (hi - lo) * rng.nextFloat(), lo + (hi - lo) * rng.nextFloat(),
-          lo + (hi - lo) * rng.nextFloat()};
-}
-
-bool sameBits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof(float)) == 0;
-}
+using test::randomVec;
+using test::sameBits;
 
 template <class V>
 class TriangleMollerTrumboreRays : public ::testing::Test {};

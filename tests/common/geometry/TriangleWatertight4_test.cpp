@@ -4,20 +4,15 @@
 
 #include <cstring>
 
+#include "KernelTesting.h"
 #include "TestMeshes.h"
 #include "math/Random.h"
 
 namespace prism {
 namespace {
 
-Vec3 randomVec(Pcg32& rng, float lo, float hi) {
-  return {lo + (hi - lo) * rng.nextFloat(), lo + (hi - lo) * rng.nextFloat(),
-          lo + (hi - lo) * rng.nextFloat()};
-}
-
-bool sameBits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof(float)) == 0;
-}
+using test::randomVec;
+using test::sameBits;
 
 // What testing the pack's triangles one after another with a shrinking tMax finds.
 PackHit sequentialClosest(const Ray& ray, const Triangle* tris, int used, float tMax) {
