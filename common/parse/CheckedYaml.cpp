@@ -74,7 +74,11 @@ std::string joined(KeyTable keys, std::string_view separator) {
 
 // A scalar as it appears in an error message: quoted, printable, and short.
 std::string shown(std::string_view text) {
-  return "'" + printableExcerpt(text, 40) + "'";
+  // Not "'" + string: GCC 12 warns (-Wrestrict) about that form, wrongly.
+  std::string quoted = "'";
+  quoted += printableExcerpt(text, 40);
+  quoted += '\'';
+  return quoted;
 }
 
 // What a node holds, for "found ..." in messages. Never walks into the node: aliases can make

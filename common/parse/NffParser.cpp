@@ -359,7 +359,9 @@ class NffParser {
     }
 
     MaterialDesc material;
-    material.name = "f" + std::to_string(scene_.materials.size() + 1);
+    // Appended, not "f" + string: GCC 12 warns (-Wrestrict) about that form, wrongly.
+    material.name = "f";
+    material.name += std::to_string(scene_.materials.size() + 1);
     material.loc = loc(command);
     material.ambient = Color(0.0f);
     material.diffuse = kd * color;
