@@ -578,6 +578,7 @@ void Scene::intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* f
     for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
     return;
   }
+  if (live == 0) return;  // nothing to trace (and no ray to fill the packet's lanes with)
   const RayPacket8 packet(rays, live);
   if (!packet.coherent) {
     for (int i = 0; i < count; ++i) found[i] = (live >> i & 1u) && intersect(rays[i], hits[i]);
@@ -613,6 +614,7 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
   }
+  if (live == 0) return;  // nothing to trace (and no ray to fill the packet's lanes with)
   const RayPacket8 packet(rays, live);
   if (!packet.coherent) {
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);

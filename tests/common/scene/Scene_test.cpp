@@ -575,6 +575,24 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
   EXPECT_GT(hits, 10000);
 }
 
+// An empty packet and a packet of dead rays (tMax < tMin) trace nothing and find nothing.
+TEST(SceneTraversal, PacketsWithoutLiveRaysFindNothing) {
+  Scene scene(traversalScene(TriangleTest::MollerTrumbore));
+  HitRecord hits[8];
+  bool found[8], blocked[8];
+  scene.intersect8(nullptr, 0, hits, found);
+  scene.occluded8(nullptr, 0, blocked);
+  Ray dead[8];
+  for (Ray& ray : dead) ray = {Vec3(0, 4, 6), glm::normalize(Vec3(0, -1, -1)), 1.0f, 0.5f};
+  for (int i = 0; i < 8; ++i) found[i] = blocked[i] = true;
+  scene.intersect8(dead, 8, hits, found);
+  scene.occluded8(dead, 8, blocked);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_FALSE(found[i]) << i;
+    EXPECT_FALSE(blocked[i]) << i;
+  }
+}
+
 TEST(SceneTraversal, PacketLanesAreFourOrEight) {
   Scene scene(traversalScene(TriangleTest::MollerTrumbore));
   EXPECT_EQ(scene.packetLanes(), simd::cpuHasAvx2() ? 8 : 4);
