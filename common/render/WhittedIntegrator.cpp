@@ -48,7 +48,7 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
                                   const RayDifferential& differential) const {
   HitRecord hit;
   if (!scene_.intersect(ray, hit)) {
-    return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
+    return escaped(ray);
   }
   return shade(ray, hit, depth, weight, counters, differential);
 }
@@ -62,9 +62,13 @@ void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
     if (found[i]) {
       results[i] = shade(rays[i], hits[i], 0, Color(1.0f), counters, {});
     } else {
-      results[i] = terms_.direct ? scene_.escapedRadiance(rays[i].direction) : Color(0.0f);
+      results[i] = escaped(rays[i]);
     }
   }
+}
+
+Color WhittedIntegrator::escaped(const Ray& ray) const {
+  return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
 }
 
 Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,

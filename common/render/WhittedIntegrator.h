@@ -37,6 +37,8 @@ class WhittedIntegrator {
   }
 
  private:
+  // Radiance along a ray that hits nothing: the environment, when this pass adds direct light.
+  Color escaped(const Ray& ray) const;
   // Radiance leaving the ray's hit towards its origin: radiance() once the hit is found.
   Color shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
               RayCounters& counters, const RayDifferential& differential) const;
