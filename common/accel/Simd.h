@@ -73,6 +73,31 @@ inline Float8 maxLanes(Float8 a, Float8 b) {
 #endif
 }
 
+// Correctly rounded square roots, as std::sqrt gives them lane by lane.
+inline Float4 sqrtLanes(Float4 a) {
+#if defined(__SSE2__)
+  return reinterpret_cast<Float4>(_mm_sqrt_ps(reinterpret_cast<__m128>(a)));
+#else
+  for (int i = 0; i < 4; ++i) a[i] = __builtin_sqrtf(a[i]);
+  return a;
+#endif
+}
+
+inline Float8 sqrtLanes(Float8 a) {
+#if defined(__AVX__)
+  return reinterpret_cast<Float8>(_mm256_sqrt_ps(reinterpret_cast<__m256>(a)));
+#else
+  Float4 low, high;
+  std::memcpy(&low, &a, sizeof(Float4));
+  std::memcpy(&high, reinterpret_cast<const char*>(&a) + sizeof(Float4), sizeof(Float4));
+  low = sqrtLanes(low);
+  high = sqrtLanes(high);
+  std::memcpy(&a, &low, sizeof(Float4));
+  std::memcpy(reinterpret_cast<char*>(&a) + sizeof(Float4), &high, sizeof(Float4));
+  return a;
+#endif
+}
+
 // Rows to columns: afterwards a holds the first lanes of the old a, b, c, d, b the second...
 inline void transpose(Float4& a, Float4& b, Float4& c, Float4& d) {
   const Float4 ab0 = __builtin_shufflevector(a, b, 0, 4, 1, 5);
@@ -103,6 +128,15 @@ struct MaskFor<Float8> {
 };
 template <class V>
 using MaskOf = typename MaskFor<V>::Type;
+
+// |magnitude| with the sign of sign, lane by lane (std::copysign).
+template <class V>
+inline V copySign(V magnitude, V sign) {
+  using M = MaskOf<V>;
+  const M signBit = M{} + static_cast<int32_t>(0x80000000u);
+  return reinterpret_cast<V>((reinterpret_cast<M>(magnitude) & ~signBit) |
+                             (reinterpret_cast<M>(sign) & signBit));
+}
 
 // Lane by lane, a where m is all ones and b where it is zero (m: a comparison's result).
 template <class V>

@@ -9,6 +9,7 @@
 #include "accel/WideBvhPacket.h"
 
 #include "geometry/ConeSegments.h"
+#include "geometry/SphereRays.h"
 #include "geometry/TriangleMollerTrumbore.h"
 #include "geometry/TriangleMollerTrumbore4.h"
 #include "geometry/TriangleMollerTrumboreRays.h"
@@ -410,16 +411,20 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
       }
     }
   };
-  // Spheres or cones in the leaf, or the watertight test (its shear is the ray's own): the
-  // rays one by one.
-  if ((firstPack & kPacklessLeaf) || packs_[firstPack].hasOtherKinds ||
-      settings_.triangleTest == TriangleTest::Watertight) {
+  // Cones in the leaf, spheres beside triangles, or the watertight test (its shear is the
+  // ray's own): the rays one by one. Leaves of spheres alone and of packed triangles alone
+  // put the rays in the lanes.
+  const bool sphereLeaf =
+      (firstPack & kPacklessLeaf) && onlySpheres(firstPack & ~kPacklessLeaf, packCount);
+  if (!sphereLeaf && ((firstPack & kPacklessLeaf) || packs_[firstPack].hasOtherKinds ||
+                      settings_.triangleTest == TriangleTest::Watertight)) {
     oneByOne(mask);
     return hitRays;
   }
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
-  // The rays a vector at a time, each triangle in the order a single ray tests them, every lane
-  // keeping its own shrinking tMax: the closest hit and its ties come out as they do ray by ray.
+  // The rays a vector at a time, each primitive in the order a single ray tests them, every
+  // lane keeping its own shrinking tMax: the closest hit and its ties come out as they do ray
+  // by ray.
   for (int at = 0; at < RayPacket8::kSize; at += kLanes) {
     const uint32_t active = mask >> at & kAllLanes;
     if (active == 0) continue;
@@ -438,34 +443,56 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
     V limit =
         simd::select<V>(simd::lanesOf<M>(active), lanes(tMax), simd::broadcast<V>(-kInfinity));
     V bestU{}, bestV{};
-    M bestIndex{};
+    M bestRef{};  // the hit primitive's PrimitiveRef, as int32 lanes
     uint32_t hitLanes = 0;
-    // Any-hit: stop once every ray of these lanes has hit.
-    for (uint32_t p = firstPack; p < firstPack + packCount && !(kAnyHit && hitLanes == active);
-         ++p) {
-      const TrianglePack4& pack = packs_[p].triangles;
-      for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
-        if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
-        float v0[3], e1[3], e2[3];
-        for (int a = 0; a < 3; ++a) {
-          v0[a] = pack.v0[a][lane];
-          e1[a] = pack.v1[a][lane] - v0[a];
-          e2[a] = pack.v2[a][lane] - v0[a];
-        }
-        V t, u, v;
+    // Records lanes `inside` hitting primitive `ref` at t; false once an any-hit walk is done.
+    const auto record = [&](uint32_t m, const M& inside, const V& t, const V& u, const V& v,
+                            uint32_t ref) {
+      hitLanes |= m;
+      if constexpr (kAnyHit) {
+        if (hitLanes == active) return false;
+        limit = simd::select<V>(inside, simd::broadcast<V>(-kInfinity), limit);
+      } else {
+        limit = simd::select<V>(inside, t, limit);
+        bestU = simd::select<V>(inside, u, bestU);
+        bestV = simd::select<V>(inside, v, bestV);
+        bestRef = simd::selectInt<M>(inside, M{} + static_cast<int32_t>(ref), bestRef);
+      }
+      return true;
+    };
+    if (sphereLeaf) {
+      const uint32_t first = firstPack & ~kPacklessLeaf;
+      for (uint32_t i = first; i < first + packCount; ++i) {
+        V t;
         M inside;
-        const uint32_t m = intersectMollerTrumboreRays(r, v0, e1, e2, limit, t, u, v, inside);
-        if (m == 0) continue;
-        hitLanes |= m;
-        if constexpr (kAnyHit) {
-          if (hitLanes == active) break;
-          limit = simd::select<V>(inside, simd::broadcast<V>(-kInfinity), limit);
-        } else {
-          limit = simd::select<V>(inside, t, limit);
-          bestU = simd::select<V>(inside, u, bestU);
-          bestV = simd::select<V>(inside, v, bestV);
-          const int32_t index = static_cast<int32_t>(p * TrianglePack4::kWidth + lane);
-          bestIndex = simd::selectInt<M>(inside, M{} + index, bestIndex);
+        const uint32_t m =
+            intersectSphereRays(r, spheres_[PrimitiveRef::index(leafRefs_[i])], limit, t, inside);
+        if (m != 0 && !record(m, inside, t, V{}, V{}, leafRefs_[i])) break;
+      }
+    } else {
+      // Any-hit: stop once every ray of these lanes has hit.
+      bool looking = true;
+      for (uint32_t p = firstPack; p < firstPack + packCount && looking; ++p) {
+        const TrianglePack4& pack = packs_[p].triangles;
+        for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
+          if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
+          float v0[3], e1[3], e2[3];
+          for (int a = 0; a < 3; ++a) {
+            v0[a] = pack.v0[a][lane];
+            e1[a] = pack.v1[a][lane] - v0[a];
+            e2[a] = pack.v2[a][lane] - v0[a];
+          }
+          V t, u, v;
+          M inside;
+          const uint32_t m = intersectMollerTrumboreRays(r, v0, e1, e2, limit, t, u, v, inside);
+          if (m == 0) continue;
+          // Packed triangles are numbered by their lane: pack · 4 + lane.
+          const uint32_t ref = PrimitiveRef::make(
+              PrimitiveKind::Triangle, p * TrianglePack4::kWidth + static_cast<uint32_t>(lane));
+          if (!record(m, inside, t, u, v, ref)) {
+            looking = false;
+            break;
+          }
         }
       }
     }
@@ -474,15 +501,20 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
       simd::store(tMax + at, simd::select<V>(simd::lanesOf<M>(hitLanes), limit, lanes(tMax)));
       for (uint32_t m = hitLanes; m != 0; m &= m - 1) {
         const int lane = simd::firstLane(m);
-        hits[at + lane] = {
-            limit[lane],
-            PrimitiveRef::make(PrimitiveKind::Triangle, static_cast<uint32_t>(bestIndex[lane])),
-            bestU[lane], bestV[lane]};
+        hits[at + lane] = {limit[lane], static_cast<uint32_t>(bestRef[lane]), bestU[lane],
+                           bestV[lane]};
       }
     }
     hitRays |= hitLanes << at;
   }
   return hitRays;
+}
+
+bool Scene::onlySpheres(uint32_t first, uint32_t count) const {
+  for (uint32_t i = first; i < first + count; ++i) {
+    if (PrimitiveRef::kind(leafRefs_[i]) != PrimitiveKind::Sphere) return false;
+  }
+  return true;
 }
 
 WatertightRay Scene::shearFor(const Ray& ray) const {
@@ -608,16 +640,33 @@ void Scene::intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* f
 
 template <class V>
 void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
-  const uint32_t live = liveRays(rays, count);
+  uint32_t live = liveRays(rays, count);
   for (int i = 0; i < count; ++i) blocked[i] = false;
-  if (!packed_ || !planes_.empty()) {  // planes first, as occluded() does: one at a time
+  if (!packed_) {  // no packed wide walk: one ray at a time
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
+  }
+  // Planes first, ray by ray, as occluded() tests them; a blocked ray leaves the packet.
+  if (!planes_.empty()) {
+    for (uint32_t m = live; m != 0; m &= m - 1) {
+      const int i = simd::firstLane(m);
+      float t;
+      for (const Plane& plane : planes_) {
+        if (plane.intersect(rays[i], rays[i].tMax, t)) {
+          blocked[i] = true;
+          live &= ~(1u << i);
+          break;
+        }
+      }
+    }
   }
   if (live == 0) return;  // nothing to trace (and no ray to fill the packet's lanes with)
   const RayPacket8 packet(rays, live);
   if (!packet.coherent) {
-    for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
+    for (uint32_t m = live; m != 0; m &= m - 1) {
+      const int i = simd::firstLane(m);
+      blocked[i] = occluded(rays[i]);
+    }
     return;
   }
   alignas(32) float tMax[RayPacket8::kSize];
@@ -629,7 +678,7 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
         return intersectLeafRays8<true, V>(rays, packet, firstPack, packCount, mask, rayTMax,
                                            ignored);
       });
-  for (int i = 0; i < count; ++i) blocked[i] = (hitMask >> i & 1u) != 0;
+  for (uint32_t m = hitMask; m != 0; m &= m - 1) blocked[simd::firstLane(m)] = true;
 }
 
 // The packet walks, eight rays to a vector, compiled for AVX2 whatever the build targets and

@@ -524,55 +524,99 @@ TEST(SceneTraversal, ImagesAreBitIdenticalToTheBinaryWalk) {
   }
 }
 
-// Packets of eight give each ray the answer it gets alone, bit for bit (t, triangle, u, v):
-// coherent packets (a 4 × 2 pixel block of a camera) and incoherent ones (random rays), some rays
-// dead (tMax < tMin), under both triangle tests the packs serve, with four rays to a vector
-// (SSE2) and, where the CPU has AVX2, eight (the walk compiled for AVX2, chosen at run time).
-TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
-  int hits = 0;
-  std::vector<std::pair<TriangleTest, int>> cases;
-  for (TriangleTest test : {TriangleTest::MollerTrumbore, TriangleTest::Watertight}) {
-    cases.push_back({test, 4});
-    if (simd::cpuHasAvx2()) cases.push_back({test, 8});
+// Many small spheres (leaves of spheres alone, which packets test with the rays in the lanes)
+// over a floor plane (which shadow packets test ray by ray first), with a few triangles sharing
+// leaves with them.
+SceneDescription spheresOverAPlane() {
+  SceneDescription d;
+  Pcg32 rng(9, 2);
+  for (int s = 0; s < 400; ++s) {
+    SphereDesc sphere;
+    sphere.center = {rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1.2f, rng.nextFloat() * 6 - 3};
+    sphere.radius = 0.05f + 0.25f * rng.nextFloat();
+    d.spheres.push_back(sphere);
   }
-  for (const auto& [test, lanes] : cases) {
-    const SceneDescription d = traversalScene(test);
-    Scene scene(d);
-    scene.setPacketLanes(lanes);
-    ASSERT_EQ(scene.packetLanes(), lanes);
-    Pcg32 rng(23, 4);
-    for (int round = 0; round < 4000; ++round) {
-      Ray rays[8];
-      const int count = 1 + round % 8;
-      const Vec3 eye(rng.nextFloat() * 10 - 5, 4.0f, 6.0f);
-      for (int i = 0; i < count; ++i) {
-        if (round % 2 == 0) {
-          const Vec3 target(-1.0f + 0.02f * (i % 4), -0.5f + 0.02f * (i / 4), 0.1f * round / 4000);
-          rays[i] = {eye, glm::normalize(target - eye)};
-        } else {
-          rays[i] = randomRay(rng);
-        }
-        if (round % 7 == 0 && i == 2) rays[i].tMax = -1.0f;  // dead ray
-      }
-      HitRecord packetHits[8];
-      bool found[8], blocked[8];
-      scene.intersect8(rays, count, packetHits, found);
-      scene.occluded8(rays, count, blocked);
-      for (int i = 0; i < count; ++i) {
-        HitRecord single;
-        const bool live = rays[i].tMax >= rays[i].tMin;
-        const bool singleFound = live && scene.intersect(rays[i], single);
-        ASSERT_EQ(found[i], singleFound) << lanes << " lanes, round " << round << " ray " << i;
-        ASSERT_EQ(blocked[i], live && scene.occluded(rays[i]))
-            << lanes << " lanes, round " << round << " ray " << i;
-        if (!singleFound) continue;
-        ++hits;
-        ASSERT_EQ(std::memcmp(&packetHits[i], &single, sizeof(HitRecord)), 0)
-            << lanes << " lanes, round " << round;
-      }
+  PlaneDesc floor;
+  floor.point = {0.0f, -1.0f, 0.0f};
+  d.planes.push_back(floor);
+  MeshDesc soup;
+  for (int t = 0; t < 40; ++t) {
+    const Vec3 c(rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1, rng.nextFloat() * 6 - 3);
+    for (int k = 0; k < 3; ++k) {
+      soup.positions.push_back(c + 0.3f * Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()));
+      soup.indices.push_back(static_cast<uint32_t>(soup.positions.size() - 1));
     }
   }
-  EXPECT_GT(hits, 10000);
+  d.meshes.push_back(soup);
+  return d;
+}
+
+// Packets of eight give each ray the answer it gets alone, bit for bit (t, primitive, u, v):
+// coherent packets (a 4 × 2 pixel block of a camera; from below the floor plane, shadow-like
+// packets towards a point) and incoherent ones (random rays), some rays dead (tMax < tMin),
+// under both triangle tests the packs serve and in a scene of spheres over a plane, with four
+// rays to a vector (SSE2) and, where the CPU has AVX2, eight (the walk compiled for AVX2, chosen
+// at run time).
+TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
+  std::vector<std::pair<std::string, SceneDescription>> scenes;
+  scenes.emplace_back("meshes, Moller-Trumbore", traversalScene(TriangleTest::MollerTrumbore));
+  scenes.emplace_back("meshes, watertight", traversalScene(TriangleTest::Watertight));
+  scenes.emplace_back("spheres over a plane", spheresOverAPlane());
+  std::vector<int> laneCounts{4};
+  if (simd::cpuHasAvx2()) laneCounts.push_back(8);
+  for (const auto& [name, d] : scenes) {
+    int hits = 0, sphereHits = 0, blockedCount = 0;
+    for (int lanes : laneCounts) {
+      Scene scene(d);
+      scene.setPacketLanes(lanes);
+      ASSERT_EQ(scene.packetLanes(), lanes);
+      const std::string where = name + ", " + std::to_string(lanes) + " lanes, round ";
+      Pcg32 rng(23, 4);
+      for (int round = 0; round < 6000; ++round) {
+        Ray rays[8];
+        const int count = 1 + round % 8;
+        const Vec3 eye(rng.nextFloat() * 10 - 5, 4.0f, 6.0f);
+        const Vec3 light(rng.nextFloat() * 4 - 2, 5.0f, rng.nextFloat() * 4 - 2);
+        const Vec3 below(rng.nextFloat() * 4 - 2, -2.0f, rng.nextFloat() * 4 - 2);
+        for (int i = 0; i < count; ++i) {
+          if (round % 3 == 0) {
+            const Vec3 target(-1.0f + 0.02f * (i % 4), -0.5f + 0.02f * (i / 4),
+                              0.1f * round / 6000);
+            rays[i] = {eye, glm::normalize(target - eye)};
+          } else if (round % 3 == 1) {
+            // Towards the light from neighbouring points, stopping short of it; every other
+            // packet from under the floor, which then blocks them all.
+            const Vec3 from = (round % 6 == 1 ? Vec3(0.0f, -0.4f, 0.0f) : below) +
+                              Vec3(0.03f * (i % 4), 0.0f, 0.03f * (i / 4));
+            rays[i] = {from, glm::normalize(light - from)};
+            rays[i].tMax = 0.999f * glm::length(light - from);
+          } else {
+            rays[i] = randomRay(rng);
+          }
+          if (round % 7 == 0 && i == 2) rays[i].tMax = -1.0f;  // dead ray
+        }
+        HitRecord packetHits[8];
+        bool found[8], blocked[8];
+        scene.intersect8(rays, count, packetHits, found);
+        scene.occluded8(rays, count, blocked);
+        for (int i = 0; i < count; ++i) {
+          HitRecord single;
+          const bool live = rays[i].tMax >= rays[i].tMin;
+          const bool singleFound = live && scene.intersect(rays[i], single);
+          ASSERT_EQ(found[i], singleFound) << where << round << " ray " << i;
+          ASSERT_EQ(blocked[i], live && scene.occluded(rays[i])) << where << round << " ray " << i;
+          blockedCount += blocked[i] ? 1 : 0;
+          if (!singleFound) continue;
+          ++hits;
+          sphereHits += PrimitiveRef::kind(single.primitive) == PrimitiveKind::Sphere ? 1 : 0;
+          ASSERT_EQ(std::memcmp(&packetHits[i], &single, sizeof(HitRecord)), 0) << where << round;
+        }
+      }
+    }
+    EXPECT_GT(hits, 10000) << name;
+    EXPECT_GT(blockedCount, 10000) << name;
+    if (name == "spheres over a plane") EXPECT_GT(sphereHits, 5000) << name;
+  }
 }
 
 // An empty packet and a packet of dead rays (tMax < tMin) trace nothing and find nothing.
