@@ -13,8 +13,9 @@
 namespace prism {
 
 // How a tile's camera rays are traced: in packets of eight (4 × 2 pixel blocks,
-// Scene::intersect8) or one at a time. The images are bit-identical. Debug views and
-// integrators that carry ray differentials (photon gathers) always go one ray at a time.
+// Scene::intersect8; their shadow rays and first reflection and refraction rays in packets too,
+// see WhittedIntegrator::radiance8) or one at a time. The images are bit-identical. Debug views
+// and integrators that carry ray differentials (photon gathers) always go one ray at a time.
 enum class CameraRays { Packets, OneByOne };
 
 class TileRenderer {

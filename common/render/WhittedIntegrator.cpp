@@ -9,89 +9,83 @@
 
 namespace prism {
 
-Color WhittedIntegrator::directLighting(const SurfaceHit& s, const MaterialDesc& m,
-                                        const Color& albedo, const Vec3& toViewer,
+bool WhittedIntegrator::towardsLight(const SurfaceHit& s, const PointLightDesc& light,
+                                     LightPath& path, Ray& shadow) {
+  const Vec3 toLight = light.position - s.position;
+  path.distance = glm::length(toLight);
+  if (!(path.distance > 0.0f)) return false;
+  path.direction = toLight / path.distance;
+  // A light below the geometric surface cannot reach it, whatever the shading normal says.
+  if (glm::dot(s.geometricNormal, path.direction) <= 0.0f) return false;
+  path.cosTheta = glm::dot(s.shadingNormal, path.direction);
+  if (path.cosTheta <= 0.0f) return false;
+  shadow.origin = s.rayOrigin(path.direction);
+  shadow.direction = path.direction;
+  shadow.tMin = 0.0f;
+  shadow.tMax = shadowRayLength(glm::length(light.position - shadow.origin));
+  return true;
+}
+
+Color WhittedIntegrator::lightReflected(const ShadingPoint& p, const PointLightDesc& light,
+                                        const LightPath& path, const Vec3& toViewer) {
+  const MaterialDesc& m = *p.material;
+  // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
+  const Color lightAtSurface =
+      light.intensity * attenuationFactor(light.attenuation, path.distance);
+  Color reflected = p.albedo * (kInvPi * path.cosTheta);
+  if (!isBlack(m.specular)) {
+    const float rv = glm::dot(reflect(-path.direction, p.surface.shadingNormal), toViewer);
+    if (rv > 0.0f) reflected += m.specular * std::pow(rv, m.shininess);
+  }
+  return lightAtSurface * reflected;
+}
+
+Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toViewer,
                                         RayCounters& counters) const {
   Color result(0.0f);
-  const bool hasSpecular = !isBlack(m.specular);
   for (const PointLightDesc& light : scene_.lights()) {
-    const Vec3 toLight = light.position - s.position;
-    const float distance = glm::length(toLight);
-    if (!(distance > 0.0f)) continue;
-    const Vec3 l = toLight / distance;
-    // A light below the geometric surface cannot reach it, whatever the shading normal says.
-    if (glm::dot(s.geometricNormal, l) <= 0.0f) continue;
-    const float cosTheta = glm::dot(s.shadingNormal, l);
-    if (cosTheta <= 0.0f) continue;
-
+    LightPath path;
     Ray shadow;
-    shadow.origin = s.rayOrigin(l);
-    shadow.direction = l;
-    shadow.tMax = shadowRayLength(glm::length(light.position - shadow.origin));
+    if (!towardsLight(p.surface, light, path, shadow)) continue;
     ++counters.shadow;
     if (scene_.occluded(shadow)) continue;
-
-    // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
-    const Color lightAtSurface = light.intensity * attenuationFactor(light.attenuation, distance);
-    Color reflected = albedo * (kInvPi * cosTheta);
-    if (hasSpecular) {
-      const float rv = glm::dot(reflect(-l, s.shadingNormal), toViewer);
-      if (rv > 0.0f) reflected += m.specular * std::pow(rv, m.shininess);
-    }
-    result += lightAtSurface * reflected;
+    result += lightReflected(p, light, path, toViewer);
   }
   return result;
 }
 
-Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
-                                  RayCounters& counters,
-                                  const RayDifferential& differential) const {
-  HitRecord hit;
-  if (!scene_.intersect(ray, hit)) {
-    return escaped(ray);
-  }
-  return shade(ray, hit, depth, weight, counters, differential);
+void WhittedIntegrator::shadingPoint(const Ray& ray, const HitRecord& hit, ShadingPoint& p) const {
+  scene_.surface(ray, hit, p.surface);
+  p.material = &scene_.materials()[p.surface.material];
+  p.albedo = diffuseAlbedo(*p.material, p.surface.position);
 }
 
-void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
-                                  RayCounters& counters) const {
-  HitRecord hits[Scene::kPacketSize];
-  bool found[Scene::kPacketSize];
-  scene_.intersect8(rays, count, hits, found);
-  for (int i = 0; i < count; ++i) {
-    if (found[i]) {
-      results[i] = shade(rays[i], hits[i], 0, Color(1.0f), counters, {});
-    } else {
-      results[i] = escaped(rays[i]);
-    }
-  }
+bool WhittedIntegrator::litDirectly(const ShadingPoint& p) const {
+  return terms_.direct && (!isBlack(p.albedo) || !isBlack(p.material->specular));
 }
 
-Color WhittedIntegrator::escaped(const Ray& ray) const {
-  return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
-}
-
-Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
-                               RayCounters& counters, const RayDifferential& differential) const {
-  const SurfaceHit s = scene_.surface(ray, hit);
-  const MaterialDesc& m = scene_.materials()[s.material];
-  const Color albedo = diffuseAlbedo(m, s.position);
-  const Vec3 toViewer = -ray.direction;
-
+Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& directLight,
+                                         const PixelFootprint& footprint) const {
   Color result(0.0f);
   if (terms_.direct) {
-    result = m.ambient * scene_.ambientLight();
-    if (!isBlack(albedo) || !isBlack(m.specular)) {
-      result += directLighting(s, m, albedo, toViewer, counters);
-    }
+    result = p.material->ambient * scene_.ambientLight();
+    if (litDirectly(p)) result += directLight;
   }
-  const PixelFootprint footprint = differential.footprint(ray.direction, hit.t, s.geometricNormal);
-  if (terms_.caustics && (s.caustic & kReceivesCaustics) && !isBlack(albedo)) {
-    result += albedo * kInvPi * terms_.caustics->irradianceAt(s, footprint);
+  if (terms_.caustics && (p.surface.caustic & kReceivesCaustics) && !isBlack(p.albedo)) {
+    result += p.albedo * kInvPi * terms_.caustics->irradianceAt(p.surface, footprint);
   }
+  return result;
+}
 
+template <class Send>
+void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
+                                      const PixelFootprint& footprint, int depth,
+                                      const Color& weight, const RayDifferential& differential,
+                                      RayCounters& counters, Send&& send) const {
   const RenderSettings& settings = scene_.settings();
-  if (depth >= settings.maxDepth) return result;
+  if (depth >= settings.maxDepth) return;
+  const SurfaceHit& s = p.surface;
+  const MaterialDesc& m = *p.material;
   // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
   // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
   // taken at the point.
@@ -110,27 +104,135 @@ Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, 
   const Color reflectContribution = weight * reflectWeight;
   if (maxComponent(reflectContribution) > settings.minContribution) {
     const Vec3 direction = reflectedDirection(s, ray.direction);
-    Ray reflected{s.rayOrigin(direction), direction};
     ++counters.secondary;
-    const RayDifferential onward =
-        turnKnown ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
-                  : RayDifferential{};
-    result += reflectWeight * radiance(reflected, depth + 1, reflectContribution, counters, onward);
+    send(Ray{s.rayOrigin(direction), direction}, reflectWeight, reflectContribution,
+         turnKnown ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
+                   : RayDifferential{});
   }
 
   const Color transmitContribution = weight * transmitWeight;
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
-    Ray transmitted{s.rayOrigin(*refracted), *refracted};
     ++counters.secondary;
     const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
-    const RayDifferential onward =
-        turnKnown ? differential.refracted(footprint, ray.direction, s.shadingNormal, turn,
-                                           *refracted, eta)
-                  : RayDifferential{};
-    result +=
-        transmitWeight * radiance(transmitted, depth + 1, transmitContribution, counters, onward);
+    send(Ray{s.rayOrigin(*refracted), *refracted}, transmitWeight, transmitContribution,
+         turnKnown ? differential.refracted(footprint, ray.direction, s.shadingNormal, turn,
+                                            *refracted, eta)
+                   : RayDifferential{});
   }
+}
+
+Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
+                                  RayCounters& counters,
+                                  const RayDifferential& differential) const {
+  HitRecord hit;
+  if (!scene_.intersect(ray, hit)) {
+    return escaped(ray);
+  }
+  return shade(ray, hit, depth, weight, counters, differential);
+}
+
+Color WhittedIntegrator::escaped(const Ray& ray) const {
+  return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
+}
+
+Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
+                               RayCounters& counters, const RayDifferential& differential) const {
+  ShadingPoint p;
+  shadingPoint(ray, hit, p);
+  const Color direct = litDirectly(p) ? directLighting(p, -ray.direction, counters) : Color(0.0f);
+  const PixelFootprint footprint =
+      differential.footprint(ray.direction, hit.t, p.surface.geometricNormal);
+  Color result = surfaceRadiance(p, direct, footprint);
+  forEachBounce(ray, hit, p, footprint, depth, weight, differential, counters,
+                [&](const Ray& onward, const Color& scale, const Color& contribution,
+                    const RayDifferential& onwardDifferential) {
+                  result += scale *
+                            radiance(onward, depth + 1, contribution, counters, onwardDifferential);
+                });
   return result;
+}
+
+void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
+                                  RayCounters& counters) const {
+  constexpr int kSize = Scene::kPacketSize;
+  HitRecord hits[kSize];
+  bool found[kSize];
+  scene_.intersect8(rays, count, hits, found);
+
+  ShadingPoint points[kSize];
+  bool lit[kSize];
+  Color direct[kSize];
+  for (int i = 0; i < count; ++i) {
+    lit[i] = false;
+    direct[i] = Color(0.0f);
+    if (!found[i]) continue;
+    shadingPoint(rays[i], hits[i], points[i]);
+    lit[i] = litDirectly(points[i]);
+  }
+  // Direct light one light at a time, its shadow rays as one packet; each point adds the
+  // lights up in the order directLighting() does. Rays left out of a packet get tMax below tMin.
+  for (const PointLightDesc& light : scene_.lights()) {
+    LightPath paths[kSize];
+    Ray shadows[kSize];
+    bool towards[kSize];
+    for (int i = 0; i < count; ++i) {
+      towards[i] = lit[i] && towardsLight(points[i].surface, light, paths[i], shadows[i]);
+      if (!towards[i]) shadows[i].tMax = -1.0f;
+      counters.shadow += towards[i] ? 1 : 0;
+    }
+    bool blocked[kSize];
+    scene_.occluded8(shadows, count, blocked);
+    for (int i = 0; i < count; ++i) {
+      if (towards[i] && !blocked[i]) {
+        direct[i] += lightReflected(points[i], light, paths[i], -rays[i].direction);
+      }
+    }
+  }
+
+  // The first bounces: each pixel's reflected ray, then its refracted one (the order
+  // shade() adds them in), k for the k-th bounce of a pixel.
+  struct Bounce {
+    Ray ray;
+    Color scale, contribution;
+  };
+  Bounce bounce[2][kSize];
+  int bounceCount[kSize];
+  for (int i = 0; i < count; ++i) {
+    bounceCount[i] = 0;
+    if (!found[i]) {
+      results[i] = escaped(rays[i]);
+      continue;
+    }
+    results[i] = surfaceRadiance(points[i], direct[i], {});
+    forEachBounce(rays[i], hits[i], points[i], {}, 0, Color(1.0f), {}, counters,
+                  [&](const Ray& onward, const Color& scale, const Color& contribution,
+                      const RayDifferential&) {
+                    bounce[bounceCount[i]++][i] = {onward, scale, contribution};
+                  });
+  }
+  // Each pixel's first bounce as one packet, then its second: a pixel still adds its reflection
+  // before its refraction.
+  for (int k = 0; k < 2; ++k) {
+    Ray onward[kSize];
+    bool any = false;
+    for (int i = 0; i < count; ++i) {
+      onward[i] = bounce[k][i].ray;
+      if (bounceCount[i] <= k) onward[i].tMax = -1.0f;  // left out of the packet
+      any |= bounceCount[i] > k;
+    }
+    if (!any) break;
+    HitRecord onwardHits[kSize];
+    bool onwardFound[kSize];
+    scene_.intersect8(onward, count, onwardHits, onwardFound);
+    for (int i = 0; i < count; ++i) {
+      if (bounceCount[i] <= k) continue;
+      const Bounce& b = bounce[k][i];
+      const Color arriving = onwardFound[i]
+                                 ? shade(b.ray, onwardHits[i], 1, b.contribution, counters, {})
+                                 : escaped(b.ray);
+      results[i] += b.scale * arriving;
+    }
+  }
 }
 
 }  // namespace prism

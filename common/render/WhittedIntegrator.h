@@ -25,9 +25,11 @@ class WhittedIntegrator {
   Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
                  const RayDifferential& differential = {}) const;
   // The same for up to Scene::kPacketSize camera rays at once (depth 0, weight 1, no
-  // differential): their first hits found as one packet (Scene::intersect8), everything after
-  // ray by ray. Each result is bit-identical to radiance() of its ray. Only for integrators
-  // that use no differentials.
+  // differential): their first hits found as one packet (Scene::intersect8), the shadow rays of
+  // those hits as one packet per light (Scene::occluded8), their reflection and refraction rays
+  // as packets (every pixel's first bounce, then its second); the shading, and everything past
+  // the first bounce, ray by ray. Each result is bit-identical to radiance() of its ray, and
+  // counts the same rays. Only for integrators that use no differentials.
   void radiance8(const Ray* rays, int count, Color* results, RayCounters& counters) const;
   // Whether radiance() uses a differential: only a caustic estimate that averages over the
   // pixel's footprint does (photon gathers; not the caustic map), so otherwise the tracing loop
@@ -42,8 +44,46 @@ class WhittedIntegrator {
   // Radiance leaving the ray's hit towards its origin: radiance() once the hit is found.
   Color shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
               RayCounters& counters, const RayDifferential& differential) const;
-  Color directLighting(const SurfaceHit& s, const MaterialDesc& m, const Color& albedo,
-                       const Vec3& toViewer, RayCounters& counters) const;
+  // A surface point as shading reads it.
+  struct ShadingPoint {
+    SurfaceHit surface;
+    const MaterialDesc* material = nullptr;
+    Color albedo{0.0f};
+  };
+  // Direct light from every point light, each shadow ray traced alone.
+  Color directLighting(const ShadingPoint& p, const Vec3& toViewer, RayCounters& counters) const;
+  // Fills p in place (see Scene::surface).
+  void shadingPoint(const Ray& ray, const HitRecord& hit, ShadingPoint& p) const;
+  // Whether direct light (ambient, lights) is added and the surface reflects any of it.
+  bool litDirectly(const ShadingPoint& p) const;
+
+  // The path from a surface point to a point light: what the light's contribution needs once
+  // its shadow ray is found unblocked.
+  struct LightPath {
+    Vec3 direction{0.0f};
+    float distance = 0.0f;
+    float cosTheta = 0.0f;
+  };
+  // False when the light cannot reach the point (behind the surface, or at it); otherwise the
+  // path and its shadow ray.
+  static bool towardsLight(const SurfaceHit& s, const PointLightDesc& light, LightPath& path,
+                           Ray& shadow);
+  // Radiance reflected towards the viewer from an unblocked light path.
+  static Color lightReflected(const ShadingPoint& p, const PointLightDesc& light,
+                              const LightPath& path, const Vec3& toViewer);
+
+  // Everything shade() adds before it follows the surface's reflection and refraction:
+  // ambient, direct light (directLight: its sum over the lights) and caustics.
+  Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
+                        const PixelFootprint& footprint) const;
+
+  // Calls send(ray, weight, contribution, onward) for the reflected and then the refracted ray
+  // the hit sends on, where there is one: weight scales the radiance it brings back,
+  // contribution is the path weight it carries, onward its differential.
+  template <class Send>
+  void forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
+                     const PixelFootprint& footprint, int depth, const Color& weight,
+                     const RayDifferential& differential, RayCounters& counters, Send&& send) const;
 
   const Scene& scene_;
   LightTerms terms_;

@@ -725,8 +725,7 @@ void Scene::setPacketLanes(int lanes) {
   packetLanes_ = lanes;
 }
 
-SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
-  SurfaceHit s;
+void Scene::surface(const Ray& ray, const HitRecord& hit, SurfaceHit& s) const {
   // Each kind puts the point back on its surface with a bound on the rounding per axis
   // (math/RayOffset.h): rays leaving it start just outside that bound, however far the incoming
   // ray travelled.
@@ -784,7 +783,6 @@ SurfaceHit Scene::surface(const Ray& ray, const HitRecord& hit) const {
   s.geometricNormal = geometric;
   s.shadingNormal = shading;
   s.leavingDistance = leavingDistance(s.position, positionError, geometric);
-  return s;
 }
 
 }  // namespace prism

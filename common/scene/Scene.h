@@ -86,7 +86,14 @@ class Scene {
   int packetLanes() const { return packetLanes_; }
   void setPacketLanes(int lanes);
   // Position, oriented normals and material of a hit found by intersect().
-  SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+  SurfaceHit surface(const Ray& ray, const HitRecord& hit) const {
+    SurfaceHit s;
+    surface(ray, hit, s);
+    return s;
+  }
+  // The same written into s, for callers that keep it inside a larger record: a returned
+  // SurfaceHit copied there would be read back before its stores retire.
+  void surface(const Ray& ray, const HitRecord& hit, SurfaceHit& s) const;
 
   Color escapedRadiance(const Vec3& direction) const {
     return environment_ ? environment_->lookup(direction) : background_;

@@ -29,10 +29,11 @@ TileResult renderTile(const TileRenderer& renderer, const TileRect& rect) {
   return renderer.render(0, rect);
 }
 
-// Camera rays traced as packets of eight (4 × 2 pixel blocks) give every pixel the value tracing
-// them one by one gives, bit for bit: every scene in scenes/ (caustic maps included) and the SPD
-// files in tests/data, whole frames and a tile whose width and height are not multiples of the
-// block, one sample per pixel and several.
+// Camera rays traced as packets of eight (4 × 2 pixel blocks), with their shadow rays (a packet
+// per light) and first reflection and refraction rays as packets, give every pixel the value and
+// the ray counts tracing them one by one gives, bit for bit: every scene in scenes/ (caustic maps
+// included) and the SPD files in tests/data, whole frames and a tile whose width and height are not
+// multiples of the block, one sample per pixel and several.
 TEST(TileRenderer, CameraRayPacketsGiveTheSameImageAsSingleRays) {
   const std::string root = PRISM_SOURCE_DIR;
   const char* scenes[] = {

@@ -615,7 +615,9 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
     }
     EXPECT_GT(hits, 10000) << name;
     EXPECT_GT(blockedCount, 10000) << name;
-    if (name == "spheres over a plane") EXPECT_GT(sphereHits, 5000) << name;
+    if (name == "spheres over a plane") {
+      EXPECT_GT(sphereHits, 5000) << name;
+    }
   }
 }
 
