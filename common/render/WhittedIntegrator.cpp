@@ -154,7 +154,25 @@ Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, 
 
 void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
                                   RayCounters& counters) const {
+  Color weights[Scene::kPacketSize];
+  for (int i = 0; i < count; ++i) weights[i] = Color(1.0f);
+  radiancePacket(rays, count, (1u << count) - 1u, 0, weights, results, counters);
+}
+
+void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live, int depth,
+                                       const Color* weights, Color* results,
+                                       RayCounters& counters) const {
   constexpr int kSize = Scene::kPacketSize;
+  // Bounces that spread out (off curved mirrors) or leave few rays cost a packet more than they
+  // share: those rays go on alone.
+  if (depth > 0 &&
+      (__builtin_popcount(live) < kMinPacketRays || !Scene::coherentDirections(rays, live))) {
+    for (uint32_t m = live; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      results[i] = radiance(rays[i], depth, weights[i], counters);
+    }
+    return;
+  }
   HitRecord hits[kSize];
   bool found[kSize];
   scene_.intersect8(rays, count, hits, found);
@@ -189,48 +207,40 @@ void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
     }
   }
 
-  // The first bounces: each pixel's reflected ray, then its refracted one (the order
-  // shade() adds them in), k for the k-th bounce of a pixel.
-  struct Bounce {
-    Ray ray;
-    Color scale, contribution;
-  };
-  Bounce bounce[2][kSize];
-  int bounceCount[kSize];
-  for (int i = 0; i < count; ++i) {
-    bounceCount[i] = 0;
+  // The bounces: each ray's reflected ray, then its refracted one (the order shade() adds them
+  // in), k for the k-th bounce of a ray.
+  Ray onward[2][kSize];
+  Color scale[2][kSize], contribution[2][kSize];
+  uint32_t bouncing[2] = {0, 0};
+  for (uint32_t m = live; m != 0; m &= m - 1) {
+    const int i = __builtin_ctz(m);
     if (!found[i]) {
       results[i] = escaped(rays[i]);
       continue;
     }
     results[i] = surfaceRadiance(points[i], direct[i], {});
-    forEachBounce(rays[i], hits[i], points[i], {}, 0, Color(1.0f), {}, counters,
-                  [&](const Ray& onward, const Color& scale, const Color& contribution,
+    int k = 0;
+    forEachBounce(rays[i], hits[i], points[i], {}, depth, weights[i], {}, counters,
+                  [&](const Ray& ray, const Color& rayScale, const Color& rayContribution,
                       const RayDifferential&) {
-                    bounce[bounceCount[i]++][i] = {onward, scale, contribution};
+                    onward[k][i] = ray;
+                    scale[k][i] = rayScale;
+                    contribution[k][i] = rayContribution;
+                    bouncing[k] |= 1u << i;
+                    ++k;
                   });
   }
-  // Each pixel's first bounce as one packet, then its second: a pixel still adds its reflection
-  // before its refraction.
-  for (int k = 0; k < 2; ++k) {
-    Ray onward[kSize];
-    bool any = false;
+  // Every ray's first bounce as one packet, then its second: a ray still adds its reflection
+  // before its refraction. Lanes without a bounce are left out (tMax below tMin).
+  for (int k = 0; k < 2 && bouncing[k] != 0; ++k) {
     for (int i = 0; i < count; ++i) {
-      onward[i] = bounce[k][i].ray;
-      if (bounceCount[i] <= k) onward[i].tMax = -1.0f;  // left out of the packet
-      any |= bounceCount[i] > k;
+      if (!(bouncing[k] >> i & 1u)) onward[k][i].tMax = -1.0f;
     }
-    if (!any) break;
-    HitRecord onwardHits[kSize];
-    bool onwardFound[kSize];
-    scene_.intersect8(onward, count, onwardHits, onwardFound);
-    for (int i = 0; i < count; ++i) {
-      if (bounceCount[i] <= k) continue;
-      const Bounce& b = bounce[k][i];
-      const Color arriving = onwardFound[i]
-                                 ? shade(b.ray, onwardHits[i], 1, b.contribution, counters, {})
-                                 : escaped(b.ray);
-      results[i] += b.scale * arriving;
+    Color arriving[kSize];
+    radiancePacket(onward[k], count, bouncing[k], depth + 1, contribution[k], arriving, counters);
+    for (uint32_t m = bouncing[k]; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      results[i] += scale[k][i] * arriving[i];
     }
   }
 }

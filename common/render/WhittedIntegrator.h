@@ -44,6 +44,15 @@ class WhittedIntegrator {
   // Radiance leaving the ray's hit towards its origin: radiance() once the hit is found.
   Color shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
               RayCounters& counters, const RayDifferential& differential) const;
+  // radiance() of the rays in `live` (bit i: rays[i]; the others have tMax below tMin), at
+  // depth `depth` with path weights `weights`: their hits as one packet, their shadow rays as
+  // one packet per light, their reflected and refracted rays as packets again, the shading ray
+  // by ray. Bounce packets of fewer than kMinPacketRays rays, or whose directions spread
+  // (Scene::coherentDirections), go ray by ray.
+  void radiancePacket(const Ray* rays, int count, uint32_t live, int depth, const Color* weights,
+                      Color* results, RayCounters& counters) const;
+  static constexpr int kMinPacketRays = 3;
+
   // A surface point as shading reads it.
   struct ShadingPoint {
     SurfaceHit surface;

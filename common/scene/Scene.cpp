@@ -701,6 +701,22 @@ PRISM_AVX2_KERNEL void Scene::occluded8Wide(const Ray* rays, int count, bool* bl
   occluded8Lanes<simd::Float8>(rays, count, blocked);
 }
 
+bool Scene::coherentDirections(const Ray* rays, uint32_t live) {
+  if (live == 0) return false;
+  const Vec3 first = rays[simd::firstLane(live)].direction;
+  Vec3 low = first, high = first;
+  for (uint32_t m = live & (live - 1); m != 0; m &= m - 1) {
+    const Vec3& d = rays[simd::firstLane(m)].direction;
+    low = glm::min(low, d);
+    high = glm::max(high, d);
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (!(high[a] - low[a] <= RayPacket8::kMaxDirectionSpread)) return false;
+    if (low[a] < 0.0f && high[a] > 0.0f) return false;
+  }
+  return true;
+}
+
 void Scene::intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const {
   if (packetLanes_ == 8) {
     intersect8Wide(rays, count, hits, found);

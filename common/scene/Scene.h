@@ -80,6 +80,10 @@ class Scene {
   static constexpr int kPacketSize = 8;  // rays in one intersect8/occluded8 call, at most
   void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   void occluded8(const Ray* rays, int count, bool* blocked) const;
+  // Whether the rays in `live` (bit i: rays[i]) are close enough in direction for the packet
+  // walk (one direction sign per axis, a small spread); intersect8/occluded8 send other
+  // packets down the single-ray walk one by one.
+  static bool coherentDirections(const Ray* rays, uint32_t live);
   // How many rays the packet walks test in one vector: 8 (AVX2, chosen at run time where the
   // CPU has it) or 4 (SSE2, any x86-64). The answers are the same; tests and benchmarks set it
   // to compare the two. Throws std::invalid_argument for other counts, or 8 without AVX2.
