@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -637,6 +639,28 @@ TEST(SceneTraversal, PacketsWithoutLiveRaysFindNothing) {
     EXPECT_FALSE(found[i]) << i;
     EXPECT_FALSE(blocked[i]) << i;
   }
+}
+
+// The renderer sends a packet of bounces down the packet walk only when its directions agree in
+// sign per axis and spread by at most RayPacket8's limit; rays outside the mask do not count.
+TEST(SceneTraversal, CoherentDirectionsAgreeInSignAndSpreadLittle) {
+  Ray rays[8];
+  for (int i = 0; i < 8; ++i) {
+    rays[i] = {Vec3(0.0f), glm::normalize(Vec3(0.3f + 0.01f * i, -0.5f, 0.8f - 0.01f * i))};
+  }
+  EXPECT_TRUE(Scene::coherentDirections(rays, 0xFFu));
+  EXPECT_FALSE(Scene::coherentDirections(rays, 0u));
+  Ray spread[8];
+  std::copy(rays, rays + 8, spread);
+  spread[5].direction = glm::normalize(Vec3(0.6f, -0.5f, 0.6f));  // 0.2 away in x
+  EXPECT_FALSE(Scene::coherentDirections(spread, 0xFFu));
+  EXPECT_TRUE(Scene::coherentDirections(spread, 0xFFu & ~(1u << 5)));  // left out: coherent
+  Ray signs[8];
+  std::copy(rays, rays + 8, signs);
+  for (Ray& ray : signs) ray.direction = glm::normalize(Vec3(0.01f, -0.5f, 0.8f));
+  signs[2].direction = glm::normalize(Vec3(-0.01f, -0.5f, 0.8f));  // close, but x changes sign
+  EXPECT_FALSE(Scene::coherentDirections(signs, 0xFFu));
+  EXPECT_TRUE(Scene::coherentDirections(signs, 0x3u));
 }
 
 TEST(SceneTraversal, PacketLanesAreFourOrEight) {
