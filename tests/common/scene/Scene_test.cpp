@@ -332,6 +332,23 @@ TEST(SceneCaustics, SettingsArriveUnchanged) {
 
 // The wide SIMD walk against the binary scalar one it was collapsed from.
 
+// `count` separate triangles, each a corner in the box low + [0, extent) and the other two
+// within `size` of it on every axis.
+MeshDesc triangleSoup(Pcg32& rng, int count, const Vec3& low, const Vec3& extent, float size) {
+  MeshDesc soup;
+  for (int t = 0; t < count; ++t) {
+    // One draw per axis, in order: the arguments of a constructor are evaluated in any order.
+    const float x = rng.nextFloat(), y = rng.nextFloat(), z = rng.nextFloat();
+    const Vec3 corner = low + extent * Vec3(x, y, z);
+    for (int k = 0; k < 3; ++k) {
+      const float dx = rng.nextFloat(), dy = rng.nextFloat(), dz = rng.nextFloat();
+      soup.positions.push_back(corner + size * Vec3(dx, dy, dz));
+      soup.indices.push_back(static_cast<uint32_t>(soup.positions.size() - 1));
+    }
+  }
+  return soup;
+}
+
 // A subdivided sphere, a wavy grid and a loose soup of small triangles, plus spheres and a cone
 // sharing leaves with them: meshes with shared edges, thin slivers and mixed leaves. Large: 54 k
 // triangles instead of 8.6 k, enough for the scene to gather and pack them on several threads.
@@ -359,15 +376,8 @@ SceneDescription traversalScene(TriangleTest test, bool large = false) {
   }
   d.meshes.push_back(grid);
   Pcg32 rng(5, 5);
-  MeshDesc soup;
-  for (int t = 0; t < 300; ++t) {
-    const Vec3 c(rng.nextFloat() * 6 - 3, rng.nextFloat() * 4 - 1.5f, rng.nextFloat() * 6 - 3);
-    for (int k = 0; k < 3; ++k) {
-      soup.positions.push_back(c + 0.2f * Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()));
-      soup.indices.push_back(static_cast<uint32_t>(soup.positions.size() - 1));
-    }
-  }
-  d.meshes.push_back(soup);
+  d.meshes.push_back(
+      triangleSoup(rng, 300, Vec3(-3.0f, -1.5f, -3.0f), Vec3(6.0f, 4.0f, 6.0f), 0.2f));
   for (int s = 0; s < 20; ++s) {
     SphereDesc sphere;
     sphere.center = {rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1, rng.nextFloat() * 6 - 3};
@@ -541,15 +551,8 @@ SceneDescription spheresOverAPlane() {
   PlaneDesc floor;
   floor.point = {0.0f, -1.0f, 0.0f};
   d.planes.push_back(floor);
-  MeshDesc soup;
-  for (int t = 0; t < 40; ++t) {
-    const Vec3 c(rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1, rng.nextFloat() * 6 - 3);
-    for (int k = 0; k < 3; ++k) {
-      soup.positions.push_back(c + 0.3f * Vec3(rng.nextFloat(), rng.nextFloat(), rng.nextFloat()));
-      soup.indices.push_back(static_cast<uint32_t>(soup.positions.size() - 1));
-    }
-  }
-  d.meshes.push_back(soup);
+  d.meshes.push_back(
+      triangleSoup(rng, 40, Vec3(-3.0f, -1.0f, -3.0f), Vec3(6.0f, 3.0f, 6.0f), 0.3f));
   return d;
 }
 
