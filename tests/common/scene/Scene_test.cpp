@@ -349,6 +349,18 @@ MeshDesc triangleSoup(Pcg32& rng, int count, const Vec3& low, const Vec3& extent
   return soup;
 }
 
+// `count` spheres centred in the box low + [0, extent), radii in [radius, radius + spread).
+void addRandomSpheres(SceneDescription& d, Pcg32& rng, int count, const Vec3& low,
+                      const Vec3& extent, float radius, float spread) {
+  for (int s = 0; s < count; ++s) {
+    SphereDesc sphere;
+    const float x = rng.nextFloat(), y = rng.nextFloat(), z = rng.nextFloat();
+    sphere.center = low + extent * Vec3(x, y, z);
+    sphere.radius = radius + spread * rng.nextFloat();
+    d.spheres.push_back(sphere);
+  }
+}
+
 // A subdivided sphere, a wavy grid and a loose soup of small triangles, plus spheres and a cone
 // sharing leaves with them: meshes with shared edges, thin slivers and mixed leaves. Large: 54 k
 // triangles instead of 8.6 k, enough for the scene to gather and pack them on several threads.
@@ -378,12 +390,7 @@ SceneDescription traversalScene(TriangleTest test, bool large = false) {
   Pcg32 rng(5, 5);
   d.meshes.push_back(
       triangleSoup(rng, 300, Vec3(-3.0f, -1.5f, -3.0f), Vec3(6.0f, 4.0f, 6.0f), 0.2f));
-  for (int s = 0; s < 20; ++s) {
-    SphereDesc sphere;
-    sphere.center = {rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1, rng.nextFloat() * 6 - 3};
-    sphere.radius = 0.1f + 0.2f * rng.nextFloat();
-    d.spheres.push_back(sphere);
-  }
+  addRandomSpheres(d, rng, 20, Vec3(-3.0f, -1.0f, -3.0f), Vec3(6.0f, 3.0f, 6.0f), 0.1f, 0.2f);
   ConeDesc cone;
   cone.base = {1.5f, -1.5f, 1.5f};
   cone.apex = {1.5f, 0.5f, 1.5f};
@@ -542,12 +549,7 @@ TEST(SceneTraversal, ImagesAreBitIdenticalToTheBinaryWalk) {
 SceneDescription spheresOverAPlane() {
   SceneDescription d;
   Pcg32 rng(9, 2);
-  for (int s = 0; s < 400; ++s) {
-    SphereDesc sphere;
-    sphere.center = {rng.nextFloat() * 6 - 3, rng.nextFloat() * 3 - 1.2f, rng.nextFloat() * 6 - 3};
-    sphere.radius = 0.05f + 0.25f * rng.nextFloat();
-    d.spheres.push_back(sphere);
-  }
+  addRandomSpheres(d, rng, 400, Vec3(-3.0f, -1.2f, -3.0f), Vec3(6.0f, 3.0f, 6.0f), 0.05f, 0.25f);
   PlaneDesc floor;
   floor.point = {0.0f, -1.0f, 0.0f};
   d.planes.push_back(floor);
