@@ -80,9 +80,10 @@ class Scene {
   static constexpr int kPacketSize = 8;  // rays in one intersect8/occluded8 call, at most
   void intersect8(const Ray* rays, int count, HitRecord* hits, bool* found) const;
   void occluded8(const Ray* rays, int count, bool* blocked) const;
-  // Whether the rays in `live` (bit i: rays[i]) are close enough in direction for the packet
-  // walk (one direction sign per axis, a small spread); intersect8/occluded8 send other
-  // packets down the single-ray walk one by one.
+  // Whether the rays in `live` (bit i: rays[i]) pass the packet walk's direction test (one
+  // sign per axis, a spread of at most RayPacket8::kMaxDirectionSpread): a cheap check before
+  // building a packet. intersect8/occluded8 check again (finite origins and reciprocals too)
+  // and send packets that fail down the single-ray walk one by one.
   static bool coherentDirections(const Ray* rays, uint32_t live);
   // How many rays the packet walks test in one vector: 8 (AVX2, chosen at run time where the
   // CPU has it) or 4 (SSE2, any x86-64). The answers are the same; tests and benchmarks set it
