@@ -73,6 +73,24 @@ inline Float8 maxLanes(Float8 a, Float8 b) {
 #endif
 }
 
+// The low and high halves of an eight-lane vector, and back: eight-lane operations on targets
+// without AVX.
+template <class Half, class Whole>
+inline void splitHalves(const Whole& whole, Half& low, Half& high) {
+  static_assert(2 * sizeof(Half) == sizeof(Whole));
+  std::memcpy(&low, &whole, sizeof(Half));
+  std::memcpy(&high, reinterpret_cast<const char*>(&whole) + sizeof(Half), sizeof(Half));
+}
+
+template <class Whole, class Half>
+inline Whole joinHalves(const Half& low, const Half& high) {
+  static_assert(2 * sizeof(Half) == sizeof(Whole));
+  Whole whole;
+  std::memcpy(&whole, &low, sizeof(Half));
+  std::memcpy(reinterpret_cast<char*>(&whole) + sizeof(Half), &high, sizeof(Half));
+  return whole;
+}
+
 // Correctly rounded square roots, as std::sqrt gives them lane by lane.
 inline Float4 sqrtLanes(Float4 a) {
 #if defined(__SSE2__)
@@ -88,13 +106,8 @@ inline Float8 sqrtLanes(Float8 a) {
   return reinterpret_cast<Float8>(_mm256_sqrt_ps(reinterpret_cast<__m256>(a)));
 #else
   Float4 low, high;
-  std::memcpy(&low, &a, sizeof(Float4));
-  std::memcpy(&high, reinterpret_cast<const char*>(&a) + sizeof(Float4), sizeof(Float4));
-  low = sqrtLanes(low);
-  high = sqrtLanes(high);
-  std::memcpy(&a, &low, sizeof(Float4));
-  std::memcpy(reinterpret_cast<char*>(&a) + sizeof(Float4), &high, sizeof(Float4));
-  return a;
+  splitHalves(a, low, high);
+  return joinHalves<Float8>(sqrtLanes(low), sqrtLanes(high));
 #endif
 }
 
@@ -176,8 +189,7 @@ inline uint32_t laneMask(Int8 m) {
   return static_cast<uint32_t>(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
 #else
   Int4 low, high;
-  std::memcpy(&low, &m, sizeof(Int4));
-  std::memcpy(&high, reinterpret_cast<const char*>(&m) + sizeof(Int4), sizeof(Int4));
+  splitHalves(m, low, high);
   return laneMask(low) | (laneMask(high) << 4);
 #endif
 }

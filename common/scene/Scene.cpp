@@ -510,6 +510,14 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
   return hitRays;
 }
 
+bool Scene::blockedByPlane(const Ray& ray) const {
+  float t;
+  for (const Plane& plane : planes_) {
+    if (plane.intersect(ray, ray.tMax, t)) return true;
+  }
+  return false;
+}
+
 bool Scene::onlySpheres(uint32_t first, uint32_t count) const {
   for (uint32_t i = first; i < first + count; ++i) {
     if (PrimitiveRef::kind(leafRefs_[i]) != PrimitiveKind::Sphere) return false;
@@ -581,11 +589,8 @@ __attribute__((noinline)) bool Scene::intersect(const Ray& ray, HitRecord& hit) 
 }
 
 __attribute__((noinline)) bool Scene::occluded(const Ray& ray) const {
+  if (blockedByPlane(ray)) return true;
   float tMax = ray.tMax;
-  float t;
-  for (const Plane& plane : planes_) {
-    if (plane.intersect(ray, tMax, t)) return true;
-  }
   HitRecord ignored;
   return intersectBounded<true>(ray, tMax, ignored);
 }
@@ -650,13 +655,9 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
   if (!planes_.empty()) {
     for (uint32_t m = live; m != 0; m &= m - 1) {
       const int i = simd::firstLane(m);
-      float t;
-      for (const Plane& plane : planes_) {
-        if (plane.intersect(rays[i], rays[i].tMax, t)) {
-          blocked[i] = true;
-          live &= ~(1u << i);
-          break;
-        }
+      if (blockedByPlane(rays[i])) {
+        blocked[i] = true;
+        live &= ~(1u << i);
       }
     }
   }

@@ -169,6 +169,9 @@ class Scene {
   uint32_t intersectLeafRays8(const Ray* rays, const RayPacket8& packet, uint32_t firstPack,
                               uint32_t packCount, uint32_t mask, float* tMax,
                               HitRecord* hits) const;
+  // Whether a plane lies on the ray within (tMin, tMax): the shadow test's planes, which are
+  // outside the BVH.
+  bool blockedByPlane(const Ray& ray) const;
   // Whether the leaf entries [first, first + count) are all spheres.
   bool onlySpheres(uint32_t first, uint32_t count) const;
   // The watertight test's per-ray shear, or nothing computed when another test is chosen.
