@@ -6,6 +6,7 @@
 #include "shading/MaterialEval.h"
 #include "shading/Optics.h"
 #include "shading/SpecularSplit.h"
+#include "util/ScratchArray.h"
 
 namespace prism {
 
@@ -105,7 +106,7 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
   if (maxComponent(reflectContribution) > settings.minContribution) {
     const Vec3 direction = reflectedDirection(s, ray.direction);
     ++counters.secondary;
-    send(Ray{s.rayOrigin(direction), direction}, reflectWeight, reflectContribution,
+    send(s.rayOrigin(direction), direction, reflectWeight, reflectContribution,
          turnKnown ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
                    : RayDifferential{});
   }
@@ -114,7 +115,7 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
     ++counters.secondary;
     const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
-    send(Ray{s.rayOrigin(*refracted), *refracted}, transmitWeight, transmitContribution,
+    send(s.rayOrigin(*refracted), *refracted, transmitWeight, transmitContribution,
          turnKnown ? differential.refracted(footprint, ray.direction, s.shadingNormal, turn,
                                             *refracted, eta)
                    : RayDifferential{});
@@ -144,10 +145,10 @@ Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, 
       differential.footprint(ray.direction, hit.t, p.surface.geometricNormal);
   Color result = surfaceRadiance(p, direct, footprint);
   forEachBounce(ray, hit, p, footprint, depth, weight, differential, counters,
-                [&](const Ray& onward, const Color& scale, const Color& contribution,
-                    const RayDifferential& onwardDifferential) {
-                  result += scale *
-                            radiance(onward, depth + 1, contribution, counters, onwardDifferential);
+                [&](const Vec3& origin, const Vec3& direction, const Color& scale,
+                    const Color& contribution, const RayDifferential& onwardDifferential) {
+                  result += scale * radiance(Ray{origin, direction}, depth + 1, contribution,
+                                             counters, onwardDifferential);
                 });
   return result;
 }
@@ -173,11 +174,11 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     }
     return;
   }
-  HitRecord hits[kSize];
+  ScratchArray<HitRecord, kSize> hits;
   bool found[kSize];
-  scene_.intersect8(rays, count, hits, found);
+  scene_.intersect8(rays, count, hits.data(), found);
 
-  ShadingPoint points[kSize];
+  ScratchArray<ShadingPoint, kSize> points;
   bool lit[kSize];
   Color direct[kSize];
   for (int i = 0; i < count; ++i) {
@@ -190,7 +191,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // Direct light one light at a time, its shadow rays as one packet; each point adds the
   // lights up in the order directLighting() does. Rays left out of a packet get tMax below tMin.
   for (const PointLightDesc& light : scene_.lights()) {
-    LightPath paths[kSize];
+    ScratchArray<LightPath, kSize> paths;
     Ray shadows[kSize];
     bool towards[kSize];
     for (int i = 0; i < count; ++i) {
@@ -221,9 +222,15 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     results[i] = surfaceRadiance(points[i], direct[i], {});
     int k = 0;
     forEachBounce(rays[i], hits[i], points[i], {}, depth, weights[i], {}, counters,
-                  [&](const Ray& ray, const Color& rayScale, const Color& rayContribution,
-                      const RayDifferential&) {
-                    onward[k][i] = ray;
+                  [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
+                      const Color& rayContribution, const RayDifferential&) {
+                    // Field by field: a whole Ray built first and copied in was read back
+                    // before its stores had landed (a store-forwarding stall).
+                    Ray& ray = onward[k][i];
+                    ray.origin = origin;
+                    ray.direction = direction;
+                    ray.tMin = 0.0f;
+                    ray.tMax = std::numeric_limits<float>::infinity();
                     scale[k][i] = rayScale;
                     contribution[k][i] = rayContribution;
                     bouncing[k] |= 1u << i;

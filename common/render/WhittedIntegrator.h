@@ -86,8 +86,8 @@ class WhittedIntegrator {
   Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
                         const PixelFootprint& footprint) const;
 
-  // Calls send(ray, weight, contribution, onward) for the reflected and then the refracted ray
-  // the hit sends on, where there is one: weight scales the radiance it brings back,
+  // Calls send(origin, direction, weight, contribution, onward) for the reflected and then the
+  // refracted ray the hit sends on, where there is one: weight scales the radiance it brings back,
   // contribution is the path weight it carries, onward its differential.
   template <class Send>
   void forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,

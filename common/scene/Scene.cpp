@@ -18,6 +18,7 @@
 #include "scene/PrimitiveRef.h"
 #include "util/HugePages.h"
 #include "util/Parallel.h"
+#include "util/ScratchArray.h"
 
 namespace prism {
 namespace {
@@ -672,12 +673,12 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
   }
   alignas(32) float tMax[RayPacket8::kSize];
   std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
-  HitRecord ignored[RayPacket8::kSize];
+  ScratchArray<HitRecord, RayPacket8::kSize> ignored;  // any-hit walks write but never read them
   const uint32_t hitMask = traversePacket<true, V>(
       wideBvh_, packet, live, tMax,
       [&](uint32_t firstPack, uint32_t packCount, uint32_t mask, float* rayTMax) {
         return intersectLeafRays8<true, V>(rays, packet, firstPack, packCount, mask, rayTMax,
-                                           ignored);
+                                           ignored.data());
       });
   for (uint32_t m = hitMask; m != 0; m &= m - 1) blocked[simd::firstLane(m)] = true;
 }
