@@ -74,21 +74,20 @@ inline Float8 maxLanes(Float8 a, Float8 b) {
 }
 
 // The low and high halves of an eight-lane vector, and back: eight-lane operations on targets
-// without AVX.
+// without AVX. Shuffles, not copies through memory: the AVX2 walks (compiled with the build's
+// preprocessor view, so through these fallbacks) otherwise stored two halves and loaded the
+// whole at once, which stalls on store forwarding.
 template <class Half, class Whole>
 inline void splitHalves(const Whole& whole, Half& low, Half& high) {
-  static_assert(2 * sizeof(Half) == sizeof(Whole));
-  std::memcpy(&low, &whole, sizeof(Half));
-  std::memcpy(&high, reinterpret_cast<const char*>(&whole) + sizeof(Half), sizeof(Half));
+  static_assert(2 * sizeof(Half) == sizeof(Whole) && sizeof(Whole) / sizeof(whole[0]) == 8);
+  low = __builtin_shufflevector(whole, whole, 0, 1, 2, 3);
+  high = __builtin_shufflevector(whole, whole, 4, 5, 6, 7);
 }
 
 template <class Whole, class Half>
 inline Whole joinHalves(const Half& low, const Half& high) {
-  static_assert(2 * sizeof(Half) == sizeof(Whole));
-  Whole whole;
-  std::memcpy(&whole, &low, sizeof(Half));
-  std::memcpy(reinterpret_cast<char*>(&whole) + sizeof(Half), &high, sizeof(Half));
-  return whole;
+  static_assert(2 * sizeof(Half) == sizeof(Whole) && sizeof(Half) / sizeof(low[0]) == 4);
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
 // Correctly rounded square roots, as std::sqrt gives them lane by lane.
