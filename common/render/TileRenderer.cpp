@@ -1,9 +1,11 @@
 #include "render/TileRenderer.h"
 
 #include <algorithm>
+#include <new>
 #include <optional>
 
 #include "render/DebugShading.h"
+#include "util/ScratchArray.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -73,15 +75,17 @@ void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, 
     sum[k] = Color(0.0f);
   }
   for (int i = 0; i < sampler_.count(); ++i) {
-    Ray packet[kSize];
+    // Each ray is made in its place: assigned from a returned Ray, it was copied with 16-byte
+    // loads before the camera's 4-byte stores had landed (a store-forwarding stall).
+    ScratchArray<Ray, kSize> packet;
     for (int k = 0; k < count; ++k) {
       const Vec2 offset = sampler_.offset(i, *rng[k]);
-      packet[k] = camera_.generateRay(static_cast<float>(x + k % columns) + offset.x,
-                                      static_cast<float>(y + k / columns) + offset.y);
+      ::new (&packet[k]) Ray(camera_.generateRay(static_cast<float>(x + k % columns) + offset.x,
+                                                 static_cast<float>(y + k / columns) + offset.y));
     }
     rays.primary += static_cast<uint64_t>(count);
     Color samples[kSize];
-    integrator_.radiance8(packet, count, samples, rays);
+    integrator_.radiance8(packet.data(), count, samples, rays);
     for (int k = 0; k < count; ++k) addSample(samples[k], sum[k], rays);
   }
   for (int k = 0; k < count; ++k) {
