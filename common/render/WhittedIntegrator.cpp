@@ -224,13 +224,10 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     forEachBounce(rays[i], hits[i], points[i], {}, depth, weights[i], {}, counters,
                   [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
                       const Color& rayContribution, const RayDifferential&) {
-                    // Field by field: a whole Ray built first and copied in was read back
-                    // before its stores had landed (a store-forwarding stall).
-                    Ray& ray = onward[k][i];
-                    ray.origin = origin;
-                    ray.direction = direction;
-                    ray.tMin = 0.0f;
-                    ray.tMax = std::numeric_limits<float>::infinity();
+                    // Built here from origin and direction: a whole Ray built by the caller
+                    // and copied in was read back before its stores had landed (a
+                    // store-forwarding stall).
+                    onward[k][i] = Ray{origin, direction};
                     scale[k][i] = rayScale;
                     contribution[k][i] = rayContribution;
                     bouncing[k] |= 1u << i;
