@@ -23,6 +23,11 @@ struct RayPacket8 {
   // Largest difference of unit-direction components within a coherent packet: a 4 × 2 pixel
   // block of a camera differs by about 0.01, shadow rays towards one light by little more.
   static constexpr float kMaxDirectionSpread = 0.1f;
+  // Largest spread of the origins along an axis, as a fraction of the packet's shortest ray
+  // (rays of finite length: shadow rays). Shadow rays from a 4 × 2 pixel block on one surface
+  // spread by about a hundredth of their length; a block whose hits lie on different objects far
+  // apart spreads by much more, and the interval test would then admit every box between them.
+  static constexpr float kMaxOriginSpread = 0.02f;
   // Per axis, the bounds of the packet's origins and reciprocal directions.
   float originLow[3], originHigh[3], invLow[3], invHigh[3];
   int nearSide[3];  // as in WideRay: 1 when every direction is negative on that axis
@@ -64,6 +69,9 @@ struct RayPacket8 {
     }
     coherent = live != 0;
     tMin = lowest(load<Float4>(&rayTMin[0]), load<Float4>(&rayTMin[4]));
+    // Infinite for rays without an end (camera rays, bounces): no limit on their origins.
+    const float originLimit =
+        kMaxOriginSpread * lowest(load<Float4>(&rayTMax[0]), load<Float4>(&rayTMax[4]));
     for (int a = 0; a < 3; ++a) {
       const Float4 d0 = load<Float4>(&rayDirection[a][0]), d1 = load<Float4>(&rayDirection[a][4]);
       // The same correctly rounded division as WideRay's, four lanes at a time.
@@ -84,6 +92,8 @@ struct RayPacket8 {
       // Spread-out directions make the interval test pass nearly everywhere: such packets
       // would walk most of the tree, so they take the single-ray walk instead.
       if (highest(d0, d1) - lowest(d0, d1) > kMaxDirectionSpread) coherent = false;
+      // So do packets whose origins lie far apart for their length (see kMaxOriginSpread).
+      if (originHigh[a] - originLow[a] > originLimit) coherent = false;
       nearSide[a] = negative != 0 ? 1 : 0;
     }
   }
