@@ -42,36 +42,92 @@ void cellCone(const Cell& c, glm::dvec3& centre, double& radius) {
 ProjectionMap::ProjectionMap(const Vec3& light, const std::vector<CasterBounds>& casters, int rows)
     : rows_(std::max(rows, 1)), columns_(2 * std::max(rows, 1)) {
   const glm::dvec3 origin(light);
-  for (int row = 0; row < rows_; ++row) {
-    for (int column = 0; column < columns_; ++column) {
-      const Cell cell{1.0 - 2.0 * row / rows_, 1.0 - 2.0 * (row + 1) / rows_,
-                      2.0 * kPiD * column / columns_, 2.0 * kPiD * (column + 1) / columns_};
-      glm::dvec3 centre;
-      double cellRadius;
-      cellCone(cell, centre, cellRadius);
-      bool marked = false;
-      for (const CasterBounds& caster : casters) {
-        if (caster.plane) {
-          // The plane is reachable along directions pointing from the light towards it.
-          const double side =
-              static_cast<double>(caster.offset) - glm::dot(glm::dvec3(caster.normal), origin);
-          if (side == 0.0) continue;  // the light lies on the plane
-          const glm::dvec3 towards = glm::dvec3(caster.normal) * (side > 0.0 ? 1.0 : -1.0);
-          marked = angleBetween(centre, towards) <= 0.5 * kPiD + cellRadius;
-        } else {
-          const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
-          const double distance = glm::length(toCentre);
-          if (distance <= caster.radius) {
-            marked = true;  // the light is inside the bounds: every direction may hit
-          } else {
-            const double angularRadius = std::asin(caster.radius / distance);
-            marked = angleBetween(centre, toCentre / distance) <= angularRadius + cellRadius;
-          }
-        }
-        if (marked) break;
-      }
-      if (marked) covered_.push_back(static_cast<uint32_t>(row * columns_ + column));
+  const size_t cells = cellCount();
+  std::vector<uint8_t> marked(cells, 0);
+  // Each cell's cone, computed when a caster first needs it (nine acos each).
+  std::vector<glm::dvec3> centres(cells);
+  std::vector<double> radii(cells, -1.0);
+  const auto cellAt = [&](int row, int column) {
+    return Cell{1.0 - 2.0 * row / rows_, 1.0 - 2.0 * (row + 1) / rows_,
+                2.0 * kPiD * column / columns_, 2.0 * kPiD * (column + 1) / columns_};
+  };
+  // Marks the cell if the caster may be seen from it: the same test, cell by cell, whichever
+  // cells a caster visits, so the marked set does not depend on the visiting.
+  const auto test = [&](int row, int column, const CasterBounds& caster) {
+    const size_t k =
+        static_cast<size_t>(row) * static_cast<size_t>(columns_) + static_cast<size_t>(column);
+    if (marked[k]) return;
+    if (radii[k] < 0.0) cellCone(cellAt(row, column), centres[k], radii[k]);
+    bool reaches;
+    if (caster.plane) {
+      // The plane is reachable along directions pointing from the light towards it.
+      const double side =
+          static_cast<double>(caster.offset) - glm::dot(glm::dvec3(caster.normal), origin);
+      if (side == 0.0) return;  // the light lies on the plane
+      const glm::dvec3 towards = glm::dvec3(caster.normal) * (side > 0.0 ? 1.0 : -1.0);
+      reaches = angleBetween(centres[k], towards) <= 0.5 * kPiD + radii[k];
+    } else {
+      const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
+      const double distance = glm::length(toCentre);
+      reaches = distance <= caster.radius ||  // the light is inside: every direction may hit
+                angleBetween(centres[k], toCentre / distance) <=
+                    std::asin(caster.radius / distance) + radii[k];
     }
+    if (reaches) marked[k] = 1;
+  };
+  // The cones' largest radius: every cell of a row has the same shape, so the first column's
+  // gives the row's, and 1 % more covers its rounding. It bounds where a caster can be seen.
+  double widest = 0.0;
+  for (int row = 0; row < rows_; ++row) {
+    glm::dvec3 centre;
+    double radius;
+    cellCone(cellAt(row, 0), centre, radius);
+    widest = std::max(widest, radius);
+  }
+  widest *= 1.01;
+
+  // Testing every cell against every caster cost cells × casters (131 k × 7 382 bounding spheres
+  // of balls-s4: a minute a light). A sphere is now tested only from the cells whose centres may
+  // lie within its angular radius plus the widest cone, found by latitude and longitude with a
+  // row and a column to spare; planes, and lights inside a caster, from every cell.
+  for (const CasterBounds& caster : casters) {
+    const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
+    const double distance = glm::length(toCentre);
+    if (caster.plane || !(distance > caster.radius)) {
+      for (int row = 0; row < rows_; ++row) {
+        for (int column = 0; column < columns_; ++column) test(row, column, caster);
+      }
+      continue;
+    }
+    const glm::dvec3 axis = toCentre / distance;
+    const double reach = std::asin(caster.radius / distance) + widest + 1e-9;
+    const double polar = std::acos(std::clamp(axis.z, -1.0, 1.0));
+    // Rows: z = cos θ of the centres within reach of the axis' polar angle.
+    const double zHigh = std::cos(std::max(0.0, polar - reach));
+    const double zLow = std::cos(std::min(kPiD, polar + reach));
+    const int firstRow = std::max(0, static_cast<int>(std::floor((1.0 - zHigh) * 0.5 * rows_)) - 1);
+    const int lastRow =
+        std::min(rows_ - 1, static_cast<int>(std::floor((1.0 - zLow) * 0.5 * rows_)) + 1);
+    // Columns: a cap clear of both poles spans asin(sin(reach) / sin θ) either side in φ.
+    int firstColumn = 0, columnCount = columns_;
+    if (polar - reach > 0.0 && polar + reach < kPiD) {
+      const double spread = std::asin(std::min(1.0, std::sin(reach) / std::sin(polar)));
+      double azimuth = std::atan2(axis.y, axis.x);
+      if (azimuth < 0.0) azimuth += 2.0 * kPiD;
+      const double perColumn = columns_ / (2.0 * kPiD);
+      firstColumn = static_cast<int>(std::floor((azimuth - spread) * perColumn)) - 1;
+      columnCount = std::min(
+          columns_, static_cast<int>(std::floor((azimuth + spread) * perColumn)) + 2 - firstColumn);
+    }
+    for (int row = firstRow; row <= lastRow; ++row) {
+      for (int i = 0; i < columnCount; ++i) {
+        const int column = ((firstColumn + i) % columns_ + columns_) % columns_;
+        test(row, column, caster);
+      }
+    }
+  }
+  for (size_t k = 0; k < cells; ++k) {
+    if (marked[k]) covered_.push_back(static_cast<uint32_t>(k));
   }
 }
 

@@ -182,6 +182,85 @@ TEST(ProjectionMap, PlaneCasterCoversAboutHalfTheSphere) {
   EXPECT_NEAR(map.coveredSolidAngle(), 2.0 * kPiD + 4.0 * kPiD / kRows, 1e-9);
 }
 
+// The map's marking, cell by cell against every caster (the definition, at cells × casters
+// cost), for checking that the map's faster search marks exactly the same cells.
+std::set<std::pair<int, int>> everyCellAgainstEveryCaster(
+    const Vec3& light, const std::vector<CasterBounds>& casters) {
+  const auto direction = [](double z, double phi) {
+    const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
+    return glm::dvec3(s * std::cos(phi), s * std::sin(phi), z);
+  };
+  const auto angle = [](const glm::dvec3& a, const glm::dvec3& b) {
+    return std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
+  };
+  const glm::dvec3 origin(light);
+  std::set<std::pair<int, int>> cells;
+  for (int row = 0; row < kRows; ++row) {
+    for (int column = 0; column < kColumns; ++column) {
+      const double z0 = 1.0 - 2.0 * row / kRows, z1 = 1.0 - 2.0 * (row + 1) / kRows;
+      const double phi0 = 2.0 * kPiD * column / kColumns;
+      const double phi1 = 2.0 * kPiD * (column + 1) / kColumns;
+      const double zm = 0.5 * (z0 + z1), pm = 0.5 * (phi0 + phi1);
+      const glm::dvec3 centre = direction(zm, pm);
+      double radius = 0.0;
+      for (double z : {z0, zm, z1}) {
+        for (double phi : {phi0, pm, phi1}) {
+          radius = std::max(radius, angle(centre, direction(z, phi)));
+        }
+      }
+      radius *= 1.05;
+      for (const CasterBounds& c : casters) {
+        bool reaches = false;
+        if (c.plane) {
+          const double side = double(c.offset) - glm::dot(glm::dvec3(c.normal), origin);
+          reaches = side != 0.0 && angle(centre, glm::dvec3(c.normal) * (side > 0 ? 1.0 : -1.0)) <=
+                                       0.5 * kPiD + radius;
+        } else {
+          const glm::dvec3 toCentre = glm::dvec3(c.center) - origin;
+          const double distance = glm::length(toCentre);
+          reaches = distance <= c.radius ||
+                    angle(centre, toCentre / distance) <= std::asin(c.radius / distance) + radius;
+        }
+        if (reaches) {
+          cells.insert({row, column});
+          break;
+        }
+      }
+    }
+  }
+  return cells;
+}
+
+// The map finds each sphere's cells from its latitude and longitude instead of testing every
+// cell: the same cells come out, for spheres small and large, near the poles, across φ = 0 and
+// close to the light, with and without a plane among them.
+TEST(ProjectionMap, MarksExactlyTheCellsThatTestingEveryCellMarks) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const Vec3 light(0.3f, -0.2f, 1.0f);
+  std::vector<CasterBounds> casters;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 axis = directionInCone(Vec3(0, 0, 1), kPiD, rng);  // anywhere on the sphere
+    const float distance = 1.5f + 30.0f * u(rng) * u(rng);
+    casters.push_back(sphereBounds(light + distance * axis, distance * (0.001f + 0.4f * u(rng))));
+  }
+  casters.push_back(sphereBounds(light + Vec3(0.0f, 0.0f, 7.0f), 0.05f));   // at a pole
+  casters.push_back(sphereBounds(light + Vec3(0.0f, 0.0f, -3.0f), 0.5f));   // the other pole
+  casters.push_back(sphereBounds(light + Vec3(5.0f, -0.01f, 0.0f), 0.2f));  // across φ = 0
+  const auto sparse = std::vector<CasterBounds>(casters.begin(), casters.begin() + 12);
+  for (const auto& set : {sparse, casters}) {
+    const ProjectionMap map(light, set);
+    const auto cells = markedCells(map);
+    ASSERT_EQ(cells.size(), map.coveredCellCount());
+    EXPECT_EQ(cells, everyCellAgainstEveryCaster(light, set));
+    EXPECT_LT(map.coveredCellCount(), map.cellCount());
+  }
+  std::vector<CasterBounds> withPlane(sparse.begin(), sparse.begin() + 4);
+  withPlane.push_back(planeBounds(glm::normalize(Vec3(0.2f, 1.0f, 0.1f)), -3.0f));
+  const ProjectionMap map(light, withPlane);
+  EXPECT_EQ(markedCells(map), everyCellAgainstEveryCaster(light, withPlane));
+}
+
 TEST(ProjectionMap, NoCastersMarksNothing) {
   const ProjectionMap map(Vec3(0.0f), {});
   EXPECT_TRUE(map.empty());
