@@ -51,29 +51,14 @@ ProjectionMap::ProjectionMap(const Vec3& light, const std::vector<CasterBounds>&
     return Cell{1.0 - 2.0 * row / rows_, 1.0 - 2.0 * (row + 1) / rows_,
                 2.0 * kPiD * column / columns_, 2.0 * kPiD * (column + 1) / columns_};
   };
-  // Marks the cell if the caster may be seen from it: the same test, cell by cell, whichever
-  // cells a caster visits, so the marked set does not depend on the visiting.
-  const auto test = [&](int row, int column, const CasterBounds& caster) {
+  // Marks the cell if reaches(centre, cone radius) holds for it: each caster's test, cell by
+  // cell, whichever cells it visits, so the marked set does not depend on the visiting.
+  const auto markIf = [&](int row, int column, auto&& reaches) {
     const size_t k =
         static_cast<size_t>(row) * static_cast<size_t>(columns_) + static_cast<size_t>(column);
     if (marked[k]) return;
     if (radii[k] < 0.0) cellCone(cellAt(row, column), centres[k], radii[k]);
-    bool reaches;
-    if (caster.plane) {
-      // The plane is reachable along directions pointing from the light towards it.
-      const double side =
-          static_cast<double>(caster.offset) - glm::dot(glm::dvec3(caster.normal), origin);
-      if (side == 0.0) return;  // the light lies on the plane
-      const glm::dvec3 towards = glm::dvec3(caster.normal) * (side > 0.0 ? 1.0 : -1.0);
-      reaches = angleBetween(centres[k], towards) <= 0.5 * kPiD + radii[k];
-    } else {
-      const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
-      const double distance = glm::length(toCentre);
-      reaches = distance <= caster.radius ||  // the light is inside: every direction may hit
-                angleBetween(centres[k], toCentre / distance) <=
-                    std::asin(caster.radius / distance) + radii[k];
-    }
-    if (reaches) marked[k] = 1;
+    if (reaches(centres[k], radii[k])) marked[k] = 1;
   };
   // The cones' largest radius: every cell of a row has the same shape, so the first column's
   // gives the row's, and 1 % more covers its rounding. It bounds where a caster can be seen.
@@ -89,18 +74,35 @@ ProjectionMap::ProjectionMap(const Vec3& light, const std::vector<CasterBounds>&
   // Testing every cell against every caster cost cells × casters (131 k × 7 382 bounding spheres
   // of balls-s4: a minute a light). A sphere is now tested only from the cells whose centres may
   // lie within its angular radius plus the widest cone, found by latitude and longitude with a
-  // row and a column to spare; planes, and lights inside a caster, from every cell.
+  // row and a column to spare; a plane still from every cell.
   for (const CasterBounds& caster : casters) {
-    const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
-    const double distance = glm::length(toCentre);
-    if (caster.plane || !(distance > caster.radius)) {
+    if (caster.plane) {
+      // The plane is reachable along directions pointing from the light towards it.
+      const double side =
+          static_cast<double>(caster.offset) - glm::dot(glm::dvec3(caster.normal), origin);
+      if (side == 0.0) continue;  // the light lies on the plane
+      const glm::dvec3 towards = glm::dvec3(caster.normal) * (side > 0.0 ? 1.0 : -1.0);
+      const auto facing = [&](const glm::dvec3& centre, double radius) {
+        return angleBetween(centre, towards) <= 0.5 * kPiD + radius;
+      };
       for (int row = 0; row < rows_; ++row) {
-        for (int column = 0; column < columns_; ++column) test(row, column, caster);
+        for (int column = 0; column < columns_; ++column) markIf(row, column, facing);
       }
       continue;
     }
+    const glm::dvec3 toCentre = glm::dvec3(caster.center) - origin;
+    const double distance = glm::length(toCentre);
+    if (distance <= caster.radius) {  // the light is inside the bounds: every direction may hit
+      std::fill(marked.begin(), marked.end(), uint8_t{1});
+      break;
+    }
+    if (!(distance > caster.radius)) continue;  // NaN bounds: nothing to aim at
     const glm::dvec3 axis = toCentre / distance;
-    const double reach = std::asin(caster.radius / distance) + widest + 1e-9;
+    const double angularRadius = std::asin(caster.radius / distance);
+    const auto seen = [&](const glm::dvec3& centre, double radius) {
+      return angleBetween(centre, axis) <= angularRadius + radius;
+    };
+    const double reach = angularRadius + widest + 1e-9;
     const double polar = std::acos(std::clamp(axis.z, -1.0, 1.0));
     // Rows: z = cos θ of the centres within reach of the axis' polar angle.
     const double zHigh = std::cos(std::max(0.0, polar - reach));
@@ -121,8 +123,7 @@ ProjectionMap::ProjectionMap(const Vec3& light, const std::vector<CasterBounds>&
     }
     for (int row = firstRow; row <= lastRow; ++row) {
       for (int i = 0; i < columnCount; ++i) {
-        const int column = ((firstColumn + i) % columns_ + columns_) % columns_;
-        test(row, column, caster);
+        markIf(row, ((firstColumn + i) % columns_ + columns_) % columns_, seen);
       }
     }
   }
