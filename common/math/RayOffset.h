@@ -29,6 +29,20 @@ inline float leavingDistance(const Vec3& p, const Vec3& positionError, const Vec
   return std::max(reach, std::numeric_limits<float>::min());
 }
 
+// The part of a hit's position error that comes from its distance t along the ray that found it,
+// per axis. Two surfaces whose computed distances lie within the rounding of t cannot be ordered:
+// the one taken as nearer may lie that far behind the other, and its point (put back on its own
+// surface, so its own error is small) then lies inside the other surface. Where overlapping
+// spheres meet (SPD's shells) rays leaving such points hit the other sphere at once: black
+// pixels. Measured on shells-s5 at 512x512 (eye 70 units away): 66 shadow rays blocked within
+// 10⁻³ of their origin with no allowance, 1 with γ(4)·t, none with γ(8)·t; on a row of spheres
+// (LeavingSurfaces.OverlappingSpheres...) up to 1430 of 3400 lit points dark, 2 of 12 cases dark
+// with γ(4), none with γ(8). γ(16) keeps a factor of two. It grows with the ray's length, as the
+// ordering's uncertainty does: about 10⁻⁶ of it, below what the incoming ray can resolve.
+inline Vec3 hitDistanceError(float t, const Vec3& direction) {
+  return gammaBound(16) * t * glm::abs(direction);
+}
+
 // The origin for a ray leaving p in direction w: `distance` along n, to the side w goes.
 inline Vec3 leavingOrigin(const Vec3& p, const Vec3& n, float distance, const Vec3& w) {
   return p + (glm::dot(w, n) < 0.0f ? -distance : distance) * n;

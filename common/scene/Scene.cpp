@@ -745,8 +745,8 @@ void Scene::setPacketLanes(int lanes) {
 
 void Scene::surface(const Ray& ray, const HitRecord& hit, SurfaceHit& s) const {
   // Each kind puts the point back on its surface with a bound on the rounding per axis
-  // (math/RayOffset.h): rays leaving it start just outside that bound, however far the incoming
-  // ray travelled.
+  // (math/RayOffset.h): rays leaving it start just outside that bound, widened by the rounding of
+  // the incoming ray's distance (surfaces nearer each other than that cannot be ordered).
   Vec3 positionError;
   const uint32_t index = PrimitiveRef::index(hit.primitive);
   Vec3 geometric, shading;
@@ -800,6 +800,7 @@ void Scene::surface(const Ray& ray, const HitRecord& hit, SurfaceHit& s) const {
   if (glm::dot(shading, geometric) < 0.0f) shading = geometric;
   s.geometricNormal = geometric;
   s.shadingNormal = shading;
+  positionError += hitDistanceError(hit.t, ray.direction);
   s.leavingDistance = leavingDistance(s.position, positionError, geometric);
 }
 

@@ -26,6 +26,17 @@ Scenes
                cylinders each (s3 = 14 groups, 420 + 420; s7 = 140 groups,
                4200 + 4200).
 
+  shells SIZE  a sea shell after Pickover (IEEE CG&A, November 1989), as SPD's shells
+               database builds it: 180 * 2^SIZE + 1 spheres along the logarithmic
+               spiral r = e^(0.15 a), a = 18 pi i / steps, centre (r sin a, r cos a,
+               -2 r), radius r, one light, no ground.  Consecutive spheres
+               overlap almost entirely: SPD calls it a realistic yet pathological
+               database (many overlapping, many tiny primitives).  No real shells
+               file was available; the numbers follow the generator's published
+               description (its header comment and constants), the material's
+               highlight exponent converted from its 10-degree half angle as the
+               balls file shows (exponent = ln 0.5 / ln cos 10 deg).
+
 Only one size of each real SPD file was available to compare with, so what
 varies with size beyond the recursion is inferred: the balls and tetra
 cameras, lights and ground do not depend on size (the objects keep their
@@ -38,7 +49,7 @@ margin, which reproduces rings-s3 exactly.
 NFF written: 'b' background, 'v' viewpoint block, 'l' lights, 'f' materials,
 's' spheres, 'c' cylinders, 'p' polygons (see the SPD NFF.TXT description).
 
-usage: spd_generators.py {balls,tetra,rings} SIZE > scene.nff
+usage: spd_generators.py {balls,tetra,rings,shells} SIZE > scene.nff
 """
 import argparse
 import math
@@ -272,7 +283,26 @@ def gen_rings(size, w):
     return "%d spheres + %d cylinders + 1 polygon" % (count, count)
 
 
-GENERATORS = {"balls": gen_balls, "tetra": gen_tetra, "rings": gen_rings}
+# ------------------------------------------------------------------ shells
+
+def gen_shells(size, w):
+    """Pickover's shell as SPD's 'shells' lays it out: overlapping spheres on a spiral."""
+    w.background(BACKGROUND)
+    w.viewpoint((-6.0, -60.0, 35.0), (0.0, 8.0, -15.0), (0.0, 0.0, 1.0), 45, 0.5)
+    w.light((-100.0, -100.0, 100.0))
+    half_angle = math.radians(10.0)
+    w.material((1.0, 0.8, 0.4), 0.8, 0.2, math.log(0.5) / math.log(math.cos(half_angle)), 0, 1)
+    steps = 180 * 2 ** size
+    count = 0
+    for i in range(-(steps * 2 // 3), steps // 3 + 1):
+        angle = 18.0 * math.pi * i / steps
+        r = math.exp(0.15 * angle)
+        w.sphere((r * math.sin(angle), r * math.cos(angle), -2.0 * r), r)
+        count += 1
+    return "%d spheres" % count
+
+
+GENERATORS = {"balls": gen_balls, "tetra": gen_tetra, "rings": gen_rings, "shells": gen_shells}
 
 
 def main(argv=None):

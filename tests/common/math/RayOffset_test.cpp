@@ -303,6 +303,53 @@ TEST(LeavingSurfaces, ALightSetIntoASurfaceIsNotShadowedByIt) {
   }
 }
 
+TEST(LeavingSurfaces, OverlappingSpheresDoNotShadowEachOtherWhereTheyMeet) {
+  // A row of 100 spheres of radius s, each 0.01 s along from the last (SPD's shells is a spiral of
+  // such spheres): where two meet their surfaces cross at a shallow angle, and which of them an
+  // eye ray meets first is decided within the rounding of its distance. The point taken, on
+  // the one that won, may then lie a rounding inside the other, and a ray leaving it hits that
+  // sphere at once. Lit from far above, every point facing the light must be lit.
+  for (const float scale : kScales) {
+    const Vec3 first = scale * Vec3(10.0f, -3.0f, 7.0f);
+    SceneDescription d;
+    d.materials.push_back(whiteDiffuse());
+    for (int i = 0; i < 100; ++i) {
+      d.spheres.push_back({first + Vec3(0.01f * scale * float(i), 0.0f, 0.0f), scale, 0, {}});
+    }
+    const Vec3 middle = first + Vec3(0.5f * scale, 0.0f, 0.0f);
+    PointLightDesc light;
+    light.position = middle + 1e3f * scale * glm::normalize(Vec3(0.1f, -0.2f, 1.0f));
+    d.lights.push_back(light);
+    const Scene scene(d);
+    const WhittedIntegrator integrator(scene);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> along(0.0f, 1.0f), across(-0.6f, 0.6f);
+    for (const float distance : {70.0f, 1e3f, 1e4f}) {
+      const Vec3 eye = middle + distance * scale * glm::normalize(Vec3(0.2f, -1.0f, 1.0f));
+      int facing = 0, dark = 0;
+      for (int i = 0; i < 4000; ++i) {
+        const Vec3 target = first + scale * Vec3(along(rng), across(rng), 1.0f);
+        const Ray ray{eye, glm::normalize(target - eye)};
+        HitRecord hit;
+        if (!scene.intersect(ray, hit)) continue;
+        const SurfaceHit s = scene.surface(ray, hit);
+        // Well inside the lit side: no sphere of the row can shadow it.
+        if (glm::dot(s.geometricNormal, glm::normalize(light.position - s.position)) < 0.5f) {
+          continue;
+        }
+        ++facing;
+        RayCounters rays;
+        if (!(integrator.radiance(ray, 0, Color(1.0f), rays).x > 0.0f)) ++dark;
+      }
+      std::printf("seams  scale %-6g eye %-6g sizes: %4d of %4d lit points in the dark\n", scale,
+                  distance, dark, facing);
+      EXPECT_GT(facing, 2000);
+      EXPECT_EQ(dark, 0) << "scale " << scale << ", eye " << distance << " sizes away: " << dark
+                         << " of " << facing << " points facing the light are dark";
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     EveryKind, LeavingSurfaces,
     testing::Values(ScaleCase{FloorKind::Plane, TriangleTest::MollerTrumbore},
