@@ -26,6 +26,14 @@ Scenes
                cylinders each (s3 = 14 groups, 420 + 420; s7 = 140 groups,
                4200 + 4200).
 
+  lattice SIZE a cubic lattice of (SIZE+1)^3 shiny spheres (radius 1/(4 SIZE)) in the
+               unit cube, each joined to its neighbours by matte open cylinders
+               (radius 1/(16 SIZE), red along x, green along y, blue along z), six
+               lights around the cube, the eye inside the lattice's top face looking
+               down through it (hither 0).  3 SIZE^2 (SIZE+1) cylinders: s12 = 2197
+               spheres + 6084 cylinders (SPD's default size).  As SPD's lattice
+               database describes it (header comment and constants); no real lattice
+               file was available to compare with.
   shells SIZE  a sea shell after Pickover (IEEE CG&A, November 1989), as SPD's shells
                database builds it: 180 * 2^SIZE + 1 spheres along the logarithmic
                spiral r = e^(0.15 a), a = 18 pi i / steps, centre (r sin a, r cos a,
@@ -49,7 +57,7 @@ margin, which reproduces rings-s3 exactly.
 NFF written: 'b' background, 'v' viewpoint block, 'l' lights, 'f' materials,
 's' spheres, 'c' cylinders, 'p' polygons (see the SPD NFF.TXT description).
 
-usage: spd_generators.py {balls,tetra,rings,shells} SIZE > scene.nff
+usage: spd_generators.py {balls,tetra,rings,lattice,shells} SIZE > scene.nff
 """
 import argparse
 import math
@@ -283,6 +291,44 @@ def gen_rings(size, w):
     return "%d spheres + %d cylinders + 1 polygon" % (count, count)
 
 
+# ----------------------------------------------------------------- lattice
+
+def gen_lattice(size, w):
+    """Spheres on a cubic grid joined by axis-parallel cylinders (SPD 'lattice')."""
+    w.background(BACKGROUND)
+    step = 1.0 / size
+    middle = ((size >> 1) + 0.5) * step
+    dip = 1.0 / (size << 1)
+    w.viewpoint((middle, 1.0, 1.0 - dip), (middle, -1.0, -1.0 - dip), (0.2, 1.0, 0.0), 60, 0.0)
+    for pos in ((2.0, 0.5, 0.5), (-1.0, 0.5, 0.5), (0.5, 2.0, 0.5), (0.5, -1.0, 0.5),
+                (0.5, 0.5, 2.0), (0.5, 0.5, -1.0)):
+        w.light(pos)
+    ball = 0.25 * step
+    rod = 0.0625 * step
+    # the rods start inside the balls, just short of where their rims would show
+    inset = ball * (1.0 - math.sqrt(0.0625 / 0.25)) * 0.99
+    rod_colours = ((0.9, 0.1, 0.1), (0.1, 0.9, 0.1), (0.1, 0.1, 0.9))
+    spheres = cylinders = 0
+    for x in range(size + 1):
+        for y in range(size + 1):
+            for z in range(size + 1):
+                p = (x * step, y * step, z * step)
+                w.material((0.9, 0.9, 0.9), 0.5, 0.5, 3.0827, 0, 0)
+                w.sphere(p, ball)
+                spheres += 1
+                for axis, index in enumerate((x, y, z)):
+                    if index == size:
+                        continue
+                    w.material(rod_colours[axis], 0.99, 0, 100000, 0, 0)
+                    start = list(p)
+                    end = list(p)
+                    start[axis] += inset
+                    end[axis] += step - inset
+                    w.cylinder(tuple(start), rod, tuple(end), rod)
+                    cylinders += 1
+    return "%d spheres + %d cylinders" % (spheres, cylinders)
+
+
 # ------------------------------------------------------------------ shells
 
 def gen_shells(size, w):
@@ -302,7 +348,8 @@ def gen_shells(size, w):
     return "%d spheres" % count
 
 
-GENERATORS = {"balls": gen_balls, "tetra": gen_tetra, "rings": gen_rings, "shells": gen_shells}
+GENERATORS = {"balls": gen_balls, "tetra": gen_tetra, "rings": gen_rings, "lattice": gen_lattice,
+              "shells": gen_shells}
 
 
 def main(argv=None):
