@@ -89,15 +89,20 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
   const MaterialDesc& m = *p.material;
   // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
   // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
-  // taken at the point.
+  // taken at the point. So does a footprint wider than its sphere (a pixel that holds a whole
+  // small mirror ball): the first-order turn would send the pixel's rays over radians, where
+  // they really part over the ball and its neighbours, and a gather past it would average the
+  // photons of most of the scene (sphereflakes: thousands per estimate).
   const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
   bool turnKnown = kind == PrimitiveKind::Plane ||
                    (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
   RayDifferential::Turn turn;
   if (kind == PrimitiveKind::Sphere && footprint.valid) {
     const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
-    turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
-    turnKnown = true;
+    if (footprint.reach() <= radius) {
+      turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
+      turnKnown = true;
+    }
   }
 
   const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
