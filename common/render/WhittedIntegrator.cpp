@@ -89,17 +89,19 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
   const MaterialDesc& m = *p.material;
   // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
   // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
-  // taken at the point. So does a footprint wider than its sphere (a pixel that holds a whole
-  // small mirror ball): the first-order turn would send the pixel's rays over radians, where
-  // they really part over the ball and its neighbours, and a gather past it would average the
-  // photons of most of the scene (sphereflakes: thousands per estimate).
+  // taken at the point. So does a footprint too wide for its sphere: the turn is first order, and
+  // over a footprint of reach ρ on a ball of radius R the neglected terms are about ρ/2R of the
+  // spread it gives (the surface leaves the footprint's plane by ρ²/2R). Past ρ = R/4 (an eighth)
+  // the model stops standing for the pixel's rays, and a pixel holding a whole small mirror ball
+  // would send them over radians: gathers past it averaged the photons of much of the scene
+  // (sphereflakes: over ten thousand per estimate).
   const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
   bool turnKnown = kind == PrimitiveKind::Plane ||
                    (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
   RayDifferential::Turn turn;
   if (kind == PrimitiveKind::Sphere && footprint.valid) {
     const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
-    if (footprint.reach() <= radius) {
+    if (footprint.reach() <= kMaxFootprintReachOnSphere * radius) {
       turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
       turnKnown = true;
     }

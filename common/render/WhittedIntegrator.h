@@ -14,6 +14,10 @@ namespace prism {
 
 class WhittedIntegrator {
  public:
+  // The widest footprint (its reach, over the radius) a sphere passes on to the rays it
+  // reflects or refracts; wider ones end there (forEachBounce says why).
+  static constexpr float kMaxFootprintReachOnSphere = 0.25f;
+
   explicit WhittedIntegrator(const Scene& scene, const LightTerms& terms = {})
       : scene_(scene), terms_(terms) {}
 

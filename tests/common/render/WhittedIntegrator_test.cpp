@@ -253,11 +253,13 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   EXPECT_FALSE(f[0].valid);
 }
 
-// A mirror ball narrower than the pixel's footprint on it (a pixel that holds the whole ball)
+// A mirror ball too small for the pixel's footprint on it (reach over a quarter of its radius)
 // turns the pixel's rays by more than the first-order model follows: past it the estimate is
 // taken at the point, not averaged over a footprint that would cover much of the scene. The
 // footprint here is 0.01 on a side at the ball (reach 0.01).
-TEST(WhittedIntegrator, AMirrorBallNarrowerThanThePixelsFootprintEndsIt) {
+TEST(WhittedIntegrator, AMirrorBallTooSmallForThePixelsFootprintEndsIt) {
+  // The smallest ball that passes this footprint on (0.04 at a quarter of the radius).
+  const float smallest = 0.01f / WhittedIntegrator::kMaxFootprintReachOnSphere;
   SceneDescription d;
   MaterialDesc mirror;
   mirror.diffuse = Color(0.0f);
@@ -266,11 +268,12 @@ TEST(WhittedIntegrator, AMirrorBallNarrowerThanThePixelsFootprintEndsIt) {
   d.materials.push_back(lambert(Color(0.5f)));
   d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // the receiving ceiling
   const Ray down{{0, 1, 0}, {0, -1, 0}};
-  for (const float radius : {0.02f, 0.0101f, 0.0099f, 0.004f}) {
+  for (const float scale : {2.0f, 1.002f, 0.998f, 0.25f, 0.1f}) {
+    const float radius = scale * smallest;
     d.spheres = {{{0, -radius, 0}, radius, 0, {}, CausticRole::Auto}};
     const std::vector<PixelFootprint> f = footprintsAlong(d, down, perPixel(0.0f, 0.01f));
     ASSERT_EQ(f.size(), 1u);
-    EXPECT_EQ(f[0].valid, radius >= 0.01f) << "ball of radius " << radius;
+    EXPECT_EQ(f[0].valid, scale >= 1.0f) << "ball of radius " << radius;
     if (f[0].valid) {
       // 0.01 + 2·0.01/R turn per pixel, 3 units of path from the ball to the ceiling.
       EXPECT_NEAR(f[0].a.x, 0.01f + 3.0f * (0.01f + 0.02f / radius), 1e-3f);
