@@ -4,7 +4,8 @@
 // photon gather) can then give a pixel the average over its footprint, not the value at one
 // point: a focus narrower than a pixel is counted once, in the pixel it falls in. Reflection
 // and refraction at planes, flat triangles and spheres pass the differentials on (a sphere's
-// curvature turns them: seen through a glass ball the footprint is the magnified one); other
+// curvature turns them: seen through a glass ball the footprint is the magnified one, unless the
+// footprint is too wide for the ball: WhittedIntegrator::kMaxFootprintReachOnSphere); other
 // curved surfaces end them, and the estimate past them is taken at the point.
 #pragma once
 
