@@ -14,14 +14,14 @@ PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<f
   if (n == 0) return;
   index_.resize(n);
   std::iota(index_.begin(), index_.end(), 0u);
-  centre_.resize(n);
-  radius2_.resize(n);
+  discs_.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
-    centre_[i] = photons[i].position;
-    radius2_[i] = radii[i] * radii[i];
+    const Photon& p = photons[i];
+    discs_[i] = {p.position, radii[i] * radii[i], p.power, p.directionVector()};
   }
   nodes_.reserve(2 * (n / kLeafSize + 1));
   build(0, n, 0);
+  index_ = {};
 }
 
 uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
@@ -30,12 +30,13 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   Vec3 lo(1e30f), hi(-1e30f), clo(1e30f), chi(-1e30f);
   float minRadius2 = 1e30f;
   for (uint32_t s = begin; s < end; ++s) {
-    minRadius2 = std::min(minRadius2, radius2_[s]);
-    const float r = std::sqrt(radius2_[s]);
-    lo = glm::min(lo, centre_[s] - Vec3(r));
-    hi = glm::max(hi, centre_[s] + Vec3(r));
-    clo = glm::min(clo, centre_[s]);
-    chi = glm::max(chi, centre_[s]);
+    const Vec3& centre = discs_[s].position;
+    minRadius2 = std::min(minRadius2, discs_[s].radius2);
+    const float r = std::sqrt(discs_[s].radius2);
+    lo = glm::min(lo, centre - Vec3(r));
+    hi = glm::max(hi, centre + Vec3(r));
+    clo = glm::min(clo, centre);
+    chi = glm::max(chi, centre);
   }
   nodes_[self].lo = lo;
   nodes_[self].hi = hi;
@@ -56,20 +57,17 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   std::iota(slots.begin(), slots.end(), begin);
   std::nth_element(slots.begin(), slots.begin() + (mid - begin), slots.end(),
                    [&](uint32_t a, uint32_t b) {
-                     const float ca = centre_[a][axis], cb = centre_[b][axis];
+                     const float ca = discs_[a].position[axis], cb = discs_[b].position[axis];
                      return ca < cb || (ca == cb && index_[a] < index_[b]);
                    });
   std::vector<uint32_t> index(slots.size());
-  std::vector<Vec3> centre(slots.size());
-  std::vector<float> radius2(slots.size());
+  std::vector<Disc> discs(slots.size());
   for (size_t i = 0; i < slots.size(); ++i) {
     index[i] = index_[slots[i]];
-    centre[i] = centre_[slots[i]];
-    radius2[i] = radius2_[slots[i]];
+    discs[i] = discs_[slots[i]];
   }
   std::copy(index.begin(), index.end(), index_.begin() + begin);
-  std::copy(centre.begin(), centre.end(), centre_.begin() + begin);
-  std::copy(radius2.begin(), radius2.end(), radius2_.begin() + begin);
+  std::copy(discs.begin(), discs.end(), discs_.begin() + begin);
   build(begin, mid, depth + 1);
   const uint32_t second = build(mid, end, depth + 1);
   nodes_[self].first = second;
@@ -78,8 +76,7 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
 }
 
 size_t PhotonDiscs::bytes() const {
-  return nodes_.capacity() * sizeof(Node) + index_.capacity() * sizeof(uint32_t) +
-         centre_.capacity() * sizeof(Vec3) + radius2_.capacity() * sizeof(float);
+  return nodes_.capacity() * sizeof(Node) + discs_.capacity() * sizeof(Disc);
 }
 
 }  // namespace prism

@@ -16,11 +16,23 @@ namespace prism {
 
 class PhotonDiscs {
  public:
+  // A photon as a gather reads it: kept in tree order with its squared radius and its direction
+  // decoded once (Photon::directionVector()'s very floats). A gather then reads the photons it
+  // visits one after another, where looking each up in the map's order cost a cache miss and
+  // decoding it a square root and a division: most of a gather's time with millions of photons.
+  struct Disc {
+    Vec3 position;
+    float radius2;
+    Color power;
+    Vec3 direction;
+    const Vec3& directionVector() const { return direction; }
+  };
+
   // radii[i] is photon i's radius (> 0).
   PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii);
 
-  // Calls visit(photon index, squared distance, squared radius) for every photon whose disc
-  // covers x (distance < radius), in tree order.
+  // Calls visit(disc, squared distance, squared radius) for every photon whose disc covers x
+  // (distance < radius), in tree order.
   template <class Visit>
   void covering(const Vec3& x, Visit&& visit) const;
   // The same for every photon of squared radius at most max2 whose disc comes within reach of x
@@ -47,9 +59,8 @@ class PhotonDiscs {
   void walk(Enters&& enters, AtSlot&& atSlot) const;
 
   std::vector<Node> nodes_;
-  std::vector<uint32_t> index_;  // photon index per slot
-  std::vector<Vec3> centre_;     // per slot
-  std::vector<float> radius2_;   // per slot
+  std::vector<Disc> discs_;      // per slot
+  std::vector<uint32_t> index_;  // photon index per slot, while building (ties are broken by it)
 };
 
 template <class Enters, class AtSlot>
@@ -79,9 +90,10 @@ void PhotonDiscs::covering(const Vec3& x, Visit&& visit) const {
                x.z <= n.hi.z;
       },
       [&](uint32_t s) {
-        const Vec3 d = x - centre_[s];
+        const Disc& disc = discs_[s];
+        const Vec3 d = x - disc.position;
         const float d2 = glm::dot(d, d);
-        if (d2 < radius2_[s]) visit(index_[s], d2, radius2_[s]);
+        if (d2 < disc.radius2) visit(disc, d2, disc.radius2);
       });
 }
 
@@ -94,10 +106,11 @@ void PhotonDiscs::reaching(const Vec3& x, float reach, float max2, Visit&& visit
                x.z <= n.hi.z + reach;
       },
       [&](uint32_t s) {
-        if (radius2_[s] > max2) return;
-        const Vec3 d = x - centre_[s];
-        const float d2 = glm::dot(d, d), within = std::sqrt(radius2_[s]) + reach;
-        if (d2 < within * within) visit(index_[s], d2, radius2_[s]);
+        const Disc& disc = discs_[s];
+        if (disc.radius2 > max2) return;
+        const Vec3 d = x - disc.position;
+        const float d2 = glm::dot(d, d), within = std::sqrt(disc.radius2) + reach;
+        if (d2 < within * within) visit(disc, d2, disc.radius2);
       });
 }
 

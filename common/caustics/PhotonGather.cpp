@@ -56,28 +56,28 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float averaged2 = footprint.valid ? std::max(narrow2, reach * reach) : 0.0f;
   const PixelFootprint::Test inFootprint =
       footprint.valid ? footprint.test(normal) : PixelFootprint::Test{};
-  const auto overFootprint = [&](const Photon& p, float radius2) {
+  // p: a Photon, or a PhotonDiscs::Disc (the same photon, in tree order).
+  const auto overFootprint = [&](const auto& p, float radius2) {
     const Vec3 q = p.position - position;
     if (radius2 <= narrow2) return inFootprint.contains(q) ? 1.0f / area : 0.0f;
     return footprintMeanKernel(settings_.filter, q, footprint.a, footprint.b, radius2);
   };
   // Photons that arrived from behind the surface (through a thin wall) are left out.
-  const auto fromFront = [&](const Photon& p) {
+  const auto fromFront = [&](const auto& p) {
     return glm::dot(p.directionVector(), normal) < 0.0f;
   };
   Color sum(0.0f);
   if (!settings_.fixedRadius) {
     if (!discs_) return sum;
-    discs_->covering(position, [&](uint32_t index, float distance2, float radius2) {
-      const Photon& p = photons[index];
+    discs_->covering(position, [&](const PhotonDiscs::Disc& p, float distance2, float radius2) {
       if (radius2 > averaged2 && fromFront(p))
         sum += p.power * densityKernel(settings_.filter, distance2, radius2);
     });
     if (footprint.valid) {
-      discs_->reaching(position, reach, averaged2, [&](uint32_t index, float, float radius2) {
-        const Photon& p = photons[index];
-        if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
-      });
+      discs_->reaching(position, reach, averaged2,
+                       [&](const PhotonDiscs::Disc& p, float, float radius2) {
+                         if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
+                       });
     }
     return sum;
   }
