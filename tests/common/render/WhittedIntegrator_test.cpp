@@ -200,17 +200,23 @@ RayDifferential perPixel(float width, float angle) {
   return {true, {width, 0, 0}, {0, 0, width}, {angle, 0, 0}, {0, 0, angle}};
 }
 
-// The pixel's footprint where its ray meets a receiver, through a mirror: each pixel step
-// turns the ray by 0.01 rad, so after 4 units of path (1 down to the mirror, 3 up to the
-// ceiling) the footprint's sides are 0.04 long; at 60° from the normal the side in the plane of
-// incidence is twice as long (8 units of path: 0.08 across, 0.16 along).
-TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) {
+// A scene with two materials: 0 a perfect mirror, 1 a grey Lambertian receiver.
+SceneDescription mirrorAndReceiverMaterials() {
   SceneDescription d;
   MaterialDesc mirror;
   mirror.diffuse = Color(0.0f);
   mirror.reflectance = Color(1.0f);
   d.materials.push_back(mirror);
   d.materials.push_back(lambert(Color(0.5f)));
+  return d;
+}
+
+// The pixel's footprint where its ray meets a receiver, through a mirror: each pixel step
+// turns the ray by 0.01 rad, so after 4 units of path (1 down to the mirror, 3 up to the
+// ceiling) the footprint's sides are 0.04 long; at 60° from the normal the side in the plane of
+// incidence is twice as long (8 units of path: 0.08 across, 0.16 along).
+TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) {
+  SceneDescription d = mirrorAndReceiverMaterials();
   d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});  // a mirror floor 1 below the camera
   d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // a receiving ceiling 3 above the floor
   const Ray down{{0, 1, 0}, {0, -1, 0}};
@@ -260,12 +266,7 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
 TEST(WhittedIntegrator, AMirrorBallTooSmallForThePixelsFootprintEndsIt) {
   // The smallest ball that passes this footprint on (0.04 at a quarter of the radius).
   const float smallest = 0.01f / WhittedIntegrator::kMaxFootprintReachOnSphere;
-  SceneDescription d;
-  MaterialDesc mirror;
-  mirror.diffuse = Color(0.0f);
-  mirror.reflectance = Color(1.0f);
-  d.materials.push_back(mirror);
-  d.materials.push_back(lambert(Color(0.5f)));
+  SceneDescription d = mirrorAndReceiverMaterials();
   d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // the receiving ceiling
   const Ray down{{0, 1, 0}, {0, -1, 0}};
   for (const float scale : {2.0f, 1.002f, 0.998f, 0.25f, 0.1f}) {
