@@ -15,12 +15,13 @@ std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, boo
   const std::vector<uint32_t> order = map.spatialOrder();
   parallelFor(order.size(), threads, [&](uint64_t n) {
     thread_local std::vector<PhotonNeighbour> neighbours;
-    // The last photon this thread placed, and its radius (negative: fewer than k in reach).
+    // The last photon this thread placed, and its radius (negative: fewer than k in reach). Left
+    // over from an earlier map or a far chunk, it only makes a loose bound.
     thread_local Vec3 lastPosition(0.0f);
     thread_local float lastRadius = -1.0f;
     const uint32_t i = order[n];
     const Vec3& position = map.photons()[i].position;
-    // Photons come in spatial order, so the last one is near: its k nearest lie within its
+    // Photons are placed in spatial order, so the last one is near: its k nearest lie within its
     // radius plus the step from it (a little more, for rounding), and a search bounded there
     // prunes from the start where one bounded by maxRadius first walks until it has k. Finding k
     // below the bound, it has found the k nearest of all, the same photons with the same
