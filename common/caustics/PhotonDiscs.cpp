@@ -75,8 +75,4 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   return self;
 }
 
-size_t PhotonDiscs::bytes() const {
-  return nodes_.capacity() * sizeof(Node) + discs_.capacity() * sizeof(Disc);
-}
-
 }  // namespace prism

@@ -41,8 +41,6 @@ class PhotonDiscs {
   template <class Visit>
   void reaching(const Vec3& x, float reach, float max2, Visit&& visit) const;
 
-  size_t bytes() const;
-
  private:
   struct Node {
     Vec3 lo, hi;     // bounds of the discs' boxes below

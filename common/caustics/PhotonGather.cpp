@@ -62,7 +62,6 @@ Color PhotonGather::irradianceAt(const SurfaceHit& s, const PixelFootprint& foot
 
 Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
                                      const PixelFootprint& footprint) const {
-  const std::vector<Photon>& photons = map_->photons();
   // With a footprint the estimate is the pixel's average of the photons' kernels: a photon
   // narrower than the footprint (a disc of less area) counts its power over the footprint's area
   // if it lies in it; one up to the footprint's reach wide, the mean of its kernel over the
@@ -102,6 +101,7 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
     return sum;
   }
   thread_local std::vector<PhotonNeighbour> neighbours;
+  const std::vector<Photon>& photons = map_->photons();
   const float radius2 = settings_.radius * settings_.radius;
   const bool averaged = radius2 <= averaged2;
   const float gatherRadius = averaged ? settings_.radius + reach : settings_.radius;
