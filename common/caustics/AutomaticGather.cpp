@@ -22,12 +22,18 @@ int automaticGatherLargestK(float noise) {
 
 float automaticGatherRadius2(const std::vector<PhotonNeighbour>& nearestFirst, int largestK,
                              float maxRadius2) {
-  const int found = static_cast<int>(nearestFirst.size());
+  return automaticGatherRadius2(
+      automaticGatherLadder(largestK), static_cast<int>(nearestFirst.size()),
+      [&](int k) { return nearestFirst[static_cast<size_t>(k) - 1].distance2; }, maxRadius2);
+}
+
+float automaticGatherRadius2(const std::vector<int>& ladder, int found,
+                             const std::function<float(int)>& distance2OfRank, float maxRadius2) {
   float lowest = 0.0f, highest = std::numeric_limits<float>::max(), chosen = maxRadius2;
-  for (int k = std::min(kSmallestK, largestK);; k = std::min(2 * k, largestK)) {
+  for (int k : ladder) {
     const bool complete = k <= found;  // else: the photons within maxRadius are all there is
     const int count = complete ? k : found;
-    const float radius2 = complete ? nearestFirst[k - 1].distance2 : maxRadius2;
+    const float radius2 = complete ? distance2OfRank(k) : maxRadius2;
     if (count > 0 && radius2 > 0.0f) {
       const float density = count / radius2;  // π left out: only ratios matter
       const float half = kConfidence * density / std::sqrt(static_cast<float>(count));
@@ -36,9 +42,17 @@ float automaticGatherRadius2(const std::vector<PhotonNeighbour>& nearestFirst, i
       if (lowest > highest) break;
     }
     chosen = radius2;
-    if (!complete || k >= largestK) break;
+    if (!complete) break;
   }
   return chosen;
+}
+
+std::vector<int> automaticGatherLadder(int largestK) {
+  std::vector<int> ladder;
+  for (int k = std::min(kSmallestK, largestK);; k = std::min(2 * k, largestK)) {
+    ladder.push_back(k);
+    if (k >= largestK) return ladder;
+  }
 }
 
 }  // namespace prism

@@ -6,6 +6,7 @@
 // the largest k before they did (less blur). docs/accuracy.md measures it against fixed k.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "caustics/PhotonMap.h"
@@ -23,5 +24,11 @@ int automaticGatherLargestK(float noise);
 // within maxRadius, the ladder ends there with maxRadius².
 float automaticGatherRadius2(const std::vector<PhotonNeighbour>& nearestFirst, int largestK,
                              float maxRadius2);
+// The ks the ladder tries, smallest first (8, 16, 32, … and largestK last).
+std::vector<int> automaticGatherLadder(int largestK);
+// The same from the found photons' count (at most the ladder's last k) and their squared
+// distances by rank: distance2OfRank(k) is the k-th smallest, asked only for ladder ks up to found.
+float automaticGatherRadius2(const std::vector<int>& ladder, int found,
+                             const std::function<float(int)>& distance2OfRank, float maxRadius2);
 
 }  // namespace prism

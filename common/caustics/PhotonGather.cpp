@@ -2,45 +2,10 @@
 
 #include <cmath>
 
-#include "caustics/AutomaticGather.h"
 #include "caustics/DensityKernel.h"
-#include "util/Parallel.h"
+#include "caustics/PhotonRadii.h"
 
 namespace prism {
-
-std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
-                               int threads) {
-  std::vector<float> radii(map.size());
-  const float maxRadius2 = maxRadius * maxRadius;
-  const std::vector<uint32_t> order = map.spatialOrder();
-  parallelFor(order.size(), threads, [&](uint64_t n) {
-    thread_local std::vector<PhotonNeighbour> neighbours;
-    // The last photon this thread placed, and its radius (negative: fewer than k in reach). Left
-    // over from an earlier map or a far chunk, it only makes a loose bound.
-    thread_local Vec3 lastPosition(0.0f);
-    thread_local float lastRadius = -1.0f;
-    const uint32_t i = order[n];
-    const Vec3& position = map.photons()[i].position;
-    // Photons are placed in spatial order, so the last one is near: its k nearest lie within its
-    // radius plus the step from it (a little more, for rounding), and a search bounded there
-    // prunes from the start where one bounded by maxRadius first walks until it has k. Finding k
-    // below the bound, it has found the k nearest of all, the same photons with the same
-    // distances; finding fewer, the full search runs.
-    float radius2 = -1.0f;
-    if (lastRadius >= 0.0f) {
-      const float bound = 1.001f * (glm::length(position - lastPosition) + lastRadius);
-      if (bound * bound < maxRadius2) {
-        const float found2 = map.nearest(position, k, bound * bound, neighbours);
-        if (neighbours.size() == static_cast<size_t>(k)) radius2 = found2;
-      }
-    }
-    if (radius2 < 0.0f) radius2 = map.nearest(position, k, maxRadius2, neighbours);
-    lastPosition = position;
-    lastRadius = neighbours.size() == static_cast<size_t>(k) ? std::sqrt(radius2) : -1.0f;
-    radii[i] = std::sqrt(automaticK ? automaticGatherRadius2(neighbours, k, maxRadius2) : radius2);
-  });
-  return radii;
-}
 
 PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
                            const PhotonGatherSettings& settings, int threads)

@@ -49,10 +49,4 @@ class PhotonGather : public CausticEstimator {
   std::unique_ptr<const PhotonDiscs> discs_;  // per-photon radii only
 };
 
-// Each photon's radius: the distance to its k-th nearest photon (itself included), capped at
-// maxRadius; with automaticK, each photon's own k, at most k (caustics/AutomaticGather.h).
-// The same on every rank: each photon's answer depends on the map alone.
-std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
-                               int threads = 0);
-
 }  // namespace prism

@@ -36,6 +36,8 @@ class PhotonMap {
   float nearest(const Vec3& p, int k, float maxRadius2, std::vector<PhotonNeighbour>& out) const;
   // Every photon within radius² of p, in tree order, into out.
   void within(const Vec3& p, float radius2, std::vector<PhotonNeighbour>& out) const;
+  // The squared distances (as nearest() compares them) of every photon within radius² of p.
+  void distancesWithin(const Vec3& p, float radius2, std::vector<float>& out) const;
 
  private:
   struct Index;

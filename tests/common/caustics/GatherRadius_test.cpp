@@ -1,5 +1,7 @@
 #include "caustics/GatherRadius.h"
+#include "caustics/AutomaticGather.h"
 #include "caustics/PhotonGather.h"
+#include "caustics/PhotonRadii.h"
 
 #include <gtest/gtest.h>
 
@@ -92,6 +94,47 @@ TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
         EXPECT_GT(capped, 0u) << "k " << k;  // the sparse field is capped
       }
       EXPECT_LT(capped, radii.size()) << "k " << k;
+    }
+  }
+}
+
+// With the automatic k, every radius is the ladder's choice over the tree's own k nearest
+// (PhotonMap::nearest), bit for bit: on a caustic-like field (a bright fold over a dim disc, a
+// sparse halo, a pile of identical photons) for k up to 400 and both thread counts.
+TEST(GatherRadius, AutomaticPhotonRadiiEqualTheTreesNearestExactly) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<Photon> photons;
+  for (int i = 0; i < 6000; ++i) {  // a dim disc of radius 1
+    const float r = std::sqrt(unit(rng)), a = 6.2831853f * unit(rng);
+    photons.push_back({Vec3(r * std::cos(a), 0.0f, r * std::sin(a))});
+  }
+  for (int i = 0; i < 3000; ++i) {  // a bright fold along a circle of radius 0.6
+    const float r = 0.6f + 0.004f * unit(rng), a = 6.2831853f * unit(rng);
+    photons.push_back({Vec3(r * std::cos(a), 0.0f, r * std::sin(a))});
+  }
+  for (int i = 0; i < 300; ++i) {  // a sparse halo, some beyond any k within maxRadius
+    photons.push_back({Vec3(4.0f * unit(rng) - 2.0f, 0.3f * unit(rng), 4.0f * unit(rng) - 2.0f)});
+  }
+  for (int i = 0; i < 500; ++i) photons.push_back({Vec3(0.25f, 0.0f, -0.25f)});
+  const PhotonMap map(std::move(photons));
+  const float maxRadius = 0.15f, maxRadius2 = maxRadius * maxRadius;
+  for (int k : {8, 100, 400}) {
+    std::vector<float> expected(map.size());
+    std::vector<PhotonNeighbour> nearest;
+    for (size_t i = 0; i < map.size(); ++i) {
+      map.nearest(map.photons()[i].position, k, maxRadius2, nearest);
+      expected[i] = std::sqrt(automaticGatherRadius2(nearest, k, maxRadius2));
+    }
+    for (int threads : {1, 2}) {
+      const std::vector<float> radii = photonRadii(map, k, maxRadius, true, threads);
+      size_t wrong = 0, capped = 0;
+      for (size_t i = 0; i < radii.size(); ++i) {
+        wrong += radii[i] != expected[i];
+        capped += expected[i] == maxRadius;
+      }
+      EXPECT_EQ(wrong, 0u) << "k " << k << ", threads " << threads;
+      EXPECT_GT(capped, 0u) << "k " << k;  // the halo reaches the cap
     }
   }
 }
