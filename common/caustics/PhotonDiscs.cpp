@@ -28,10 +28,11 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   const uint32_t self = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back({});
   Vec3 lo(1e30f), hi(-1e30f), clo(1e30f), chi(-1e30f);
-  float minRadius2 = 1e30f;
+  float minRadius2 = 1e30f, maxRadius2 = 0.0f;
   for (uint32_t s = begin; s < end; ++s) {
     const Vec3& centre = discs_[s].position;
     minRadius2 = std::min(minRadius2, discs_[s].radius2);
+    maxRadius2 = std::max(maxRadius2, discs_[s].radius2);
     const float r = std::sqrt(discs_[s].radius2);
     lo = glm::min(lo, centre - Vec3(r));
     hi = glm::max(hi, centre + Vec3(r));
@@ -41,10 +42,12 @@ uint32_t PhotonDiscs::build(uint32_t begin, uint32_t end, int depth) {
   nodes_[self].lo = lo;
   nodes_[self].hi = hi;
   nodes_[self].minRadius2Bits = static_cast<uint16_t>(std::bit_cast<uint32_t>(minRadius2) >> 16);
+  nodes_[self].maxRadius2Exponent =
+      static_cast<uint8_t>((std::bit_cast<uint32_t>(maxRadius2) >> 23) & 0xffu);
   // A leaf when small, or at the depth the query stack allows (64 holds 2 per level).
   if (end - begin <= kLeafSize || depth >= 30) {
     nodes_[self].first = begin;
-    nodes_[self].count = static_cast<uint16_t>(end - begin);
+    nodes_[self].count = static_cast<uint8_t>(end - begin);
     return self;
   }
   // Split at the median slot along the centres' widest axis; ties broken by photon index so the

@@ -58,7 +58,8 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
         sum += p.power * densityKernel(settings_.filter, distance2, radius2);
     });
     if (footprint.valid) {
-      discs_->reaching(position, reach, averaged2,
+      // Narrow photons outside the footprint add nothing (overFootprint's 0): not visited.
+      discs_->reaching(position, reach, averaged2, narrow2, inFootprint,
                        [&](const PhotonDiscs::Disc& p, float, float radius2) {
                          if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
                        });
