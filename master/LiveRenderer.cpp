@@ -215,9 +215,14 @@ void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
   const double seconds = end - std::max(pass.started, lastFrameEnd_);
   lastFrameEnd_ = end;
   const RenderView& v = *pass.info.view;
-  governor_.frameFinished(static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height) *
-                              static_cast<uint64_t>(v.samplesPerPixel),
-                          seconds);
+  // A photon-mapped pass costs its gathers, which frames while moving never make: its time
+  // would predict them too slow, and the resolution would drop at the next move.
+  const RenderPass* light = pass.info.light.get();
+  if (!(light && light->caustics && !light->causticMap)) {
+    governor_.frameFinished(static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height) *
+                                static_cast<uint64_t>(v.samplesPerPixel),
+                            seconds);
+  }
   frameSeconds_.push_back(seconds);
   if (frameSeconds_.size() > kFrameTimeWindow) frameSeconds_.pop_front();
   FrameTimeStats& f = live_.frameTimes;
@@ -281,13 +286,28 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     return nullptr;  // like `prism render`: nothing to trace, a plain pass
   }
   PhotonPassStats p;
-  auto map =
-      tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p, &cancelPhotons_);
-  if (!map) return nullptr;  // the camera moved: the pass is dropped before it starts
-  const PhotonGatherSettings gather =
-      progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
+  std::shared_ptr<const PhotonMap> map;
+  std::shared_ptr<const PhotonGather> estimator;
+  PhotonGatherSettings gather;
+  const bool reused = plan.index == 1 && firstPhotonPass_ && firstPhotonPass_->budget == budget;
+  if (reused) {
+    map = firstPhotonPass_->map;
+    estimator = firstPhotonPass_->estimator;
+    gather = estimator->settings();
+    p = firstPhotonPass_->stats;
+    p.distributeSeconds = 0.0;
+  } else {
+    map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p,
+                          &cancelPhotons_);
+    if (!map) return nullptr;  // the camera moved: the pass is dropped before it starts
+    gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
+  }
   gather_ = gather;
-  sendPhotonMap(*map, plan.frame, gather, link_, p);
+  sendPhotonMap(*map, plan.frame, gather, link_, p);  // a slave holds one map at a time
+  if (!reused) {
+    estimator = std::make_shared<const PhotonGather>(map, gather, dispatcher_.localThreads());
+    if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, map, estimator, p};
+  }
 
   const std::lock_guard<std::mutex> lock(mutex_);
   if (plan.viewId == viewId_) {
@@ -301,10 +321,9 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     s.distributeSeconds = p.distributeSeconds;
     s.photonsPerSecond = static_cast<double>(p.trace.emitted) / std::max(p.traceSeconds, 1e-6);
     s.radius = gather.radius * gather.radiusScale;  // per-photon radii: their cap
+    s.reused = reused;
   }
-  return std::make_shared<const RenderPass>(RenderPass{
-      plan.frame, true,
-      std::make_shared<const PhotonGather>(std::move(map), gather, dispatcher_.localThreads())});
+  return std::make_shared<const RenderPass>(RenderPass{plan.frame, true, std::move(estimator)});
 }
 
 LiveRenderer::Pass* LiveRenderer::findLocked(uint32_t frame) {

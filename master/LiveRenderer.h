@@ -36,8 +36,11 @@
 // the window shows is progressive photon mapping with N passes, as `prism render --progressive`
 // computes it; with per-photon radii pass 1 is `prism render`'s classic estimate. The photon pass
 // number (which keys the photon streams and names the map on the wire) is the pass's frame id,
-// so it is unique per pass. Frames while moving (pass 0) render no photon caustics, and a move
-// cancels a photon pass being traced (its map is dropped), so it never waits for one.
+// so it is unique per pass. Photons do not depend on the view, so the first view's pass 1 (its
+// map, and rank 0's radii and discs) serves every later view's pass 1 for the same budget: after
+// a move the caustic costs its gathers only (the map still goes to the slaves, named by the
+// frame, and each builds its radii). Frames while moving (pass 0) render no photon caustics, and a
+// move cancels a photon pass being traced (its map is dropped), so it never waits for one.
 //
 // Every pass is a frame of the one tile dispatcher (master/TileDispatcher.h), which hands its
 // tiles to rank 0's threads and the slaves exactly as for `prism render`: the same leases,
@@ -64,6 +67,7 @@
 #include "caustics/PhotonGatherSettings.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/DistributionOptions.h"
+#include "master/PhotonPass.h"
 #include "master/ResolutionGovernor.h"
 #include "master/SlaveLink.h"
 #include "master/TileDispatcher.h"
@@ -119,7 +123,8 @@ struct PhotonLiveStats {
   CausticMethod method = CausticMethod::None;
   bool noCasters = false;       // caustics are on but no light reaches a caster
   uint64_t photonsPerPass = 0;  // budget: photons emitted per pass
-  int passes = 0;               // photon passes traced for the current view
+  int passes = 0;               // photon passes traced (or reused) for the current view
+  bool reused = false;          // the last is the first view's pass 1, not traced again
   // The last photon pass:
   uint64_t stored = 0;             // photons in its map
   size_t mapBytes = 0;             // photons + kd-tree
@@ -261,6 +266,15 @@ class LiveRenderer final : private FrameListener {
   uint64_t tracerBudget_ = 0;
   float maxRadius_;
   PhotonGatherSettings gather_;  // the last photon pass's gather, for the next one's
+  // Pass 1's photons as first traced, with rank 0's estimator (radii and discs) and the pass's
+  // statistics, for every later view's pass 1 with the same photon budget.
+  struct FirstPhotonPass {
+    uint64_t budget = 0;
+    std::shared_ptr<const PhotonMap> map;
+    std::shared_ptr<const PhotonGather> estimator;
+    PhotonPassStats stats;
+  };
+  std::optional<FirstPhotonPass> firstPhotonPass_;
 
   std::optional<std::string> mapsRefusal_;
   std::mutex mapsMutex_;  // guards the two below; mutex_ is never taken while holding it

@@ -54,9 +54,10 @@ void checkTilesFit(const RenderSettings& s, int tileSize, const MemoryLimit& lim
 
 uint64_t photonMemoryBytes(const CausticSettings& c) {
   if (c.method != CausticMethod::PhotonMap) return 0;
-  // 28-byte photons held three times (shares, map, outgoing message) plus a 4-byte tree index
-  // and about one 8-byte node share per photon.
-  constexpr uint64_t kBytesPerPhoton = 3 * 28 + 4 + 8;
+  // 28-byte photons held three times (shares, map, outgoing message), a 4-byte tree index, about
+  // one 8-byte node share, the tree's leaf-order position and photon index (16), and the
+  // gather's disc (40) and radius (4) per photon.
+  constexpr uint64_t kBytesPerPhoton = 3 * 28 + 4 + 8 + 16 + 40 + 4;
   return saturatingMultiply(c.photons, kBytesPerPhoton);
 }
 

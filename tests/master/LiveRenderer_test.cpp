@@ -507,6 +507,73 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   EXPECT_FLOAT_EQ(stats.photons.radius, settings.radius * settings.radiusScale);
 }
 
+// Photons do not depend on the view: a later view's pass 1 gathers from the first view's pass-1
+// photons (the same estimator, its radii not found again), and a new budget traces pass 1 anew
+// (passes 2 on trace their own: PhotonMappedPassesAreProgressivePhotonMapping). Pass 1 of the moved
+// view is bit for bit its rendering with the map traced here for the first view's pass-1 frame.
+TEST(LiveRenderer, ALaterViewsFirstPassReusesTheFirstViewsPhotons) {
+  SceneDescription d = causticScene();
+  const Scene scene(d);
+  LiveOptions options;
+  options.distribution.threads = 2;
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  LiveRenderer renderer(scene, options);
+  Recorder recorder;
+  std::thread coordinator([&] { renderer.run(recorder); });
+  renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+  ASSERT_TRUE(recorder.waitForFinished(2));  // pass 0 and 1 of the first view
+  CameraDesc moved = d.camera;
+  moved.position += Vec3(0.3f, 0.1f, 0.0f);
+  renderer.setView({moved, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+  ASSERT_TRUE(recorder.waitForFinished(4));
+  const LiveStats movedStats = renderer.stats();
+  renderer.setView({moved, 1, DebugView::Image, CausticMethod::PhotonMap, d.caustics.photons / 2});
+  ASSERT_TRUE(recorder.waitForFinished(6));
+  const LiveStats budgetStats = renderer.stats();
+  renderer.stop();
+  coordinator.join();
+
+  const std::vector<PassInfo> passes = recorder.passes();
+  ASSERT_EQ(passes.size(), 6u);
+  const auto passOf = [&](size_t view, int pass) -> const PassInfo& {
+    size_t seen = 0;
+    uint64_t lastView = passes.front().viewId;
+    for (const PassInfo& p : passes) {
+      if (p.viewId != lastView) ++seen, lastView = p.viewId;
+      if (seen == view && p.pass == pass) return p;
+    }
+    throw std::runtime_error("no such pass");
+  };
+  const PassInfo& first = passOf(0, 1);
+  const PassInfo& later = passOf(1, 1);
+  const PassInfo& otherBudget = passOf(2, 1);
+  EXPECT_EQ(&gatherOf(later), &gatherOf(first));
+  EXPECT_NE(&gatherOf(otherBudget), &gatherOf(first));
+  EXPECT_LT(gatherOf(otherBudget).map().size(), gatherOf(first).map().size());
+  EXPECT_EQ(later.light->index, later.frame);  // the tiles name the later pass's own frame
+  EXPECT_TRUE(movedStats.photons.reused);
+  EXPECT_EQ(movedStats.photons.passes, 1);
+  EXPECT_FALSE(budgetStats.photons.reused);
+
+  const PhotonTracer tracer(scene, d.caustics.photons, d.caustics.maxBounces);
+  SlaveLink alone(nullptr, {});
+  PhotonPassStats stats;
+  const auto map = tracePhotonPass(tracer, first.frame, 2, alone, stats);
+  const PhotonGatherSettings settings =
+      progressiveGather(d.caustics, automaticMaxRadius(scene), 1, {});
+  d.camera = moved;
+  const ImageRgb expected =
+      renderPassFrame(d, 1,
+                      std::make_shared<const RenderPass>(RenderPass{
+                          later.frame, true, std::make_shared<const PhotonGather>(map, settings)}));
+  const ImageRgb got = recorder.image(later.frame);
+  ASSERT_EQ(got.pixels.size(), expected.pixels.size());
+  for (size_t px = 0; px < got.pixels.size(); ++px) {
+    ASSERT_EQ(got.pixels[px], expected.pixels[px]) << "pixel " << px;
+  }
+}
+
 // A move never waits for a photon pass: it cancels the one being traced.
 TEST(LiveRenderer, AMoveCancelsThePhotonPassBeingTraced) {
   const SceneDescription d = causticScene();

@@ -56,15 +56,16 @@ TEST(ResourceCheck, TileCountHasABoundAndItsBookkeepingAMemoryCost) {
   EXPECT_NO_THROW(checkTilesFit(s, 1, k16GiB));
 }
 
-// 10^12 photons at 96 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree) is
-// 9.6e13 bytes = 87.3 TiB: refused on a 16 GiB machine before anything is traced.
+// 10^12 photons at 156 bytes each (three 28-byte copies, a 4-byte index, ~8 bytes of tree, the
+// tree's 16-byte leaf-order copy, the gather's 44-byte disc and radius) is 1.56e14 bytes =
+// 141.9 TiB: refused on a 16 GiB machine before anything is traced.
 TEST(ResourceCheck, RefusesAbsurdPhotonCountsWithTheMemoryTheyNeed) {
   CausticSettings c;
   c.method = CausticMethod::PhotonMap;
   c.photons = 1000000000000ull;
-  EXPECT_EQ(photonMemoryBytes(c), 96000000000000ull);
+  EXPECT_EQ(photonMemoryBytes(c), 156000000000000ull);
   EXPECT_EQ(refusal([&] { checkCausticsFit(c, 1, k16GiB); }),
-            "1000000000000 photons per pass needs 87.3 TiB (96000000000000 bytes); the memory "
+            "1000000000000 photons per pass needs 141.9 TiB (156000000000000 bytes); the memory "
             "limit is 16.0 GiB (17179869184 bytes, test): reduce --photons, or use more --passes "
             "of fewer");
   c.photons = 10000000;  // 10 M photons: under 1 GiB
