@@ -303,10 +303,12 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
   }
   gather_ = gather;
-  sendPhotonMap(*map, plan.frame, gather, link_, p);  // a slave holds one map at a time
-  if (!reused) {
+  if (reused) {
+    sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);
+  } else {
+    sendPhotonMap(*map, plan.frame, gather, link_, p, plan.index == 1);
     estimator = std::make_shared<const PhotonGather>(map, gather, dispatcher_.localThreads());
-    if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, map, estimator, p};
+    if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, plan.frame, map, estimator, p};
   }
 
   const std::lock_guard<std::mutex> lock(mutex_);

@@ -38,9 +38,10 @@
 // number (which keys the photon streams and names the map on the wire) is the pass's frame id,
 // so it is unique per pass. Photons do not depend on the view, so the first view's pass 1 (its
 // map, and rank 0's radii and discs) serves every later view's pass 1 for the same budget: after
-// a move the caustic costs its gathers only (the map still goes to the slaves, named by the
-// frame, and each builds its radii). Frames while moving (pass 0) render no photon caustics, and a
-// move cancels a photon pass being traced (its map is dropped), so it never waits for one.
+// a move the caustic costs its gathers only. Slaves keep that map too (sent with keep) and are
+// told to gather from it again (PhotonMapAgain). Frames while moving (pass 0) render no photon
+// caustics, and a move cancels a photon pass being traced (its map is dropped), so it never waits
+// for one.
 //
 // Every pass is a frame of the one tile dispatcher (master/TileDispatcher.h), which hands its
 // tiles to rank 0's threads and the slaves exactly as for `prism render`: the same leases,
@@ -270,6 +271,7 @@ class LiveRenderer final : private FrameListener {
   // statistics, for every later view's pass 1 with the same photon budget.
   struct FirstPhotonPass {
     uint64_t budget = 0;
+    uint32_t frame = 0;  // the pass it was traced for, as the slaves keep it
     std::shared_ptr<const PhotonMap> map;
     std::shared_ptr<const PhotonGather> estimator;
     PhotonPassStats stats;

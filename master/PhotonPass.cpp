@@ -157,14 +157,20 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
 }
 
 void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettings& gather,
-                   SlaveLink& link, PhotonPassStats& stats) {
+                   SlaveLink& link, PhotonPassStats& stats, bool keep) {
   if (!link.hasSlaves()) return;
   const auto start = SteadyClock::now();
-  const std::vector<uint8_t> bytes = wire::encodePhotonMap(pass, gather, map.photons());
+  const std::vector<uint8_t> bytes = wire::encodePhotonMap(pass, gather, map.photons(), keep);
   for (int r = 1; r < link.ranks(); ++r) {
     if (link.send(r, bytes)) stats.sentBytes += bytes.size();  // a refusal retires the rank
   }
   stats.distributeSeconds = secondsSince(start);
+}
+
+void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link) {
+  if (!link.hasSlaves()) return;
+  const std::vector<uint8_t> bytes = wire::encodePhotonMapAgain({pass, keptPass});
+  for (int r = 1; r < link.ranks(); ++r) link.send(r, bytes);  // a refusal retires the rank
 }
 
 }  // namespace prism

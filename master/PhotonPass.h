@@ -37,8 +37,11 @@ std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uin
                                                  PhotonPassStats& stats,
                                                  const std::atomic<bool>* cancel = nullptr);
 
-// Sends the map of pass `pass` with its gather settings to every live slave.
+// Sends the map of pass `pass` with its gather settings to every live slave. keep: each keeps it
+// (with its radii) until the next map sent with keep, for sendPhotonMapAgain.
 void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettings& gather,
-                   SlaveLink& link, PhotonPassStats& stats);
+                   SlaveLink& link, PhotonPassStats& stats, bool keep = false);
+// Tells every live slave that pass `pass` gathers from the map it keeps from pass `keptPass`.
+void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link);
 
 }  // namespace prism

@@ -126,6 +126,22 @@ class PhotonWork {
     mapPass_ = message.pass;
     caustics_ = std::make_shared<const PhotonGather>(std::move(map), message.gather, threads_);
     passes_.clear();
+    if (message.keep) {
+      kept_ = caustics_;
+      keptPass_ = message.pass;
+    }
+  }
+
+  // The kept map serves another pass: its radii and discs are not found again.
+  void reuseMap(const wire::PhotonMapAgainMessage& message) {
+    if (!kept_ || keptPass_ != message.keptPass) {
+      throw std::runtime_error(
+          "pass " + std::to_string(message.pass) + " reuses the photon map of pass " +
+          std::to_string(message.keptPass) + ", which this rank does not keep");
+    }
+    mapPass_ = message.pass;
+    caustics_ = kept_;
+    passes_.clear();
   }
 
   // The render pass a tile job names; throws when it needs a photon map this rank lacks.
@@ -184,6 +200,11 @@ class PhotonWork {
   std::atomic<bool> cancel_{false};
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
+  // The last map sent with keep, as a gather, and its pass: the viewer names it again for every
+  // later view's pass 1 (master/LiveRenderer.h), where sending and finding its radii again held
+  // this rank's tiles up after every pause of the camera.
+  std::shared_ptr<const CausticEstimator> kept_;
+  uint32_t keptPass_ = 0;
   std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
   std::optional<std::string> mapsRefusal_;  // why caustic maps cannot be built here, if so
   // Caustic maps by blur switch, built on first use and kept until the other setting's are
@@ -391,6 +412,10 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         lock.unlock();  // builds the kd-tree
         photons.acceptMap(wire::decodePhotonMap(message));
         lock.lock();
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonMapAgain) {
+        photons.reuseMap(wire::decodePhotonMapAgain(message));
         continue;
       }
       if (message.type != wire::MessageType::TileJob) continue;

@@ -18,7 +18,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::PhotonCancel);
+         raw <= static_cast<uint16_t>(MessageType::PhotonMapAgain);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -118,6 +118,8 @@ const char* messageTypeName(MessageType type) {
       return "PhotonShare";
     case MessageType::PhotonMap:
       return "PhotonMap";
+    case MessageType::PhotonMapAgain:
+      return "PhotonMapAgain";
   }
   return "unknown";
 }
@@ -323,6 +325,22 @@ EchoMessage decodeEcho(const Message& message) {
   });
 }
 
+std::vector<uint8_t> encodePhotonMapAgain(const PhotonMapAgainMessage& again) {
+  return encodeWith(MessageType::PhotonMapAgain, [&](ByteWriter& w) {
+    w.writeU32(again.pass);
+    w.writeU32(again.keptPass);
+  });
+}
+
+PhotonMapAgainMessage decodePhotonMapAgain(const Message& message) {
+  return decodePayload(message, MessageType::PhotonMapAgain, [](ByteReader& r) {
+    PhotonMapAgainMessage again;
+    again.pass = r.readU32();
+    again.keptPass = r.readU32();
+    return again;
+  });
+}
+
 std::vector<uint8_t> encodePhotonCancel(const PhotonCancelMessage& cancel) {
   return encodeWith(MessageType::PhotonCancel, [&](ByteWriter& w) { w.writeU32(cancel.pass); });
 }
@@ -523,12 +541,12 @@ PhotonShareMessage decodePhotonShare(const Message& message) {
 }
 
 std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
-  const auto& [pass, gather, photons] = map;
-  return encodePhotonMap(pass, gather, photons);
+  const auto& [pass, gather, photons, keep] = map;
+  return encodePhotonMap(pass, gather, photons, keep);
 }
 
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
-                                     const std::vector<Photon>& photons) {
+                                     const std::vector<Photon>& photons, bool keep) {
   return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
     const auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
     w.writeU32(pass);
@@ -538,6 +556,7 @@ std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& 
     w.writeU32(static_cast<uint32_t>(filter));
     w.writeF32(radiusScale);
     w.writeBool(automaticK);
+    w.writeBool(keep);
     writePhotons(w, photons);
   });
 }
@@ -545,7 +564,7 @@ std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& 
 PhotonMapMessage decodePhotonMap(const Message& message) {
   return decodePayload(message, MessageType::PhotonMap, [](ByteReader& r) {
     PhotonMapMessage map;
-    auto& [pass, gather, photons] = map;
+    auto& [pass, gather, photons, keep] = map;
     auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
     pass = r.readU32();
     fixedRadius = r.readBool();
@@ -558,6 +577,7 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
     filter = static_cast<PhotonFilter>(rawFilter);
     radiusScale = r.readF32();
     automaticK = r.readBool();
+    keep = r.readBool();
     if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius) || !(radiusScale > 0.0f) ||
         !std::isfinite(radiusScale)) {
       throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +

@@ -27,7 +27,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // running (pipelined frames) and says whether one sample per pixel is jittered. 7: PhotonCancel.
 // 8: the automatic k (gather: auto) in the scene's caustics and the photon map's gather.
 // 9: a View's display exposure, and TileResults as display bytes for frames only shown.
-inline constexpr uint16_t kVersion = 9;
+// 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
+inline constexpr uint16_t kVersion = 10;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -44,7 +45,8 @@ enum class MessageType : uint16_t {
   PhotonMap = 10,
   View = 11,
   Echo = 12,
-  PhotonCancel = 13
+  PhotonCancel = 13,
+  PhotonMapAgain = 14
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -108,11 +110,20 @@ struct PhotonShareMessage {
 };
 
 // Master to slave: every photon of a pass, and how to gather from them; tiles of that pass
-// with kTermCaustics use it.
+// with kTermCaustics use it. keep: the master may name this map again (PhotonMapAgain), so the
+// slave keeps it, with its radii, beside the maps that follow until the next one to keep.
 struct PhotonMapMessage {
   uint32_t pass = 0;
   PhotonGatherSettings gather;
   std::vector<Photon> photons;
+  bool keep = false;
+};
+
+// Master to slave: the tiles of pass `pass` gather from the map this rank was sent as pass
+// `keptPass` with keep set (the viewer's later views reuse their first view's pass-1 photons).
+struct PhotonMapAgainMessage {
+  uint32_t pass = 0;
+  uint32_t keptPass = 0;
 };
 
 struct TileResultMessage {
@@ -196,8 +207,11 @@ PhotonShareMessage decodePhotonShare(const Message& message);
 std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
 // The same bytes without first copying the photons into a message struct.
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
-                                     const std::vector<Photon>& photons);
+                                     const std::vector<Photon>& photons, bool keep = false);
 PhotonMapMessage decodePhotonMap(const Message& message);
+
+std::vector<uint8_t> encodePhotonMapAgain(const PhotonMapAgainMessage& again);
+PhotonMapAgainMessage decodePhotonMapAgain(const Message& message);
 
 std::vector<uint8_t> encodeEcho(const EchoMessage& echo);
 EchoMessage decodeEcho(const Message& message);

@@ -63,6 +63,9 @@ void decodePayload(const std::vector<uint8_t>& bytes) {
     case MessageType::PhotonCancel:
       expectSameBytes(bytes, decodePhotonCancel(message), &encodePhotonCancel);
       break;
+    case MessageType::PhotonMapAgain:
+      expectSameBytes(bytes, decodePhotonMapAgain(message), &encodePhotonMapAgain);
+      break;
     default:
       throw InvariantBroken("decodeMessage accepted an unknown message type");
   }

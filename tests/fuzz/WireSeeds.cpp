@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
   writeSeed(dir, "view", encodeView(view));
   writeSeed(dir, "echo", encodeEcho({5, std::string(64, 'x')}));
   writeSeed(dir, "photon-cancel", encodePhotonCancel({3}));
+  writeSeed(dir, "photon-map-again", encodePhotonMapAgain({9, 4}));
   // Refused ones: a truncated message and a flipped payload byte.
   std::vector<uint8_t> bytes = encodeReady({0.25, 8});
   bytes.pop_back();

@@ -831,6 +831,69 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   EXPECT_FALSE(stats.ranks[1].retired);
 }
 
+// With a real slave, a later view's pass 1 reuses the map the slave kept from the first view's
+// pass 1 (PhotonMapAgain instead of the map): the frame is bit for bit its rendering with the
+// photons traced for the first view's pass-1 frame, and the slave stays in.
+TEST(LiveRenderer, OverTheLoopbackALaterViewsFirstPassGathersFromTheSlavesKeptMap) {
+  SceneDescription d = causticScene();
+  const Scene scene(d);
+  LoopbackNetwork network(2);
+  int slaveExit = -1;
+  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
+  LiveOptions options;
+  options.distribution.threads = 1;
+  options.distribution.tileSize = 8;
+  options.previewScale = 1;
+  options.maxPasses = 1;
+  CameraDesc moved = d.camera;
+  moved.position += Vec3(0.3f, 0.1f, 0.0f);
+  std::vector<PassInfo> passes;
+  LiveStats stats;
+  Recorder recorder;
+  {
+    LiveRenderer renderer(scene, options, &network.endpoint(0));
+    std::thread coordinator([&] { renderer.run(recorder); });
+    const auto passOneDone = [&](size_t views) {
+      return waitUntil([&] {
+        size_t done = 0;
+        for (const PassInfo& p : recorder.passes())
+          done += p.pass == 1 && recorder.finished(p.frame);
+        return done == views;
+      });
+    };
+    renderer.setView({d.camera, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+    ASSERT_TRUE(passOneDone(1));
+    renderer.setView({moved, 1, DebugView::Image, CausticMethod::PhotonMap, 0});
+    ASSERT_TRUE(passOneDone(2));
+    stats = endLoopbackRun(renderer, coordinator, network);
+    passes = recorder.passes();
+  }
+  slaveThread.join();
+  EXPECT_EQ(slaveExit, 0);
+  EXPECT_GT(stats.ranks[1].tiles, 0u);
+  EXPECT_FALSE(stats.ranks[1].retired);
+  EXPECT_TRUE(stats.photons.reused);
+
+  std::vector<const PassInfo*> ones;
+  for (const PassInfo& p : passes) {
+    if (p.pass == 1) ones.push_back(&p);
+  }
+  ASSERT_EQ(ones.size(), 2u);
+  EXPECT_EQ(&gatherOf(*ones[1]), &gatherOf(*ones[0]));
+  const PhotonTracer tracer(scene, d.caustics.photons, d.caustics.maxBounces);
+  SlaveLink alone(nullptr, {});
+  PhotonPassStats photonStats;
+  const auto map = tracePhotonPass(tracer, ones[0]->frame, 2, alone, photonStats);
+  const PhotonGatherSettings settings =
+      progressiveGather(d.caustics, automaticMaxRadius(scene), 1, {});
+  d.camera = moved;
+  const ImageRgb expected = renderPassFrame(
+      d, 1,
+      std::make_shared<const RenderPass>(
+          RenderPass{ones[1]->frame, true, std::make_shared<const PhotonGather>(map, settings)}));
+  EXPECT_TRUE(sameImage(recorder.image(ones[1]->frame), expected));
+}
+
 // Frames while the camera moves (pass 0: reduced, shown and replaced) come from a slave as display
 // bytes, 3 a pixel: the radiance that arrives is not the slave's, but the frame shows exactly as
 // `prism render` of the same view does.

@@ -152,16 +152,17 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
 
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
-  // liveFrom; 6: before PhotonCancel; 7: before the automatic k; 8: before display bytes.
-  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 10}) {
+  // liveFrom; 6: before PhotonCancel; 7: before the automatic k; 8: before display bytes; 9:
+  // before PhotonMapAgain.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 9, 11}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 9");
+                    "message version " + std::to_string(version) + ", this build speaks 10");
   }
 
-  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel; 14 is the
-  // first unused type.
-  for (uint16_t type : {0, 14, 0xFFFF}) {
+  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel, 14
+  // PhotonMapAgain; 15 is the first unused type.
+  for (uint16_t type : {0, 15, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -543,8 +544,26 @@ TEST(Messages, PhotonMapRoundTripsBitExact) {
   expectSamePhotons(back.photons, map.photons);
   EXPECT_EQ(encodePhotonMap(back), bytes);
 
+  EXPECT_FALSE(back.keep);
+  map.keep = true;
+  EXPECT_TRUE(decodePhotonMap(decodeMessage(encodePhotonMap(map))).keep);
+
   map.photons.clear();  // a pass that stored nothing is still a valid map
   EXPECT_TRUE(decodePhotonMap(decodeMessage(encodePhotonMap(map))).photons.empty());
+}
+
+TEST(Messages, PhotonMapAgainRoundTripsAndIsChecked) {
+  const std::vector<uint8_t> bytes = encodePhotonMapAgain({41, 7});
+  const PhotonMapAgainMessage back = decodePhotonMapAgain(decodeMessage(bytes));
+  EXPECT_EQ(back.pass, 41u);
+  EXPECT_EQ(back.keptPass, 7u);
+  EXPECT_EQ(encodePhotonMapAgain(back), bytes);
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonMapAgain), "PhotonMapAgain");
+  expectWireError([&] { decodePhotonMapAgain(decodeMessage(encodeShutdown())); },
+                  "expected a PhotonMapAgain message, got Shutdown");
+  const std::vector<uint8_t> shorter =
+      encodeMessage(MessageType::PhotonMapAgain, {1, 0, 0, 0, 2, 0, 0});
+  EXPECT_THROW(decodePhotonMapAgain(decodeMessage(shorter)), WireError);
 }
 
 TEST(Messages, PhotonsWithCorruptPowerOrPositionAreRejected) {
@@ -623,6 +642,7 @@ TEST(Messages, PhotonMapWithAHugePhotonCountThrowsWithoutAllocating) {
     w.writeU32(1);
     w.writeF32(1.0f);    // radius scale
     w.writeBool(false);  // automatic k
+    w.writeBool(false);  // keep
     w.writeU64(uint64_t{1} << 60);
   });
   expectWireError([&] { decodePhotonMap(m); }, "corrupt element count 1152921504606846976");
@@ -638,7 +658,8 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(TileJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonJobMessage), 32u) << update;
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
-  EXPECT_EQ(sizeof(PhotonMapMessage), 56u) << update;
+  EXPECT_EQ(sizeof(PhotonMapMessage), 64u) << update;
+  EXPECT_EQ(sizeof(PhotonMapAgainMessage), 8u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 104u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 32u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
