@@ -296,20 +296,18 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     gather = estimator->settings();
     p = firstPhotonPass_->stats;
     p.distributeSeconds = 0.0;
+    sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);  // the slaves kept it too
   } else {
     map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p,
                           &cancelPhotons_);
     if (!map) return nullptr;  // the camera moved: the pass is dropped before it starts
     gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
-  }
-  gather_ = gather;
-  if (reused) {
-    sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);
-  } else {
+    // Sent before rank 0 finds its radii, so the slaves find theirs meanwhile.
     sendPhotonMap(*map, plan.frame, gather, link_, p, plan.index == 1);
     estimator = std::make_shared<const PhotonGather>(map, gather, dispatcher_.localThreads());
     if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, plan.frame, map, estimator, p};
   }
+  gather_ = gather;
 
   const std::lock_guard<std::mutex> lock(mutex_);
   if (plan.viewId == viewId_) {

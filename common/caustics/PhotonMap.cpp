@@ -19,9 +19,11 @@ struct PhotonCloud {
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PhotonCloud>,
                                                    PhotonCloud, 3, uint32_t>;
 
+// The result sets below are handed leaf positions (the tree indexes its leaf-order copy of the
+// positions) and report photon indices.
+
 // The k nearest within a radius: like nanoflann's KNNResultSet, but the search never looks past
 // maxRadius², so sparse regions cost no more than dense ones.
-// Both result sets are handed leaf positions and give out photon indices.
 class BoundedNearest {
  public:
   BoundedNearest(size_t k, float maxRadius2, const uint32_t* photonAt,
@@ -68,6 +70,7 @@ class WithinRadius {
   std::vector<PhotonNeighbour>& out_;
 };
 
+// Only the squared distances within a radius, for a selection by rank.
 class DistancesWithin {
  public:
   DistancesWithin(float radius2, std::vector<float>& out) : radius2_(radius2), out_(out) {
