@@ -7,7 +7,8 @@
 namespace prism {
 namespace {
 constexpr uint32_t kLeafSize = 8;
-}
+static_assert(kLeafSize <= 255, "a leaf's count is a byte (Node::count)");
+}  // namespace
 
 PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii) {
   const uint32_t n = static_cast<uint32_t>(photons.size());
