@@ -5,6 +5,7 @@
 // Built the same from the same photons and radii on every rank, and visited in the same order.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -61,15 +62,23 @@ class PhotonDiscs {
     float maxRadius2Bound() const {
       return std::bit_cast<float>((uint32_t(maxRadius2Exponent) + 1) << 23);  // 255: infinity
     }
-    // Whether a disc centre in the node's box may pass inFootprint.contains(centre - x): the
-    // box's range along each of the test's three directions (with a margin far above rounding)
-    // meets the test's interval.
+    // Whether a disc centre c in the node's box may pass inFootprint.contains(c - x): the range
+    // of (c - x)·w over the box, for each of the test's three directions w, meets the test's
+    // interval. Built from the corners' offsets lo - x and hi - x, which bound every centre's
+    // c - x as contains() computes it (rounding is monotonic; near x the subtractions are
+    // exact), with a margin far above the rounding of the sums.
     bool mayHoldCentreIn(const Vec3& x, const PixelFootprint::Test& t) const {
-      const Vec3 centre = 0.5f * (lo + hi) - x, half = 0.5f * (hi - lo);
+      const Vec3 below = lo - x, above = hi - x;
       const auto meets = [&](const Vec3& w, float limit) {
-        const float at = glm::dot(centre, w), spread = glm::dot(half, glm::abs(w));
-        const float margin = 1e-4f * (std::fabs(at) + spread + limit);
-        return at - spread <= limit + margin && at + spread >= -limit - margin;
+        float low = 0.0f, high = 0.0f, size = limit;
+        for (int a = 0; a < 3; ++a) {
+          const float p = below[a] * w[a], q = above[a] * w[a];
+          low += std::min(p, q);
+          high += std::max(p, q);
+          size += std::max(std::fabs(p), std::fabs(q));
+        }
+        const float margin = 1e-4f * size;
+        return low <= limit + margin && high >= -limit - margin;
       };
       return meets(t.normal, t.slab) && meets(t.dualA, 0.5f) && meets(t.dualB, 0.5f);
     }

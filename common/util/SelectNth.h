@@ -1,7 +1,8 @@
 // The n-th smallest of an array of floats, put in place as std::nth_element does (smaller ones
 // before it, larger ones after), by quickselect with a branch-free partition: on the few hundred
-// distances of a photon's neighbourhood it is about twice as fast as std::nth_element, whose
-// partition mispredicts every other comparison on random data.
+// distances of a photon's neighbourhood it took the photon radii's selections from 2.9 s to 1.6 s
+// (caustic-ring, k up to 400; from perf's shares) against std::nth_element, whose partition
+// mispredicts about every other comparison on such data.
 #pragma once
 
 #include <algorithm>
