@@ -47,18 +47,20 @@ TEST(GatherRadius, PhotonRadiiAreTheKthNeighbourDistanceCapped) {
 // Every radius equals a brute-force k-th nearest distance (squared as the kd-tree squares it,
 // capped at maxRadius), bit for bit: dense clusters, a sparse field where fewer than k photons
 // lie within maxRadius, a line, and a pile of identical photons, for several k and thread counts.
-TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
+void expectRadiiEqualBruteForce(const Vec3& offset) {
   std::mt19937 rng(7);
   std::normal_distribution<float> tight(0.0f, 0.002f);
   std::uniform_real_distribution<float> wide(-3.0f, 3.0f);
   std::vector<Photon> photons;
   for (int cluster = 0; cluster < 6; ++cluster) {
-    const Vec3 centre(wide(rng), 0.0f, wide(rng));
+    const Vec3 centre = offset + Vec3(wide(rng), 0.0f, wide(rng));
     for (int i = 0; i < 400; ++i) photons.push_back({centre + Vec3(tight(rng), 0, tight(rng))});
   }
-  for (int i = 0; i < 300; ++i) photons.push_back({Vec3(wide(rng), wide(rng) * 0.01f, wide(rng))});
-  for (int i = 0; i < 200; ++i) photons.push_back({Vec3(5.0f + 1e-4f * i, 1.0f, -2.0f)});
-  for (int i = 0; i < 40; ++i) photons.push_back({Vec3(-4.0f, 0.5f, 4.0f)});
+  for (int i = 0; i < 300; ++i) {
+    photons.push_back({offset + Vec3(wide(rng), wide(rng) * 0.01f, wide(rng))});
+  }
+  for (int i = 0; i < 200; ++i) photons.push_back({offset + Vec3(5.0f + 1e-4f * i, 1.0f, -2.0f)});
+  for (int i = 0; i < 40; ++i) photons.push_back({offset + Vec3(-4.0f, 0.5f, 4.0f)});
   std::vector<Vec3> positions;
   for (const Photon& p : photons) positions.push_back(p.position);
   const PhotonMap map(std::move(photons));
@@ -95,6 +97,14 @@ TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
       }
       EXPECT_LT(capped, radii.size()) << "k " << k;
     }
+  }
+}
+
+TEST(GatherRadius, PhotonRadiiEqualBruteForceKthDistancesExactly) {
+  // At the origin, and far from it, where a coordinate keeps fewer digits of the spacing.
+  for (const Vec3 offset : {Vec3(0.0f), Vec3(2000.0f, -30.0f, 700.0f)}) {
+    SCOPED_TRACE("offset " + std::to_string(offset.x));
+    expectRadiiEqualBruteForce(offset);
   }
 }
 
