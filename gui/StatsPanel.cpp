@@ -56,13 +56,11 @@ QString photonLines(const PhotonLiveStats& p) {
              .arg(p.stored)
              .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes)))) +
          QString("passes       %1 of this view\n").arg(p.passes) +
-         (p.reused ? QString("photon pass  the first view's, reused (traced in %1, kd-tree %2)\n")
-                         .arg(milliseconds(p.traceSeconds))
-                         .arg(milliseconds(p.buildSeconds))
-                   : QString("photon pass  trace %1, kd-tree %2, send %3\n")
-                         .arg(milliseconds(p.traceSeconds))
-                         .arg(milliseconds(p.buildSeconds))
-                         .arg(milliseconds(p.distributeSeconds))) +
+         QString("photon pass  trace %1, kd-tree %2, %3\n")
+             .arg(milliseconds(p.traceSeconds))
+             .arg(milliseconds(p.buildSeconds))
+             .arg(p.reused ? QString("the first view's, reused")
+                           : "send " + milliseconds(p.distributeSeconds)) +
          QString("gather r     %1 (progressive)").arg(p.radius, 0, 'g', 4);
 }
 

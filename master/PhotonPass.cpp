@@ -42,6 +42,15 @@ std::vector<Share> planShares(uint64_t total, int localThreads, const SlaveLink&
   return shares;
 }
 
+// Sends a message to every live slave; returns the bytes that went (a refusal retires the rank).
+size_t sendToEverySlave(SlaveLink& link, const std::vector<uint8_t>& bytes) {
+  size_t sent = 0;
+  for (int r = 1; r < link.ranks(); ++r) {
+    if (link.send(r, bytes)) sent += bytes.size();
+  }
+  return sent;
+}
+
 }  // namespace
 
 std::shared_ptr<const PhotonMap> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
@@ -160,17 +169,13 @@ void sendPhotonMap(const PhotonMap& map, uint32_t pass, const PhotonGatherSettin
                    SlaveLink& link, PhotonPassStats& stats, bool keep) {
   if (!link.hasSlaves()) return;
   const auto start = SteadyClock::now();
-  const std::vector<uint8_t> bytes = wire::encodePhotonMap(pass, gather, map.photons(), keep);
-  for (int r = 1; r < link.ranks(); ++r) {
-    if (link.send(r, bytes)) stats.sentBytes += bytes.size();  // a refusal retires the rank
-  }
+  stats.sentBytes +=
+      sendToEverySlave(link, wire::encodePhotonMap(pass, gather, map.photons(), keep));
   stats.distributeSeconds = secondsSince(start);
 }
 
 void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link) {
-  if (!link.hasSlaves()) return;
-  const std::vector<uint8_t> bytes = wire::encodePhotonMapAgain({pass, keptPass});
-  for (int r = 1; r < link.ranks(); ++r) link.send(r, bytes);  // a refusal retires the rank
+  sendToEverySlave(link, wire::encodePhotonMapAgain({pass, keptPass}));
 }
 
 }  // namespace prism
