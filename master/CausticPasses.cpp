@@ -42,11 +42,15 @@ void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
   c.traceSeconds += p.traceSeconds;
   c.buildSeconds += p.buildSeconds;
   c.distributeSeconds += p.distributeSeconds;
+  c.radiiSeconds += p.radiiSeconds;
   c.mapBytes = std::max(c.mapBytes, p.mapBytes);
   c.sentBytes += p.sentBytes;
-  if (c.photonsByRank.size() < p.photonsByRank.size())
-    c.photonsByRank.resize(p.photonsByRank.size());
-  for (size_t r = 0; r < p.photonsByRank.size(); ++r) c.photonsByRank[r] += p.photonsByRank[r];
+  const auto addByRank = [](std::vector<uint64_t>& total, const std::vector<uint64_t>& pass) {
+    if (total.size() < pass.size()) total.resize(pass.size());
+    for (size_t r = 0; r < pass.size(); ++r) total[r] += pass[r];
+  };
+  addByRank(c.photonsByRank, p.photonsByRank);
+  addByRank(c.radiiByRank, p.radiiByRank);
 }
 
 // The progressive estimate after `passes` caustic passes: direct light plus their mean.
@@ -56,16 +60,6 @@ ImageRgb progressiveImage(const ImageRgb& direct, const ImageRgb& causticSum, in
   for (size_t px = 0; px < image.pixels.size(); ++px)
     image.pixels[px] += causticSum.pixels[px] * scale;
   return image;
-}
-
-// The gather of a pass (each photon's radius, the disc tree), its time counted.
-std::shared_ptr<const PhotonGather> timedGather(std::shared_ptr<const PhotonMap> map,
-                                                const PhotonGatherSettings& gather, int threads,
-                                                CausticRunStats& stats) {
-  const auto start = SteadyClock::now();
-  auto made = std::make_shared<const PhotonGather>(std::move(map), gather, threads);
-  stats.radiiSeconds += secondsSince(start);
-  return made;
 }
 
 }  // namespace
@@ -133,24 +127,24 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
       options.distribution.threads > 0 ? options.distribution.threads : availableCores();
   const float maxRadius =
       settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
-  const auto photonPass = [&](uint32_t pass, const std::string& label) {
+  // Traces pass `pass` across the ranks and returns rank 0's gather from its photons (the ranks
+  // find the radii together).
+  const auto photonPass = [&](uint32_t pass, const std::string& label,
+                              const PhotonGatherSettings& gather) {
     if (progress) progress(label + " photons", 0, 1);
     PhotonPassStats p;
-    auto map = tracePhotonPass(*tracer, pass, threads, link, p);
+    std::vector<Photon> photons = *tracePhotonPass(*tracer, pass, threads, link, p);
+    auto estimator = gatherFromPhotons(std::move(photons), pass, gather, threads, link, p);
     addPhotonStats(stats, p);
     ++stats.passes;
-    return map;
+    return estimator;
   };
 
   if (!settings.progressive) {
-    const auto map = photonPass(0, "trace");
-    const PhotonGatherSettings gather = classicGather(settings, maxRadius);
-    PhotonPassStats sent;
-    sendPhotonMap(*map, 0, gather, link, sent);
-    addPhotonStats(stats, sent);
+    auto estimator = photonPass(0, "trace", classicGather(settings, maxRadius));
+    const std::shared_ptr<const PhotonMap> map = estimator->sharedMap();
     stats.firstRadius = stats.lastRadius = maxRadius;
-    auto pass = std::make_shared<const RenderPass>(
-        RenderPass{0, true, timedGather(map, gather, threads, stats)});
+    auto pass = std::make_shared<const RenderPass>(RenderPass{0, true, std::move(estimator)});
     FrameResult f = frame(pass, "render");
     stats.gatherRenderSeconds += f.seconds;
     out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
@@ -182,16 +176,14 @@ CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveL
       break;
     }
     const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
-    const auto map = photonPass(static_cast<uint32_t>(i), label);
     gather = progressiveGather(settings, maxRadius, i, gather);
     // Per-photon radii: the cap, scaled as the radii are.
     if (i == 1) stats.firstRadius = gather.radius * gather.radiusScale;
     stats.lastRadius = gather.radius * gather.radiusScale;
-    PhotonPassStats sent;
-    sendPhotonMap(*map, static_cast<uint32_t>(i), gather, link, sent);
-    addPhotonStats(stats, sent);
+    auto estimator = photonPass(static_cast<uint32_t>(i), label, gather);
+    const std::shared_ptr<const PhotonMap> map = estimator->sharedMap();
     auto pass = std::make_shared<const RenderPass>(
-        RenderPass{static_cast<uint32_t>(i), false, timedGather(map, gather, threads, stats)});
+        RenderPass{static_cast<uint32_t>(i), false, std::move(estimator)});
     FrameResult f = frame(pass, label);
     if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
       out.frames.interrupted = true;

@@ -35,13 +35,14 @@ struct CausticRunStats {
   PhotonTraceStats trace;
   double traceSeconds = 0.0, buildSeconds = 0.0, distributeSeconds = 0.0;
   double gatherRenderSeconds = 0.0;  // frames that gathered photons
-  double radiiSeconds = 0.0;         // each photon's k-NN radius and the disc tree, rank 0
+  double radiiSeconds = 0.0;         // every photon's k-NN radius (all ranks), rank 0's discs
   size_t mapBytes = 0;               // largest photon map (photons + kd-tree)
   size_t sentBytes = 0;              // photon maps sent to slaves
   int k = 0;
   float firstRadius = 0.0f, lastRadius = 0.0f;  // gather radius (progressive) or k-NN cap
   std::vector<uint64_t> photonsByRank;
-  CausticMapStats map;  // caustic mapping: summed over the lights (rank 0's build)
+  std::vector<uint64_t> radiiByRank;  // photons whose radius each rank found
+  CausticMapStats map;                // caustic mapping: summed over the lights (rank 0's build)
   double mapBuildSeconds = 0.0;
   CausticSettings settings;  // the run's, for the parameters the summary prints
 };

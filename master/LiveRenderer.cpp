@@ -298,13 +298,15 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     p.distributeSeconds = 0.0;
     sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);  // the slaves kept it too
   } else {
-    map = tracePhotonPass(*tracer_, plan.frame, dispatcher_.localThreads(), link_, p,
-                          &cancelPhotons_);
-    if (!map) return nullptr;  // the camera moved: the pass is dropped before it starts
+    std::optional<std::vector<Photon>> photons = tracePhotonPass(
+        *tracer_, plan.frame, dispatcher_.localThreads(), link_, p, &cancelPhotons_);
+    if (!photons) return nullptr;  // the camera moved: the pass is dropped before it starts
     gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
-    // Sent before rank 0 finds its radii, so the slaves find theirs meanwhile.
-    sendPhotonMap(*map, plan.frame, gather, link_, p, plan.index == 1);
-    estimator = std::make_shared<const PhotonGather>(map, gather, dispatcher_.localThreads());
+    estimator =
+        gatherFromPhotons(std::move(*photons), plan.frame, gather, dispatcher_.localThreads(),
+                          link_, p, plan.index == 1, &cancelPhotons_);
+    if (!estimator) return nullptr;  // the camera moved while the radii were found
+    map = estimator->sharedMap();
     if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, plan.frame, map, estimator, p};
   }
   gather_ = gather;

@@ -126,9 +126,16 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
   }
   out << ", frames with gathers " << fixed(c.gatherRenderSeconds, 3) << " s\n";
   if (c.photonsByRank.size() > 1) {
+    const auto byRank = [&](const std::vector<uint64_t>& counts) {
+      for (size_t r = 0; r < counts.size(); ++r) {
+        out << (r ? ", " : " ") << r << ": " << formatCount(static_cast<double>(counts[r]));
+      }
+    };
     out << "          photons traced by rank:";
-    for (size_t r = 0; r < c.photonsByRank.size(); ++r) {
-      out << (r ? ", " : " ") << r << ": " << formatCount(static_cast<double>(c.photonsByRank[r]));
+    byRank(c.photonsByRank);
+    if (c.radiiByRank.size() > 1) {
+      out << "; radii found by rank:";
+      byRank(c.radiiByRank);
     }
     out << "\n";
   }

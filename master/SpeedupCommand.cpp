@@ -57,14 +57,14 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
     const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
     if (tracer.hasWork()) {
       PhotonPassStats stats;
-      const auto map = tracePhotonPass(tracer, 0, 1, link, stats);
+      std::vector<Photon> photons = *tracePhotonPass(tracer, 0, 1, link, stats);
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather = classicGather(settings, radius);
-      sendPhotonMap(*map, 0, gather, link, stats);
-      prepared.stage = "photon pass (" + std::to_string(map->size()) + " photons)";
-      prepared.pass = std::make_shared<const RenderPass>(
-          RenderPass{0, true, std::make_shared<const PhotonGather>(map, gather)});
+      prepared.stage = "photon pass (" + std::to_string(photons.size()) + " photons)";
+      prepared.pass = std::make_shared<const RenderPass>(RenderPass{
+          0, true,
+          gatherFromPhotons(std::move(photons), 0, gather, availableCores(), link, stats)});
       prepared.progressiveAsOneFrame = settings.progressive;
     }
   }

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 #include <utility>
@@ -16,6 +17,7 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
+#include "caustics/PhotonRadii.h"
 #include "caustics/PhotonTracer.h"
 #include "cluster/TileWorkerPool.h"
 #include "scene/GeometryMemory.h"
@@ -121,15 +123,34 @@ class PhotonWork {
     return running_.get();
   }
 
+  // A map whose gather needs per-photon radii waits for them (PhotonRadii), after this rank
+  // finds its share if asked (PhotonRadiiJob); any other gathers at once.
   void acceptMap(wire::PhotonMapMessage&& message) {
     auto map = std::make_shared<const PhotonMap>(std::move(message.photons));
-    mapPass_ = message.pass;
-    caustics_ = std::make_shared<const PhotonGather>(std::move(map), message.gather, threads_);
-    passes_.clear();
-    if (message.keep) {
-      kept_ = caustics_;
-      keptPass_ = message.pass;
+    pending_.reset();
+    if (PhotonGather::needsRadii(message.gather, map->size())) {
+      pending_ = PendingMap{message.pass, std::move(map), message.gather, message.keep};
+      return;
     }
+    useGather(message.pass, std::make_shared<const PhotonGather>(std::move(map), message.gather),
+              message.keep);
+  }
+
+  // This rank's share of the radii of the map waiting for them.
+  wire::PhotonRadiiShareMessage findRadii(const wire::PhotonRadiiJobMessage& job) {
+    const PendingMap& p = pendingFor(job.pass, "radii job");
+    wire::PhotonRadiiShareMessage share{job.pass, job.first, {}};
+    share.radii = photonRadiiShare(*p.map, p.gather.k, p.gather.radius, p.gather.automaticK,
+                                   job.first, job.count, threads_);
+    return share;
+  }
+
+  void acceptRadii(wire::PhotonRadiiMessage&& message) {
+    PendingMap& p = pendingFor(message.pass, "radii");
+    useGather(p.pass,
+              std::make_shared<const PhotonGather>(p.map, p.gather, std::move(message.radii)),
+              p.keep);
+    pending_.reset();
   }
 
   // The kept map serves another pass: its radii and discs are not found again.
@@ -139,9 +160,7 @@ class PhotonWork {
           "pass " + std::to_string(message.pass) + " reuses the photon map of pass " +
           std::to_string(message.keptPass) + ", which this rank does not keep");
     }
-    mapPass_ = message.pass;
-    caustics_ = kept_;
-    passes_.clear();
+    useGather(message.pass, kept_, false);
   }
 
   // The render pass a tile job names; throws when it needs a photon map this rank lacks.
@@ -191,6 +210,32 @@ class PhotonWork {
   }
 
  private:
+  // A photon map received, its gather waiting for the radii.
+  struct PendingMap {
+    uint32_t pass = 0;
+    std::shared_ptr<const PhotonMap> map;
+    PhotonGatherSettings gather;
+    bool keep = false;
+  };
+
+  PendingMap& pendingFor(uint32_t pass, const char* what) {
+    if (!pending_ || pending_->pass != pass) {
+      throw std::runtime_error(std::string(what) + " for the photon map of pass " +
+                               std::to_string(pass) + ", which this rank has not received");
+    }
+    return *pending_;
+  }
+
+  void useGather(uint32_t pass, std::shared_ptr<const CausticEstimator> gather, bool keep) {
+    mapPass_ = pass;
+    caustics_ = std::move(gather);
+    passes_.clear();
+    if (keep) {
+      kept_ = caustics_;
+      keptPass_ = pass;
+    }
+  }
+
   const Scene& scene_;
   int threads_;
   Transport& session_;
@@ -198,6 +243,7 @@ class PhotonWork {
   std::future<std::optional<wire::PhotonShareMessage>> running_;
   uint32_t runningPass_ = 0;
   std::atomic<bool> cancel_{false};
+  std::optional<PendingMap> pending_;
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   // The last map sent with keep, as a gather, and its pass: the viewer names it again for every
@@ -411,6 +457,20 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       if (message.type == wire::MessageType::PhotonMap) {
         lock.unlock();  // builds the kd-tree
         photons.acceptMap(wire::decodePhotonMap(message));
+        lock.lock();
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonRadiiJob) {
+        lock.unlock();  // finds the radii
+        const wire::PhotonRadiiShareMessage share =
+            photons.findRadii(wire::decodePhotonRadiiJob(message));
+        lock.lock();
+        if (!session.send(0, wire::encodePhotonRadiiShare(share))) masterGone = true;
+        continue;
+      }
+      if (message.type == wire::MessageType::PhotonRadii) {
+        lock.unlock();  // builds the disc tree
+        photons.acceptRadii(wire::decodePhotonRadii(message));
         lock.lock();
         continue;
       }

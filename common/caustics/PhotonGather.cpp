@@ -1,6 +1,8 @@
 #include "caustics/PhotonGather.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "caustics/DensityKernel.h"
 #include "caustics/PhotonRadii.h"
@@ -9,10 +11,20 @@ namespace prism {
 
 PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
                            const PhotonGatherSettings& settings, int threads)
+    : PhotonGather(
+          map, settings,
+          needsRadii(settings, map->size())
+              ? photonRadii(*map, settings.k, settings.radius, settings.automaticK, threads)
+              : std::vector<float>{}) {}
+
+PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
+                           const PhotonGatherSettings& settings, std::vector<float> radii)
     : map_(std::move(map)), settings_(settings) {
-  if (settings_.fixedRadius || map_->size() == 0) return;
-  std::vector<float> radii =
-      photonRadii(*map_, settings_.k, settings_.radius, settings_.automaticK, threads);
+  if (!needsRadii(settings_, map_->size())) return;
+  if (radii.size() != map_->size()) {
+    throw std::invalid_argument(std::to_string(radii.size()) + " photon radii for a map of " +
+                                std::to_string(map_->size()) + " photons");
+  }
   for (float& r : radii) r *= settings_.radiusScale;
   discs_ = std::make_unique<const PhotonDiscs>(map_->photons(), radii);
 }

@@ -27,6 +27,14 @@ class PhotonGather : public CausticEstimator {
   // Per-photon radii are found here, on up to `threads` threads (0: all cores).
   PhotonGather(std::shared_ptr<const PhotonMap> map, const PhotonGatherSettings& settings,
                int threads = 0);
+  // With the per-photon radii found already (photonRadii(), by photon index, before
+  // radiusScale): by the ranks of a run together (master/PhotonPass.h).
+  PhotonGather(std::shared_ptr<const PhotonMap> map, const PhotonGatherSettings& settings,
+               std::vector<float> radii);
+  // Whether a gather from `photons` photons with these settings needs each photon's radius.
+  static bool needsRadii(const PhotonGatherSettings& settings, size_t photons) {
+    return !settings.fixedRadius && photons > 0;
+  }
 
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
   // With the pixel's footprint: the pixel's average of the photons' kernels, so a focus narrower
@@ -38,6 +46,7 @@ class PhotonGather : public CausticEstimator {
   bool usesFootprint() const override { return true; }
 
   const PhotonMap& map() const { return *map_; }
+  const std::shared_ptr<const PhotonMap>& sharedMap() const { return map_; }
   const PhotonGatherSettings& settings() const { return settings_; }
 
  private:

@@ -152,9 +152,9 @@ float PhotonMap::nearest(const Vec3& p, int k, float maxRadius2,
   return result.full() ? out.back().distance2 : maxRadius2;
 }
 
-std::vector<uint32_t> PhotonMap::spatialOrder() const {
-  if (!index_) return {};
-  return index_->photonAt;
+const std::vector<uint32_t>& PhotonMap::spatialOrder() const {
+  static const std::vector<uint32_t> none;
+  return index_ ? index_->photonAt : none;
 }
 
 void PhotonMap::within(const Vec3& p, float radius2, std::vector<PhotonNeighbour>& out) const {

@@ -27,7 +27,7 @@ class PhotonMap {
   size_t size() const { return photons_.size(); }
   // Every photon's index once, neighbours in space next to each other (the tree's leaf order):
   // queries made in this order find the tree's nodes and photons in the cache.
-  std::vector<uint32_t> spatialOrder() const;
+  const std::vector<uint32_t>& spatialOrder() const;
   // Photons plus the kd-tree, as resident in memory.
   size_t bytes() const;
 

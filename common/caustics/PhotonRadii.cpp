@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "caustics/AutomaticGather.h"
 #include "util/Parallel.h"
@@ -12,8 +14,6 @@ namespace prism {
 
 namespace {
 
-// Photons placed one after another by one thread, in the tree's leaf order: each bounds the next.
-constexpr size_t kChunkSize = 64;
 // Slack on the bound from the last photon, far above float rounding.
 constexpr float kBoundSlack = 1.001f;
 
@@ -26,22 +26,31 @@ constexpr float kGuessRadius = 1.02f, kGuessStep = 0.3f;
 
 }  // namespace
 
-std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
-                               int threads) {
-  std::vector<float> radii(map.size());
+std::vector<float> photonRadiiShare(const PhotonMap& map, int k, float maxRadius, bool automaticK,
+                                    size_t first, size_t count, int threads,
+                                    const std::atomic<bool>* cancel) {
+  const std::vector<uint32_t>& order = map.spatialOrder();
+  if (first % kPhotonRadiiChunk != 0 || first > order.size() || count > order.size() - first) {
+    throw std::invalid_argument("photon radii share [" + std::to_string(first) + ", +" +
+                                std::to_string(count) + ") of " + std::to_string(order.size()) +
+                                " photons does not start at a chunk or runs past the map");
+  }
+  std::vector<float> radii(count, 0.0f);
   const float maxRadius2 = maxRadius * maxRadius;
-  const std::vector<uint32_t> order = map.spatialOrder();
   const std::vector<int> ladder = automaticGatherLadder(k);
-  const size_t chunks = (order.size() + kChunkSize - 1) / kChunkSize;
+  const size_t end = first + count;
+  const size_t chunks = (count + kPhotonRadiiChunk - 1) / kPhotonRadiiChunk;
   parallelFor(chunks, threads, [&](uint64_t chunk) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return;
     thread_local std::vector<PhotonNeighbour> found;
     thread_local std::vector<float> distance2;
-    const size_t first = chunk * kChunkSize, last = std::min(order.size(), first + kChunkSize);
+    const size_t chunkFirst = first + chunk * kPhotonRadiiChunk;
+    const size_t last = std::min(end, chunkFirst + kPhotonRadiiChunk);
     // The photons placed last with k within maxRadius, and their radii.
     Vec3 recentPosition[kRecent];
     float recentRadius[kRecent];
     int recent = 0, placed = 0;
-    for (size_t n = first; n < last; ++n) {
+    for (size_t n = chunkFirst; n < last; ++n) {
       const uint32_t i = order[n];
       const Vec3& position = map.photons()[i].position;
       // The photons placed last are near, and the k nearest of each lie within its radius plus
@@ -98,7 +107,7 @@ std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, boo
         select(k);
         radius2 = count == k ? ofRank(k) : maxRadius2;
       }
-      radii[i] = std::sqrt(radius2);
+      radii[n - first] = std::sqrt(radius2);
       if (count == k) {
         recentPosition[placed % kRecent] = position;
         recentRadius[placed % kRecent] = std::sqrt(ofRank(k));
@@ -107,6 +116,20 @@ std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, boo
       }
     }
   });
+  return radii;
+}
+
+void placePhotonRadii(const PhotonMap& map, size_t first, const std::vector<float>& share,
+                      std::vector<float>& radii) {
+  const std::vector<uint32_t>& order = map.spatialOrder();
+  for (size_t n = 0; n < share.size(); ++n) radii[order[first + n]] = share[n];
+}
+
+std::vector<float> photonRadii(const PhotonMap& map, int k, float maxRadius, bool automaticK,
+                               int threads) {
+  std::vector<float> radii(map.size());
+  placePhotonRadii(map, 0, photonRadiiShare(map, k, maxRadius, automaticK, 0, map.size(), threads),
+                   radii);
   return radii;
 }
 

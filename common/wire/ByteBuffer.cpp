@@ -79,6 +79,15 @@ void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
   }
 }
 
+void ByteWriter::writeF32s(const std::vector<float>& v) {
+  writeCount(v.size());
+  if constexpr (kWireOrderIsNative) {
+    appendRaw(v.data(), v.size() * sizeof(float));
+  } else {
+    for (float e : v) writeF32(e);
+  }
+}
+
 void ByteReader::need(size_t n) const {
   if (n > remaining()) {
     throw WireError("truncated message: needed " + std::to_string(n) + " bytes at offset " +
@@ -163,6 +172,10 @@ std::vector<Vec3> ByteReader::readVec3s() {
 
 std::vector<uint32_t> ByteReader::readU32s() {
   return readArray<uint32_t>([this] { return readU32(); });
+}
+
+std::vector<float> ByteReader::readF32s() {
+  return readArray<float>([this] { return readF32(); });
 }
 
 std::vector<uint8_t> ByteReader::readU8s() {

@@ -36,6 +36,7 @@ class ByteWriter {
   void writeCount(size_t n) { writeU64(n); }
   void writeVec3s(const std::vector<Vec3>& v);
   void writeU32s(const std::vector<uint32_t>& v);
+  void writeF32s(const std::vector<float>& v);
   void writeU8s(const std::vector<uint8_t>& v);
 
   // A u64 count, then writeOne(*this, element) for each element.
@@ -75,6 +76,7 @@ class ByteReader {
   size_t readCount(size_t minElementBytes);
   std::vector<Vec3> readVec3s();
   std::vector<uint32_t> readU32s();
+  std::vector<float> readF32s();
   std::vector<uint8_t> readU8s();
 
   // Reads what writeSequence wrote. Nothing is reserved up front: the vector grows only as

@@ -18,7 +18,7 @@ std::string hex(uint64_t v, int digits) {
 
 bool isKnownType(uint16_t raw) {
   return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::PhotonMapAgain);
+         raw <= static_cast<uint16_t>(MessageType::PhotonRadii);
 }
 
 // Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
@@ -120,6 +120,12 @@ const char* messageTypeName(MessageType type) {
       return "PhotonMap";
     case MessageType::PhotonMapAgain:
       return "PhotonMapAgain";
+    case MessageType::PhotonRadiiJob:
+      return "PhotonRadiiJob";
+    case MessageType::PhotonRadiiShare:
+      return "PhotonRadiiShare";
+    case MessageType::PhotonRadii:
+      return "PhotonRadii";
   }
   return "unknown";
 }
@@ -476,6 +482,17 @@ std::vector<Photon> readPhotons(ByteReader& r) {
   return photons;
 }
 
+// Gather radii: finite and not negative (a photon without k neighbours has its cap).
+std::vector<float> readRadii(ByteReader& r) {
+  std::vector<float> radii = r.readF32s();
+  for (size_t i = 0; i < radii.size(); ++i) {
+    if (!(radii[i] >= 0.0f) || !std::isfinite(radii[i])) {
+      throw WireError("radius " + std::to_string(i) + " is negative or not finite");
+    }
+  }
+  return radii;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job) {
@@ -585,6 +602,59 @@ PhotonMapMessage decodePhotonMap(const Message& message) {
     }
     photons = readPhotons(r);
     return map;
+  });
+}
+
+std::vector<uint8_t> encodePhotonRadiiJob(const PhotonRadiiJobMessage& job) {
+  return encodeWith(MessageType::PhotonRadiiJob, [&](ByteWriter& w) {
+    w.writeU32(job.pass);
+    w.writeU64(job.first);
+    w.writeU64(job.count);
+  });
+}
+
+PhotonRadiiJobMessage decodePhotonRadiiJob(const Message& message) {
+  return decodePayload(message, MessageType::PhotonRadiiJob, [](ByteReader& r) {
+    PhotonRadiiJobMessage job;
+    job.pass = r.readU32();
+    job.first = r.readU64();
+    job.count = r.readU64();
+    if (job.first + job.count < job.first) throw WireError("radii range overflows");
+    return job;
+  });
+}
+
+std::vector<uint8_t> encodePhotonRadiiShare(const PhotonRadiiShareMessage& share) {
+  return encodeWith(MessageType::PhotonRadiiShare, [&](ByteWriter& w) {
+    w.writeU32(share.pass);
+    w.writeU64(share.first);
+    w.writeF32s(share.radii);
+  });
+}
+
+PhotonRadiiShareMessage decodePhotonRadiiShare(const Message& message) {
+  return decodePayload(message, MessageType::PhotonRadiiShare, [](ByteReader& r) {
+    PhotonRadiiShareMessage share;
+    share.pass = r.readU32();
+    share.first = r.readU64();
+    share.radii = readRadii(r);
+    return share;
+  });
+}
+
+std::vector<uint8_t> encodePhotonRadii(const PhotonRadiiMessage& radii) {
+  return encodeWith(MessageType::PhotonRadii, [&](ByteWriter& w) {
+    w.writeU32(radii.pass);
+    w.writeF32s(radii.radii);
+  });
+}
+
+PhotonRadiiMessage decodePhotonRadii(const Message& message) {
+  return decodePayload(message, MessageType::PhotonRadii, [](ByteReader& r) {
+    PhotonRadiiMessage radii;
+    radii.pass = r.readU32();
+    radii.radii = readRadii(r);
+    return radii;
   });
 }
 

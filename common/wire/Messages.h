@@ -28,7 +28,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 8: the automatic k (gather: auto) in the scene's caustics and the photon map's gather.
 // 9: a View's display exposure, and TileResults as display bytes for frames only shown.
 // 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
-inline constexpr uint16_t kVersion = 10;
+// 11: PhotonRadiiJob, PhotonRadiiShare and PhotonRadii (the ranks find a map's radii together).
+inline constexpr uint16_t kVersion = 11;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -46,7 +47,10 @@ enum class MessageType : uint16_t {
   View = 11,
   Echo = 12,
   PhotonCancel = 13,
-  PhotonMapAgain = 14
+  PhotonMapAgain = 14,
+  PhotonRadiiJob = 15,
+  PhotonRadiiShare = 16,
+  PhotonRadii = 17
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
@@ -112,11 +116,34 @@ struct PhotonShareMessage {
 // Master to slave: every photon of a pass, and how to gather from them; tiles of that pass
 // with kTermCaustics use it. keep: the master may name this map again (PhotonMapAgain), so the
 // slave keeps it, with its radii, beside the maps that follow until the next one to keep.
+// Where the gather needs per-photon radii (PhotonGather::needsRadii), the slave gathers only
+// once PhotonRadii brings them, and may be asked first to find a share (PhotonRadiiJob).
 struct PhotonMapMessage {
   uint32_t pass = 0;
   PhotonGatherSettings gather;
   std::vector<Photon> photons;
   bool keep = false;
+};
+
+// Master to slave: find the radii of positions [first, first + count) of the spatial order of
+// the map of `pass` (caustics/PhotonRadii.h) and send them back.
+struct PhotonRadiiJobMessage {
+  uint32_t pass = 0;
+  uint64_t first = 0;
+  uint64_t count = 0;
+};
+
+// Slave to master: the radii of a PhotonRadiiJob, in spatial order from `first`.
+struct PhotonRadiiShareMessage {
+  uint32_t pass = 0;
+  uint64_t first = 0;
+  std::vector<float> radii;
+};
+
+// Master to slave: every photon's radius of the map of `pass`, by photon index.
+struct PhotonRadiiMessage {
+  uint32_t pass = 0;
+  std::vector<float> radii;
 };
 
 // Master to slave: the tiles of pass `pass` gather from the map this rank was sent as pass
@@ -209,6 +236,15 @@ std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons, bool keep = false);
 PhotonMapMessage decodePhotonMap(const Message& message);
+
+std::vector<uint8_t> encodePhotonRadiiJob(const PhotonRadiiJobMessage& job);
+PhotonRadiiJobMessage decodePhotonRadiiJob(const Message& message);
+
+std::vector<uint8_t> encodePhotonRadiiShare(const PhotonRadiiShareMessage& share);
+PhotonRadiiShareMessage decodePhotonRadiiShare(const Message& message);
+
+std::vector<uint8_t> encodePhotonRadii(const PhotonRadiiMessage& radii);
+PhotonRadiiMessage decodePhotonRadii(const Message& message);
 
 std::vector<uint8_t> encodePhotonMapAgain(const PhotonMapAgainMessage& again);
 PhotonMapAgainMessage decodePhotonMapAgain(const Message& message);

@@ -66,6 +66,15 @@ void decodePayload(const std::vector<uint8_t>& bytes) {
     case MessageType::PhotonMapAgain:
       expectSameBytes(bytes, decodePhotonMapAgain(message), &encodePhotonMapAgain);
       break;
+    case MessageType::PhotonRadiiJob:
+      expectSameBytes(bytes, decodePhotonRadiiJob(message), &encodePhotonRadiiJob);
+      break;
+    case MessageType::PhotonRadiiShare:
+      expectSameBytes(bytes, decodePhotonRadiiShare(message), &encodePhotonRadiiShare);
+      break;
+    case MessageType::PhotonRadii:
+      expectSameBytes(bytes, decodePhotonRadii(message), &encodePhotonRadii);
+      break;
     default:
       throw InvariantBroken("decodeMessage accepted an unknown message type");
   }

@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
   writeSeed(dir, "echo", encodeEcho({5, std::string(64, 'x')}));
   writeSeed(dir, "photon-cancel", encodePhotonCancel({3}));
   writeSeed(dir, "photon-map-again", encodePhotonMapAgain({9, 4}));
+  writeSeed(dir, "photon-radii-job", encodePhotonRadiiJob({9, 64, 200}));
+  writeSeed(dir, "photon-radii-share", encodePhotonRadiiShare({9, 64, {0.5f, 0.25f, 0.125f}}));
+  writeSeed(dir, "photon-radii", encodePhotonRadii({9, {0.5f, 0.25f, 0.125f}}));
   // Refused ones: a truncated message and a flipped payload byte.
   std::vector<uint8_t> bytes = encodeReady({0.25, 8});
   bytes.pop_back();

@@ -368,6 +368,9 @@ TEST_P(DistributedCaustics, PixelsAreBitIdenticalToTheSingleProcessRender) {
   EXPECT_NE(run.output.find("caustics  photon map"), std::string::npos) << run.output;
   if (ranks > 1) {
     EXPECT_NE(run.output.find("photons traced by rank"), std::string::npos) << run.output;
+    // The radii were found by every rank, a share each (a fixed radius needs none).
+    const bool radii = std::string(mode).find("--gather-radius") == std::string::npos;
+    EXPECT_EQ(run.output.find("radii found by rank") != std::string::npos, radii) << run.output;
   }
 }
 
@@ -386,7 +389,8 @@ TEST_F(DistributedRender, HungSlavesPhotonShareIsTracedByRankZeroWithTheSamePixe
   EXPECT_TRUE(samePixels(readImage(path("hang.exr")), readImage(path("reference.exr"))))
       << run.output;
   EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
-  // Rank 2 traced nothing; ranks 0 and 1 traced every photon of both passes between them.
+  // Rank 2 traced nothing and found no radius; ranks 0 and 1 did all of both passes.
+  EXPECT_NE(run.output.find(", 2: 0; radii found by rank:"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
 }
 

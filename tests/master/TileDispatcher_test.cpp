@@ -276,6 +276,9 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_EQ(f.caustics.photonsByRank.size(), 3u);
   EXPECT_GT(f.caustics.photonsByRank[1], 0u);
+  ASSERT_EQ(f.caustics.radiiByRank.size(), 3u);  // every rank found a share of the radii
+  EXPECT_GT(f.caustics.radiiByRank[1], 0u);
+  EXPECT_GT(f.caustics.radiiByRank[2], 0u);
   EXPECT_EQ(f.frames.workers[0].tiles, 0u);
   EXPECT_EQ(f.frames.workers[1].tiles + f.frames.workers[2].tiles, f.frames.tileCount);
 }
@@ -310,12 +313,13 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   });
   PhotonPassStats stats;
   const auto start = std::chrono::steady_clock::now();
-  const std::shared_ptr<const PhotonMap> map = tracePhotonPass(tracer, 7, 1, link, stats, &cancel);
+  const std::optional<std::vector<Photon>> photons =
+      tracePhotonPass(tracer, 7, 1, link, stats, &cancel);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   mover.join();
   job.join();
-  EXPECT_EQ(map, nullptr);
+  EXPECT_FALSE(photons.has_value());
   EXPECT_LT(seconds, 5.0);
   EXPECT_TRUE(cancelReceived);
   EXPECT_EQ(cancelledPass, 7u);

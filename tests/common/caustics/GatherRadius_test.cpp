@@ -146,7 +146,22 @@ TEST(GatherRadius, AutomaticPhotonRadiiEqualTheTreesNearestExactly) {
       EXPECT_EQ(wrong, 0u) << "k " << k << ", threads " << threads;
       EXPECT_GT(capped, 0u) << "k " << k;  // the halo reaches the cap
     }
+    // Found in shares of whole chunks (as the ranks of a run find them) and put together: the
+    // same radii.
+    std::vector<float> together(map.size(), -1.0f);
+    const size_t cuts[] = {0, 7 * kPhotonRadiiChunk, 40 * kPhotonRadiiChunk, map.size()};
+    for (size_t s = 0; s + 1 < std::size(cuts); ++s) {
+      const std::vector<float> share =
+          photonRadiiShare(map, k, maxRadius, true, cuts[s], cuts[s + 1] - cuts[s], 2);
+      ASSERT_EQ(share.size(), cuts[s + 1] - cuts[s]);
+      placePhotonRadii(map, cuts[s], share, together);
+    }
+    EXPECT_EQ(together, expected) << "k " << k;
   }
+  // A share must start at a chunk and end inside the map.
+  EXPECT_THROW(photonRadiiShare(map, 8, maxRadius, true, kPhotonRadiiChunk + 1, 10),
+               std::invalid_argument);
+  EXPECT_THROW(photonRadiiShare(map, 8, maxRadius, true, 0, map.size() + 1), std::invalid_argument);
 }
 
 // The progressive schedule: r²(i) = r²(i−1)·(i − 1 + α)/i, applied to the one fixed radius when

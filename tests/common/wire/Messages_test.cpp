@@ -153,16 +153,16 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
   // liveFrom; 6: before PhotonCancel; 7: before the automatic k; 8: before display bytes; 9:
-  // before PhotonMapAgain.
-  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 9, 11}) {
+  // before PhotonMapAgain; 10: before the radii messages.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 10");
+                    "message version " + std::to_string(version) + ", this build speaks 11");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel, 14
-  // PhotonMapAgain; 15 is the first unused type.
-  for (uint16_t type : {0, 15, 0xFFFF}) {
+  // PhotonMapAgain, 15-17 the radii messages; 18 is the first unused type.
+  for (uint16_t type : {0, 18, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }
@@ -566,6 +566,61 @@ TEST(Messages, PhotonMapAgainRoundTripsAndIsChecked) {
   EXPECT_THROW(decodePhotonMapAgain(decodeMessage(shorter)), WireError);
 }
 
+TEST(Messages, PhotonRadiiMessagesRoundTripAndAreChecked) {
+  const std::vector<uint8_t> job = encodePhotonRadiiJob({12, 128, 4000});
+  const PhotonRadiiJobMessage jobBack = decodePhotonRadiiJob(decodeMessage(job));
+  EXPECT_EQ(jobBack.pass, 12u);
+  EXPECT_EQ(jobBack.first, 128u);
+  EXPECT_EQ(jobBack.count, 4000u);
+  EXPECT_EQ(encodePhotonRadiiJob(jobBack), job);
+  expectWireError(
+      [&] {
+        decodePhotonRadiiJob(decodeMessage(encodePhotonRadiiJob({1, 10, UINT64_MAX})));
+      },
+      "PhotonRadiiJob message: radii range overflows");
+
+  const std::vector<float> radii = {0.5f, 0.0f, 1e-7f, 0.25f};
+  const std::vector<uint8_t> share = encodePhotonRadiiShare({12, 128, radii});
+  const PhotonRadiiShareMessage shareBack = decodePhotonRadiiShare(decodeMessage(share));
+  EXPECT_EQ(shareBack.pass, 12u);
+  EXPECT_EQ(shareBack.first, 128u);
+  EXPECT_EQ(shareBack.radii, radii);
+  EXPECT_EQ(encodePhotonRadiiShare(shareBack), share);
+
+  const std::vector<uint8_t> all = encodePhotonRadii({12, radii});
+  const PhotonRadiiMessage allBack = decodePhotonRadii(decodeMessage(all));
+  EXPECT_EQ(allBack.pass, 12u);
+  EXPECT_EQ(allBack.radii, radii);
+  EXPECT_EQ(encodePhotonRadii(allBack), all);
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonRadiiJob), "PhotonRadiiJob");
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonRadiiShare), "PhotonRadiiShare");
+  EXPECT_STREQ(messageTypeName(MessageType::PhotonRadii), "PhotonRadii");
+  expectWireError([&] { decodePhotonRadii(decodeMessage(share)); },
+                  "expected a PhotonRadii message, got PhotonRadiiShare");
+
+  // A radius the gather could not use (negative, NaN, infinite) is refused, naming which.
+  const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
+  for (float bad : {-0.5f, nan, inf}) {
+    std::vector<float> spoilt = radii;
+    spoilt[2] = bad;
+    expectWireError(
+        [&] {
+          decodePhotonRadii(decodeMessage(encodePhotonRadii({3, spoilt})));
+        },
+        "PhotonRadii message: radius 2 is negative or not finite");
+    expectWireError(
+        [&] {
+          decodePhotonRadiiShare(decodeMessage(encodePhotonRadiiShare({3, 0, spoilt})));
+        },
+        "PhotonRadiiShare message: radius 2 is negative or not finite");
+  }
+  // A count larger than the bytes present.
+  std::vector<uint8_t> truncated = decodeMessage(all).payload;
+  truncated.resize(truncated.size() - 4);
+  EXPECT_THROW(decodePhotonRadii(decodeMessage(encodeMessage(MessageType::PhotonRadii, truncated))),
+               WireError);
+}
+
 TEST(Messages, PhotonsWithCorruptPowerOrPositionAreRejected) {
   const float nan = std::nanf(""), inf = std::numeric_limits<float>::infinity();
   const auto corrupt = [](const std::function<void(Photon&)>& spoil) {
@@ -660,6 +715,9 @@ TEST(Messages, MessageStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(PhotonShareMessage), 88u) << update;
   EXPECT_EQ(sizeof(PhotonMapMessage), 64u) << update;
   EXPECT_EQ(sizeof(PhotonMapAgainMessage), 8u) << update;
+  EXPECT_EQ(sizeof(PhotonRadiiJobMessage), 24u) << update;
+  EXPECT_EQ(sizeof(PhotonRadiiShareMessage), 40u) << update;
+  EXPECT_EQ(sizeof(PhotonRadiiMessage), 32u) << update;
   EXPECT_EQ(sizeof(TileResultMessage), 104u) << update;
   EXPECT_EQ(sizeof(ReadyMessage), 32u) << update;
   EXPECT_EQ(sizeof(ErrorMessage), 32u) << update;
