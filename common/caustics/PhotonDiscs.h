@@ -30,8 +30,9 @@ class PhotonDiscs {
     const Vec3& directionVector() const { return direction; }
   };
 
-  // radii[i] is photon i's radius (> 0).
-  PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii);
+  // radii[i] is photon i's radius (> 0). Built on up to `threads` threads (0: all cores); the
+  // tree is the same for any count.
+  PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii, int threads = 0);
 
   // Calls visit(disc, squared distance, squared radius) for every photon whose disc covers x
   // (distance < radius), in tree order.
@@ -84,14 +85,13 @@ class PhotonDiscs {
     }
   };
   static_assert(sizeof(Node) == 32);
-  uint32_t build(uint32_t begin, uint32_t end, int depth);
+  class Builder;
   // Depth first over the nodes `enters` accepts, calling atSlot(slot) for their leaves' slots.
   template <class Enters, class AtSlot>
   void walk(Enters&& enters, AtSlot&& atSlot) const;
 
   std::vector<Node> nodes_;
-  std::vector<Disc> discs_;      // per slot
-  std::vector<uint32_t> index_;  // photon index per slot, while building (ties are broken by it)
+  std::vector<Disc> discs_;  // per slot
 };
 
 template <class Enters, class AtSlot>

@@ -67,5 +67,60 @@ TEST(PhotonDiscs, ReachingSkipsExactlyTheNarrowPhotonsOutsideTheFootprint) {
   }
 }
 
+// covering() visits exactly the discs that cover x (against a brute-force test of every disc),
+// and the tree, with the order it visits them in, is the same for any thread count: the
+// subtrees below the top levels are built in parallel. Clusters, a sparse field and a pile of
+// identical photons (ties broken by photon index).
+TEST(PhotonDiscs, CoveringFindsEveryCoveringDiscInOneOrderForAnyThreadCount) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<Photon> photons;
+  std::vector<float> radii;
+  for (int i = 0; i < 30000; ++i) {
+    const float cluster = static_cast<float>(i % 5);
+    photons.push_back({Vec3(cluster + 0.05f * u(rng), 0.01f * u(rng), 0.05f * u(rng))});
+    radii.push_back(0.002f + 0.01f * u(rng));
+  }
+  for (int i = 0; i < 3000; ++i) {
+    photons.push_back({Vec3(5.0f * u(rng), u(rng), u(rng))});
+    radii.push_back(0.05f + 0.2f * u(rng));
+  }
+  for (int i = 0; i < 700; ++i) {
+    photons.push_back({Vec3(2.02f, 0.005f, 0.02f)});
+    radii.push_back(0.003f);
+  }
+  std::vector<Vec3> queries;
+  for (int q = 0; q < 300; ++q) {
+    const float cluster = static_cast<float>(q % 5);
+    queries.push_back(q % 2 ? Vec3(cluster + 0.05f * u(rng), 0.005f, 0.05f * u(rng))
+                            : Vec3(5.0f * u(rng), u(rng), u(rng)));
+  }
+  queries.push_back({2.02f, 0.005f, 0.02f});  // inside the pile
+  const auto visits = [&](const PhotonDiscs& discs) {
+    std::vector<std::vector<Vec3>> all;
+    for (const Vec3& x : queries) {
+      std::vector<Vec3>& v = all.emplace_back();
+      discs.covering(x, [&](const PhotonDiscs::Disc& d, float, float) { v.push_back(d.position); });
+    }
+    return all;
+  };
+  const std::vector<std::vector<Vec3>> one = visits(PhotonDiscs(photons, radii, 1));
+  size_t found = 0;
+  for (size_t q = 0; q < queries.size(); ++q) {
+    size_t expected = 0;
+    for (size_t i = 0; i < photons.size(); ++i) {
+      const Vec3 d = queries[q] - photons[i].position;
+      expected += glm::dot(d, d) < radii[i] * radii[i];
+    }
+    ASSERT_EQ(one[q].size(), expected) << "query " << q;
+    found += expected;
+  }
+  EXPECT_GT(one.back().size(), 700u);  // the whole pile
+  EXPECT_GT(found, 5000u);
+  for (int threads : {2, 3, 8}) {
+    EXPECT_EQ(visits(PhotonDiscs(photons, radii, threads)), one) << threads << " threads";
+  }
+}
+
 }  // namespace
 }  // namespace prism
