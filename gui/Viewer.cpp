@@ -173,8 +173,9 @@ void printSummary(const LiveStats& s, std::ostream& out) {
   if (p.method == CausticMethod::PhotonMap && p.passes > 0) {
     out << "photons    " << p.passes << " passes of " << p.photonsPerPass
         << ", the last: " << p.stored << " stored, trace " << 1e3 * p.traceSeconds << " ms ("
-        << p.photonsPerSecond << " photons/s), kd-tree " << 1e3 * p.buildSeconds << " ms, send "
-        << 1e3 * p.distributeSeconds << " ms, gather radius " << p.radius
+        << p.photonsPerSecond << " photons/s), kd-tree " << 1e3 * p.buildSeconds << " ms, radii "
+        << 1e3 * p.radiiSeconds << " ms, send " << 1e3 * p.distributeSeconds
+        << " ms, gather radius " << p.radius
         << (p.reused ? " (the first view's pass 1, reused)" : "") << "\n";
   }
   if (p.method == CausticMethod::CausticMap && p.mapResolution > 0) {

@@ -321,6 +321,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     s.traceSeconds = p.traceSeconds;
     s.buildSeconds = p.buildSeconds;
     s.distributeSeconds = p.distributeSeconds;
+    s.radiiSeconds = p.radiiSeconds;
     s.photonsPerSecond = static_cast<double>(p.trace.emitted) / std::max(p.traceSeconds, 1e-6);
     s.radius = gather.radius * gather.radiusScale;  // per-photon radii: their cap
     s.reused = reused;

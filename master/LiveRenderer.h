@@ -132,6 +132,7 @@ struct PhotonLiveStats {
   double traceSeconds = 0.0;       // wall time until every rank's share was in
   double buildSeconds = 0.0;       // kd-tree
   double distributeSeconds = 0.0;  // map sent to the slaves
+  double radiiSeconds = 0.0;       // every photon's radius (all ranks) and rank 0's discs
   double photonsPerSecond = 0.0;   // emitted / traceSeconds
   float radius = 0.0f;             // its gather radius
   // Caustic mapping (method CausticMap):

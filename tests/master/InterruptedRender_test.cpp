@@ -53,8 +53,7 @@ struct Spawned {
 };
 
 Spawned spawn(const std::string& command, const std::string& log) {
-  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  test::prepareMpiEnvironment();
   // exec, so that the pid is the program's own (mpiexec or prism), not a shell's.
   const std::string shell = "exec " + command + " >" + log + " 2>&1";
   const char* argv[] = {"/bin/sh", "-c", shell.c_str(), nullptr};

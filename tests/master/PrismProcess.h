@@ -39,12 +39,35 @@ inline ProcessRun runPrism(const std::string& arguments) {
 }
 
 // Runs prism on `ranks` MPI processes. Open MPI refuses root without two variables and more
-// ranks than cores without --oversubscribe: the test sets both, the user never has to. The
+// ranks than cores without --oversubscribe: the test sets both (prepareMpiEnvironment), the user
+// never has to. The
 // timeout bounds a run that would otherwise hang the suite.
-inline ProcessRun runPrismMpi(int ranks, const std::string& arguments,
-                              const std::string& mpiexecOptions = "") {
+// What every mpiexec a test starts needs in its environment. Open MPI refuses root without two
+// variables. And Open MPI 4 keeps its session directories under one folder per user in /tmp,
+// which concurrent jobs (ctest -j) create and remove at once: a job starting as another ends can
+// fail in orte_init with "File exists" (open-mpi/ompi#7049, #8510). Each test process gives its
+// jobs a folder of their own, removed when the process ends.
+inline void prepareMpiEnvironment() {
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  struct SessionFolder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("prism-ompi-" + std::to_string(::getpid()));
+    SessionFolder() {
+      std::filesystem::create_directories(path);
+      ::setenv("OMPI_MCA_orte_tmpdir_base", path.c_str(), 1);
+    }
+    ~SessionFolder() {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const SessionFolder folder;
+}
+
+inline ProcessRun runPrismMpi(int ranks, const std::string& arguments,
+                              const std::string& mpiexecOptions = "") {
+  prepareMpiEnvironment();
   return runCommand("timeout 120 mpiexec -n " + std::to_string(ranks) + " --oversubscribe " +
                     mpiexecOptions + " " + std::string(PRISM_EXECUTABLE) + " " + arguments);
 }
@@ -53,8 +76,7 @@ inline ProcessRun runPrismMpi(int ranks, const std::string& arguments,
 // one rank per entry, each with its own arguments: ranks that differ as uneven nodes do.
 inline ProcessRun runPrismMpmd(const std::vector<std::string>& argumentsPerRank,
                                const std::string& mpiexecOptions = "") {
-  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  prepareMpiEnvironment();
   std::string command = "timeout 120 mpiexec --oversubscribe " + mpiexecOptions;
   for (size_t i = 0; i < argumentsPerRank.size(); ++i) {
     command += (i == 0 ? " -n 1 " : " : -n 1 ") + std::string(PRISM_EXECUTABLE) + " " +
