@@ -31,6 +31,9 @@ struct TileDispatcher::Frame {
   TileScheduler scheduler;
   size_t done = 0;
   std::vector<bool> viewSent;  // per rank
+  // Set when the frame leaves (ended, or complete behind the current one): rank 0's threads
+  // stop its tiles after their row (TileJob::frameEnded).
+  std::shared_ptr<std::atomic<bool>> ended = std::make_shared<std::atomic<bool>>(false);
 
   Frame(FramePlan p, FrameListener* l, int ranks, const DistributionOptions& o)
       : plan(std::move(p)),
@@ -40,6 +43,9 @@ struct TileDispatcher::Frame {
     scheduler.exemptFromLeases(kLocalRank);
     viewSent[kLocalRank] = true;
   }
+  ~Frame() { *ended = true; }
+  Frame(const Frame&) = delete;
+  Frame& operator=(const Frame&) = delete;
   bool complete() const { return done == plan.tiles.size(); }
 };
 
@@ -165,7 +171,9 @@ std::optional<TileJob> TileDispatcher::nextLocalJob() {
       if (const auto tile = frame->scheduler.next(kLocalRank, now())) {
         const FramePlan& plan = frame->plan;
         if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, kLocalRank);
-        return TileJob(*tile, plan.tiles[*tile], plan.frame, plan.view, plan.light);
+        TileJob job(*tile, plan.tiles[*tile], plan.frame, plan.view, plan.light);
+        job.frameEnded = frame->ended;
+        return job;
       }
     }
     // Tiles can appear later (a new frame, re-issued leases): every such change notifies.

@@ -348,8 +348,16 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
     std::shared_ptr<const RenderView> view;  // the viewer's; `prism render` uses the scene's
     uint64_t received = 0;                   // jobs of this frame
     std::set<uint32_t> held;                 // its tiles received, not yet returned
+    // Set when the frame ends: its tiles being rendered stop after their row.
+    std::shared_ptr<std::atomic<bool>> ended = std::make_shared<std::atomic<bool>>(false);
   };
   std::map<uint32_t, FrameWork> frames;
+  // Ends the frames [first, last): their queued tiles are dropped by the caller, the ones being
+  // rendered stop (a camera move must not wait for the tiles of a view nobody sees any more).
+  const auto endFrames = [&](auto first, auto last) {
+    for (auto f = first; f != last; ++f) *f->second.ended = true;
+    frames.erase(first, last);
+  };
   // The heartbeat keeps a slave busy with long tiles from being taken for dead, and lets the
   // master spot tiles this rank lost.
   std::thread heartbeat([&] {
@@ -432,7 +440,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       }
       if (message.type == wire::MessageType::View) {
         wire::ViewMessage next = wire::decodeView(message);
-        frames.erase(frames.begin(), frames.lower_bound(next.liveFrom));
+        endFrames(frames.begin(), frames.lower_bound(next.liveFrom));
         jobs.dropBefore(next.liveFrom);  // tiles of frames nobody wants any more
         FrameWork& work = frames[next.frame];
         work = FrameWork{};
@@ -483,7 +491,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       auto work = frames.find(job.frame);
       if (work == frames.end()) {
         if (!frames.empty() && job.frame < frames.rbegin()->first) continue;  // ended already
-        frames.clear();  // a later frame of `prism render`: the earlier ones have ended
+        endFrames(frames.begin(), frames.end());  // a later frame of `prism render`
         work = frames.emplace(job.frame, FrameWork{}).first;
       }
       FrameWork& frame = work->second;
@@ -498,7 +506,9 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       std::shared_ptr<const RenderPass> pass =
           photons.pass(job.pass, job.terms, !frame.view || frame.view->causticMapBlur);
       lock.lock();
-      jobs.push(tileJobFromMessage(job, frame.view, std::move(pass)));
+      TileJob tile = tileJobFromMessage(job, frame.view, std::move(pass));
+      tile.frameEnded = frame.ended;
+      jobs.push(std::move(tile));
     }
   } catch (const std::exception& e) {
     stopHeartbeat();

@@ -3,6 +3,7 @@
 // sent (common/wire/TileJobWire.h maps it to and from the wire).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 
@@ -26,6 +27,9 @@ struct TileJob {
   uint32_t frame = 0;
   std::shared_ptr<const RenderView> view;
   std::shared_ptr<const RenderPass> pass;  // the light terms; null: direct light only
+  // Set once the job's frame has ended (a camera move ends the viewer's frames still running):
+  // the tile is then abandoned after its current row and gives no result. Null: never.
+  std::shared_ptr<const std::atomic<bool>> frameEnded;
 };
 
 }  // namespace prism

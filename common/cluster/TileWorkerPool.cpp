@@ -29,8 +29,10 @@ void TileWorkerPool::start(JobSource source, JobResultHandler onResult) {
           const LightTerms terms = job->pass ? job->pass->terms() : LightTerms{};
           const TileRenderer renderer =
               job->view ? TileRenderer(scene_, *job->view, terms) : TileRenderer(scene_, terms);
-          TileResult tile = renderer.render(job->tileIndex, job->rect, &cancelled_);
-          if (cancelled_) break;  // possibly incomplete
+          const std::atomic<bool>* frameEnded = job->frameEnded.get();
+          TileResult tile = renderer.render(job->tileIndex, job->rect, &cancelled_, frameEnded);
+          if (cancelled_) break;                    // possibly incomplete
+          if (frameEnded && *frameEnded) continue;  // nobody wants it, and possibly incomplete
           onResult(*job, std::move(tile));
         }
       } catch (...) {

@@ -41,7 +41,8 @@ class TileWorkerPool {
   // Whether a thread has stopped on an exception (join() will rethrow it).
   bool failed();
   // Abandons the tiles being rendered (each after its current row; no result is handed on), so
-  // an interrupted run stops within a row's time rather than a tile's.
+  // an interrupted run stops within a row's time rather than a tile's. A job whose frame has
+  // ended (TileJob::frameEnded) is abandoned the same way, and the thread takes the next.
   void cancel() { cancelled_ = true; }
 
  private:

@@ -94,8 +94,13 @@ void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, 
 }
 
 TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
-                                const std::atomic<bool>* cancel) const {
+                                const std::atomic<bool>* cancel,
+                                const std::atomic<bool>* frameEnded) const {
   const auto start = SteadyClock::now();
+  const auto stopped = [cancel, frameEnded] {
+    return (cancel && cancel->load(std::memory_order_relaxed)) ||
+           (frameEnded && frameEnded->load(std::memory_order_relaxed));
+  };
   TileResult result;
   result.tileIndex = tileIndex;
   result.rect = rect;
@@ -107,7 +112,7 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
     // columns or row take narrower or shorter blocks.
     constexpr int kBlockWidth = 4, kBlockHeight = Scene::kPacketSize / kBlockWidth;
     for (int y = rect.y; y < rect.y + rect.height; y += kBlockHeight) {
-      if (cancel && cancel->load(std::memory_order_relaxed)) break;
+      if (stopped()) break;
       const int rows = std::min(kBlockHeight, rect.y + rect.height - y);
       for (int x = rect.x; x < rect.x + rect.width; x += kBlockWidth) {
         const int columns = std::min(kBlockWidth, rect.x + rect.width - x);
@@ -118,7 +123,7 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
   } else {
     size_t i = 0;
     for (int y = rect.y; y < rect.y + rect.height; ++y) {
-      if (cancel && cancel->load(std::memory_order_relaxed)) break;
+      if (stopped()) break;
       for (int x = rect.x; x < rect.x + rect.width; ++x) {
         result.pixels[i++] = renderPixel(x, y, result.rays);
       }

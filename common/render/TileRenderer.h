@@ -26,10 +26,11 @@ class TileRenderer {
   // scene's own.
   TileRenderer(const Scene& scene, const RenderView& view, const LightTerms& terms = {});
 
-  // cancel, when given and set, ends the tile after the current row (an interrupted run); the
-  // result is then incomplete and must be dropped.
+  // cancel or frameEnded, when given and set, ends the tile after the current row (an
+  // interrupted run; a frame that has ended); the result is then incomplete and must be dropped.
   TileResult render(uint32_t tileIndex, const TileRect& rect,
-                    const std::atomic<bool>* cancel = nullptr) const;
+                    const std::atomic<bool>* cancel = nullptr,
+                    const std::atomic<bool>* frameEnded = nullptr) const;
 
   // Packets by default; one at a time to compare against or to measure what packets buy.
   void setCameraRays(CameraRays mode) { cameraRays_ = mode; }
