@@ -367,6 +367,61 @@ TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
   EXPECT_LT(seconds, 3.0);
 }
 
+// A real slave rendering a tile of a frame that a View then ends (its liveFrom is later) stops
+// the tile after its row and sends nothing for it: the next frame's tile comes at once, not
+// after the ended tile's seconds.
+TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
+  const SceneDescription d = smallScene();
+  LoopbackNetwork network(2);
+  int exitCode = -1;
+  std::thread slave = test::startRealSlave(network, 1, &exitCode);
+  Transport& master = network.endpoint(0);
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  master.broadcast(bytes, 10.0);
+  // The frames' tiles as they arrive (frame ids), until `frame` has sent one.
+  std::vector<uint32_t> tilesOf;
+  const auto waitForTileOf = [&](uint32_t frame, double seconds) {
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+           seconds) {
+      const auto incoming = master.waitForMessage(0.05);
+      if (!incoming) continue;
+      const wire::Message message = wire::decodeMessage(incoming->bytes);
+      if (message.type != wire::MessageType::TileResult) continue;
+      tilesOf.push_back(wire::decodeTileResult(message).frame);
+      if (tilesOf.back() == frame) return true;
+    }
+    return false;
+  };
+  bool ready = false;
+  for (int i = 0; i < 200 && !ready; ++i) {
+    const auto incoming = master.waitForMessage(0.05);
+    ready = incoming && wire::decodeMessage(incoming->bytes).type == wire::MessageType::Ready;
+  }
+  ASSERT_TRUE(ready);
+  // Frame 1: the whole 64×48 image at 16384 spp as one tile, seconds of work on one thread.
+  RenderView heavy{d.camera, d.render.width, d.render.height, 16384};
+  master.send(1, wire::encodeView({1, 1, heavy}));
+  master.send(1, wire::encodeTileJob({1, 0, {0, 0, d.render.width, d.render.height}, 0}));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // Frame 2 ends frame 1 (liveFrom 2); its one small tile.
+  RenderView light = heavy;
+  light.samplesPerPixel = 1;
+  master.send(1, wire::encodeView({2, 2, light}));
+  const auto switched = std::chrono::steady_clock::now();
+  master.send(1, wire::encodeTileJob({2, 0, {0, 0, 8, 8}, 0}));
+  ASSERT_TRUE(waitForTileOf(2, 30.0));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - switched).count();
+  master.send(1, wire::encodeShutdown());
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  waitForTileOf(1, 0.5);  // a frame-1 tile sent late would show here
+  slave.join();
+  EXPECT_EQ(exitCode, 0);
+  EXPECT_EQ(tilesOf, std::vector<uint32_t>{2});
+  EXPECT_LT(seconds, 2.0);
+}
+
 class CountingListener : public FrameListener {
  public:
   void tileFinished(uint32_t frame, TileResult&&, int) override { ++finished_[frame]; }
