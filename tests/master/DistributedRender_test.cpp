@@ -394,6 +394,27 @@ TEST_F(DistributedRender, HungSlavesPhotonShareIsTracedByRankZeroWithTheSamePixe
   EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
 }
 
+// Budgets smaller than the ranks: with 2 photons two of three ranks trace none (no job is sent,
+// and none is waited for: such a run used to wait for them forever), and 40 photons store fewer
+// than one chunk of radii, found by one rank. The pixels are one process's.
+TEST_F(DistributedRender, PhotonSharesAndRadiiSharesLeftEmptyAreNotWaitedFor) {
+  for (const char* photons : {"2", "40"}) {
+    const std::string scene = kCausticScene + " --photons " + photons;
+    const test::ProcessRun single =
+        test::runPrism("render " + scene + " -q --overwrite -o " + path("reference.exr"));
+    ASSERT_EQ(single.exitCode, 0) << single.output;
+    const test::ProcessRun run =
+        test::runPrismMpi(3, "render " + scene + " --overwrite -o " + path("mpi.exr"));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
+        << run.output;
+    const std::string shares = std::string(photons) == "2"
+                                   ? "photons traced by rank: 0: 0, 1: 0, 2: 2"
+                                   : "radii found by rank: 0: 0, 1: 0, 2: 20";
+    EXPECT_NE(run.output.find(shares), std::string::npos) << run.output;
+  }
+}
+
 // Caustic mapping: every rank builds the maps itself from the scene; the image must not depend
 // on how many ranks did.
 TEST_F(DistributedRender, CausticMapPixelsAreBitIdenticalForOneAndTwoRanks) {
