@@ -68,17 +68,22 @@ std::optional<size_t> awaitedShare(const std::vector<Share>& shares, int rank) {
 // threads (it wakes the link when done); a live slave's by its message, which accept(message)
 // takes (marking the share done, by its rank); and one of a slave that went silent, or is still
 // building its scene after the lease, by doHere(share index) on this thread once rank 0's own is
-// done. Empty shares need nothing. Once *cancel is set: calls dropped(), waits for rank 0's own
-// work (it watches cancel too) and returns false.
-template <typename Dropped, typename Accept, typename DoHere>
-bool collectShares(std::vector<Share>& shares, SlaveLink& link, std::future<void>& local,
-                   const std::atomic<bool>* cancel, Dropped dropped, Accept accept, DoHere doHere) {
+// done. Empty shares need nothing. Once *cancel is set, the slaves still working on pass `pass`
+// are told to stop (PhotonCancel: their threads are wanted for the next frame's tiles, and they
+// send nothing for it); then this waits for rank 0's own work (it watches cancel too) and returns
+// false.
+template <typename Accept, typename DoHere>
+bool collectShares(std::vector<Share>& shares, uint32_t pass, SlaveLink& link,
+                   std::future<void>& local, const std::atomic<bool>* cancel, Accept accept,
+                   DoHere doHere) {
   const auto start = SteadyClock::now();
   const double leaseSeconds = link.options().leaseSeconds;
   for (Share& s : shares) s.done = s.rank != 0 && s.count == 0;
   for (;;) {
     if (cancel && cancel->load()) {
-      dropped();
+      for (const Share& s : shares) {
+        if (s.rank != 0 && !s.done) link.send(s.rank, wire::encodePhotonCancel({pass}));
+      }
       local.wait();
       return false;
     }
@@ -151,14 +156,7 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
     shares[*s].done = true;
     shares[*s].doneBy = incoming.source;
   };
-  // The slaves still tracing a dropped pass stop too (their threads are wanted for the next
-  // frame's tiles) and send nothing for it.
-  const auto dropped = [&] {
-    for (const Share& s : shares) {
-      if (s.rank != 0 && !s.done) link.send(s.rank, wire::encodePhotonCancel({pass}));
-    }
-  };
-  if (!collectShares(shares, link, local, cancel, dropped, accept, traceHere)) return std::nullopt;
+  if (!collectShares(shares, pass, link, local, cancel, accept, traceHere)) return std::nullopt;
   stats.traceSeconds = secondsSince(start);
   for (size_t s = 0; s < shares.size(); ++s) {
     stats.trace += traced[s];
@@ -228,10 +226,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
     shares[*s].done = true;
     shares[*s].doneBy = incoming.source;
   };
-  // A slave cannot stop a share it is finding; it sends it, and it is ignored as late.
-  if (!collectShares(
-          shares, link, local, cancel, [] {}, accept, findHere))
-    return nullptr;
+  if (!collectShares(shares, pass, link, local, cancel, accept, findHere)) return nullptr;
   stats.radiiByRank.assign(static_cast<size_t>(link.ranks()), 0);
   for (const Share& s : shares) stats.radiiByRank[static_cast<size_t>(s.doneBy)] += s.count;
   if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, radii}));

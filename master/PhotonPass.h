@@ -44,14 +44,15 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
 
 // Sends the photons of pass `pass` with their gather settings to every live slave, builds rank
 // 0's photon map (the kd-tree) while the slaves build theirs, and returns rank 0's gather from
-// it (its map: PhotonGather::sharedMap()). Per-photon radii are found by every live rank, a share each in
-// proportion to its threads (rank 0's on `threads` threads, while it collects the others'; a slave
-// that goes silent has its share found here), and then sent to every slave, which gathers from that
-// map once they arrive. The radii equal those one rank finds alone, bit for bit. keep: each
-// slave keeps the map (with its radii) until the next map sent with keep, for
+// it (its map: PhotonGather::sharedMap()). Per-photon radii are found by every live rank, a share
+// each in proportion to its threads (rank 0's on `threads` threads, while it collects the others';
+// a slave that goes silent has its share found here), and then sent to every slave, which gathers
+// from that map once they arrive. The radii equal those one rank finds alone, bit for bit. keep:
+// each slave keeps the map (with its radii) until the next map sent with keep, for
 // sendPhotonMapAgain. Once *cancel is set (the viewer's camera moved), rank 0 stops its share
-// within a chunk of photons and returns null; the slaves' shares then arrive late and are
-// ignored, and the slaves never gather from that map.
+// within a chunk of photons, tells the slaves still finding theirs to stop (PhotonCancel) and
+// returns null; a share already on its way arrives late and is ignored, and the slaves never
+// gather from that map.
 std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photons, uint32_t pass,
                                                       const PhotonGatherSettings& gather,
                                                       int threads, SlaveLink& link,

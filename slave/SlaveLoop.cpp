@@ -66,9 +66,10 @@ class Outbox {
   std::vector<wire::TileResultMessage> tiles_;
 };
 
-// The caustic side of a slave: traces the photon shares the master asks for (on a thread of its
-// own, so the main thread keeps its heartbeat going), holds the photon map of the current pass
-// for the tiles that need it, and builds the caustic maps.
+// The caustic side of a slave: traces the photon shares and finds the shares of photon radii
+// the master asks for (on a thread of its own, so the main thread keeps its heartbeat going),
+// holds the photon map of the current pass for the tiles that need it, and builds the caustic
+// maps.
 class PhotonWork {
  public:
   // memoryLimit: this rank's, against which caustic maps the viewer switches on are checked.
@@ -87,35 +88,42 @@ class PhotonWork {
   }
 
   void start(const wire::PhotonJobMessage& job) {
-    if (running_.valid()) running_.wait();  // the master asks again only after a pass is done
     // Planned with the master's budget (the viewer may change it), so photon powers agree.
     if (!tracer_ || tracer_->photonsPerPass() != job.photonsPerPass) {
+      if (running_.valid()) running_.wait();  // it may be tracing with the old tracer
       tracer_ = std::make_unique<PhotonTracer>(scene_, job.photonsPerPass,
                                                scene_.causticSettings().maxBounces);
     }
-    runningPass_ = job.pass;
-    cancel_ = false;
-    running_ =
-        std::async(std::launch::async, [this, job]() -> std::optional<wire::PhotonShareMessage> {
-          const auto start = Clock::now();
-          wire::PhotonShareMessage share{job.pass, job.first, job.count, {}, 0.0, {}};
-          share.photons = tracePhotons(*tracer_, job.pass, job.first, job.count, threads_,
-                                       &share.stats, &cancel_);
-          share.seconds = secondsSince(start);
-          session_.wake();  // the main thread sends it, or forgets it when cancelled
-          if (cancel_) return std::nullopt;
-          return share;
-        });
+    run(job.pass, [this, job] {
+      const auto start = Clock::now();
+      wire::PhotonShareMessage share{job.pass, job.first, job.count, {}, 0.0, {}};
+      share.photons =
+          tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats, &cancel_);
+      share.seconds = secondsSince(start);
+      return wire::encodePhotonShare(share);
+    });
   }
 
-  // Rank 0 dropped this pass: the share being traced stops within a chunk of photons and is
-  // not sent, so this rank's threads are free for the next frame's tiles at once.
+  // This rank's share of the radii of the map waiting for them.
+  void findRadii(const wire::PhotonRadiiJobMessage& job) {
+    const PendingMap& p = pendingFor(job.pass, "radii job");
+    run(job.pass, [this, job, map = p.map, gather = p.gather] {
+      wire::PhotonRadiiShareMessage share{job.pass, job.first, {}};
+      share.radii = photonRadiiShare(*map, gather.k, gather.radius, gather.automaticK, job.first,
+                                     job.count, threads_, &cancel_);
+      return wire::encodePhotonRadiiShare(share);
+    });
+  }
+
+  // Rank 0 dropped this pass: the share being traced, or whose radii are being found, stops
+  // within a chunk of photons and is not sent, so this rank's threads are free for the next
+  // frame's tiles at once.
   void cancel(uint32_t pass) {
     if (running_.valid() && runningPass_ == pass) cancel_ = true;
   }
 
-  // The finished share, once there is one (none for a cancelled pass).
-  std::optional<wire::PhotonShareMessage> finished() {
+  // The finished share's message, once there is one (none for a cancelled pass).
+  std::optional<std::vector<uint8_t>> finished() {
     if (!running_.valid() ||
         running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
       return std::nullopt;
@@ -134,15 +142,6 @@ class PhotonWork {
     }
     useGather(message.pass, std::make_shared<const PhotonGather>(std::move(map), message.gather),
               message.keep);
-  }
-
-  // This rank's share of the radii of the map waiting for them.
-  wire::PhotonRadiiShareMessage findRadii(const wire::PhotonRadiiJobMessage& job) {
-    const PendingMap& p = pendingFor(job.pass, "radii job");
-    wire::PhotonRadiiShareMessage share{job.pass, job.first, {}};
-    share.radii = photonRadiiShare(*p.map, p.gather.k, p.gather.radius, p.gather.automaticK,
-                                   job.first, job.count, threads_);
-    return share;
   }
 
   void acceptRadii(wire::PhotonRadiiMessage&& message) {
@@ -210,6 +209,23 @@ class PhotonWork {
   }
 
  private:
+  // Runs a share's work (tracing, or finding radii) on a thread of its own, so the main thread
+  // keeps its heartbeat going; work() returns the message for rank 0. One at a time: rank 0
+  // asks again only after a pass is done or dropped (a dropped one stops within a chunk).
+  template <class Work>
+  void run(uint32_t pass, Work work) {
+    if (running_.valid()) running_.wait();
+    runningPass_ = pass;
+    cancel_ = false;
+    running_ =
+        std::async(std::launch::async, [this, work]() -> std::optional<std::vector<uint8_t>> {
+          std::vector<uint8_t> message = work();
+          session_.wake();  // the main thread sends it, or forgets it
+          if (cancel_) return std::nullopt;
+          return message;
+        });
+  }
+
   // A photon map received, its gather waiting for the radii.
   struct PendingMap {
     uint32_t pass = 0;
@@ -240,7 +256,7 @@ class PhotonWork {
   int threads_;
   Transport& session_;
   std::unique_ptr<PhotonTracer> tracer_;
-  std::future<std::optional<wire::PhotonShareMessage>> running_;
+  std::future<std::optional<std::vector<uint8_t>>> running_;
   uint32_t runningPass_ = 0;
   std::atomic<bool> cancel_{false};
   std::optional<PendingMap> pending_;
@@ -403,8 +419,8 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         work->second.held.erase(result.result.tileIndex);
         masterReachable = session.send(0, wire::encodeTileResult(result)) && masterReachable;
       }
-      if (std::optional<wire::PhotonShareMessage> share = photons.finished()) {
-        masterReachable = session.send(0, wire::encodePhotonShare(*share)) && masterReachable;
+      if (std::optional<std::vector<uint8_t>> share = photons.finished()) {
+        masterReachable = session.send(0, std::move(*share)) && masterReachable;
       }
       if (!masterReachable) {
         std::fprintf(stderr, "prism: rank %d: rank 0 is gone, stopping\n", session.rank());
@@ -469,11 +485,10 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadiiJob) {
-        lock.unlock();  // finds the radii
-        const wire::PhotonRadiiShareMessage share =
-            photons.findRadii(wire::decodePhotonRadiiJob(message));
+        if (hang) continue;
+        lock.unlock();  // waits for a share still being finished
+        photons.findRadii(wire::decodePhotonRadiiJob(message));
         lock.lock();
-        if (!session.send(0, wire::encodePhotonRadiiShare(share))) masterGone = true;
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadii) {

@@ -97,8 +97,8 @@ struct PhotonJobMessage {
   uint64_t photonsPerPass = 0;
 };
 
-// Master to slave: stop tracing the PhotonJob of this pass and send nothing for it (the camera
-// moved or the viewer stopped: rank 0 dropped the pass).
+// Master to slave: stop the PhotonJob or PhotonRadiiJob of this pass and send nothing for it
+// (the camera moved or the viewer stopped: rank 0 dropped the pass).
 struct PhotonCancelMessage {
   uint32_t pass = 0;
 };

@@ -6,12 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <random>
 #include <thread>
 
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonRadii.h"
+#include "master/RealSlave.h"
 #include "master/ScriptedSlave.h"
 #include "parse/SceneLoader.h"
 #include "transport/LoopbackTransport.h"
@@ -168,6 +171,106 @@ TEST(PhotonPass, AFixedRadiusGatherSendsTheMapAlone) {
   EXPECT_TRUE(stats.radiiByRank.empty());
   ASSERT_NE(gather, nullptr);
   expectSameEstimates(*gather, c);
+}
+
+// A million photons scattered over a square, whose k = 400 radii (slowRadii) take seconds on
+// one thread.
+std::vector<Photon> manyPhotons() {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Photon> photons(1'000'000);
+  for (Photon& p : photons) {
+    p.position = Vec3(u(rng), 0.0f, u(rng));
+    p.power = Color(1e-6f);
+    p.setDirection(Vec3(0.0f, -1.0f, 0.0f));
+  }
+  return photons;
+}
+
+PhotonGatherSettings slowRadii() {
+  PhotonGatherSettings settings;
+  settings.k = 400;
+  settings.radius = 0.5f;
+  return settings;
+}
+
+// The camera moves while the ranks find the radii: rank 0 stops its share, tells the slave still
+// finding its own to stop (PhotonCancel with the pass), and returns no gather, at once.
+TEST(PhotonPass, ADroppedPassTellsTheSlavesFindingRadiiToStop) {
+  const CausticPhotons c;  // for its scene
+  LoopbackNetwork network(2);
+  ScriptedSlave slave(network.endpoint(1), c.scene);
+  slave.ready(1);
+  std::optional<uint32_t> cancelled;
+  std::thread script([&] {
+    if (!slave.waitFor(wire::MessageType::PhotonRadiiJob, 30.0)) return;  // and never answers
+    if (const auto cancel = slave.waitFor(wire::MessageType::PhotonCancel, 30.0)) {
+      cancelled = wire::decodePhotonCancel(*cancel).pass;
+    }
+  });
+  SlaveLink link(&network.endpoint(0), patientLink(60.0));
+  link.receive(5.0);
+  std::atomic<bool> cancel{false};
+  std::thread mover([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));  // the map built, radii begun
+    cancel = true;
+  });
+  PhotonPassStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  const auto gather =
+      gatherFromPhotons(manyPhotons(), kPass, slowRadii(), 1, link, stats, false, &cancel);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  mover.join();
+  script.join();
+  EXPECT_EQ(gather, nullptr);
+  ASSERT_TRUE(cancelled.has_value());
+  EXPECT_EQ(*cancelled, kPass);
+  EXPECT_LT(seconds, 3.0);  // rank 0's half of the radii alone takes several seconds
+  EXPECT_FALSE(link.retired(1));
+}
+
+// A real slave told to drop the pass whose radii it is finding stops within a chunk of photons
+// and sends nothing for it: its shutdown acknowledgement comes at once, not after the share's
+// seconds (the slave finishes its photon work before it leaves).
+TEST(PhotonPass, ARealSlaveStopsFindingTheRadiiOfADroppedPassAndSendsNothing) {
+  const SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
+  const std::vector<Photon> photons = manyPhotons();
+  const PhotonGatherSettings settings = slowRadii();
+  LoopbackNetwork network(2);
+  int exitCode = -1;
+  std::thread slave = test::startRealSlave(network, 1, &exitCode);
+  Transport& master = network.endpoint(0);
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  master.broadcast(bytes, 10.0);
+  const auto waitFor = [&master](wire::MessageType type, double seconds) {
+    std::vector<wire::MessageType> seen;
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+           seconds) {
+      const auto incoming = master.waitForMessage(0.05);
+      if (!incoming) continue;
+      seen.push_back(wire::decodeMessage(incoming->bytes).type);
+      if (seen.back() == type) break;
+    }
+    return seen;
+  };
+  ASSERT_EQ(waitFor(wire::MessageType::Ready, 10.0).back(), wire::MessageType::Ready);
+  master.send(1, wire::encodePhotonMap(kPass, settings, photons));
+  master.send(1, wire::encodePhotonRadiiJob({kPass, 0, photons.size()}));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // map built, radii begun
+  master.send(1, wire::encodePhotonCancel({kPass}));
+  master.send(1, wire::encodeShutdown());
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<wire::MessageType> seen = waitFor(wire::MessageType::Shutdown, 60.0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  slave.join();
+  EXPECT_EQ(exitCode, 0);
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.back(), wire::MessageType::Shutdown);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), wire::MessageType::PhotonRadiiShare), 0);
+  EXPECT_LT(seconds, 2.0);
 }
 
 }  // namespace
