@@ -132,15 +132,6 @@ bool waitUntil(const std::function<bool()>& done, double seconds = 30.0) {
   return true;
 }
 
-// A real slave on rank 1 of `network` that has been sent the scene, as rank 0 sends it.
-std::thread startSlaveWithScene(LoopbackNetwork& network, const SceneDescription& d, int* exitCode,
-                                const MemoryLimit& memoryLimit = {}) {
-  std::thread slave = test::startRealSlave(network, 1, exitCode, memoryLimit);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
-  return slave;
-}
-
 // Ends a run over the loopback: the renderer's numbers as it stands, then it stops and the
 // slaves shut down cleanly.
 LiveStats endLoopbackRun(LiveRenderer& renderer, std::thread& coordinator,
@@ -773,7 +764,7 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
+  std::thread slaveThread = test::startRealSlaveWithScene(network, d, &slaveExit);
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;
@@ -838,7 +829,7 @@ TEST(LiveRenderer, OverTheLoopbackALaterViewsFirstPassGathersFromTheSlavesKeptMa
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
+  std::thread slaveThread = test::startRealSlaveWithScene(network, d, &slaveExit);
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;
@@ -892,7 +883,7 @@ TEST(LiveRenderer, OverTheLoopbackFramesWhileMovingComeAsDisplayBytesAndShowAsRe
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread = startSlaveWithScene(network, d, &slaveExit);
+  std::thread slaveThread = test::startRealSlaveWithScene(network, d, &slaveExit);
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;
@@ -981,8 +972,8 @@ TEST(LiveRenderer, OverTheLoopbackASlaveRefusesCausticMapsBeyondItsOwnLimit) {
   const Scene scene(d);
   LoopbackNetwork network(2);
   int slaveExit = -1;
-  std::thread slaveThread =
-      startSlaveWithScene(network, d, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
+  std::thread slaveThread = test::startRealSlaveWithScene(
+      network, d, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
   LiveOptions options;
   options.distribution.threads = 1;
   options.distribution.tileSize = 8;

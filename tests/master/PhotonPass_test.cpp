@@ -239,38 +239,20 @@ TEST(PhotonPass, ARealSlaveStopsFindingTheRadiiOfADroppedPassAndSendsNothing) {
   const PhotonGatherSettings settings = slowRadii();
   LoopbackNetwork network(2);
   int exitCode = -1;
-  std::thread slave = test::startRealSlave(network, 1, &exitCode);
+  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
   Transport& master = network.endpoint(0);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  master.broadcast(bytes, 10.0);
-  const auto waitFor = [&master](wire::MessageType type, double seconds) {
-    std::vector<wire::MessageType> seen;
-    const auto start = std::chrono::steady_clock::now();
-    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
-           seconds) {
-      const auto incoming = master.waitForMessage(0.05);
-      if (!incoming) continue;
-      seen.push_back(wire::decodeMessage(incoming->bytes).type);
-      if (seen.back() == type) break;
-    }
-    return seen;
-  };
-  ASSERT_EQ(waitFor(wire::MessageType::Ready, 10.0).back(), wire::MessageType::Ready);
+  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
+            wire::MessageType::Ready);
   master.send(1, wire::encodePhotonMap(kPass, settings, photons));
   master.send(1, wire::encodePhotonRadiiJob({kPass, 0, photons.size()}));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // map built, radii begun
-  master.send(1, wire::encodePhotonCancel({kPass}));
-  master.send(1, wire::encodeShutdown());
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<wire::MessageType> seen = waitFor(wire::MessageType::Shutdown, 60.0);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const test::CancelledPass c = test::cancelPassAndShutDown(master, kPass, 60.0);
   slave.join();
   EXPECT_EQ(exitCode, 0);
-  ASSERT_FALSE(seen.empty());
-  EXPECT_EQ(seen.back(), wire::MessageType::Shutdown);
-  EXPECT_EQ(std::count(seen.begin(), seen.end(), wire::MessageType::PhotonRadiiShare), 0);
-  EXPECT_LT(seconds, 2.0);
+  ASSERT_FALSE(c.seen.empty());
+  EXPECT_EQ(c.seen.back(), wire::MessageType::Shutdown);
+  EXPECT_EQ(std::count(c.seen.begin(), c.seen.end(), wire::MessageType::PhotonRadiiShare), 0);
+  EXPECT_LT(c.seconds, 2.0);
 }
 
 }  // namespace

@@ -2,11 +2,15 @@
 // of rank 0 against the slave's actual loop.
 #pragma once
 
+#include <chrono>
 #include <thread>
+#include <vector>
 
 #include "cluster/DistributionOptions.h"
+#include "scene/SceneDescription.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
+#include "wire/Messages.h"
 
 namespace prism::test {
 
@@ -20,6 +24,47 @@ inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitC
     options.masterTimeoutSeconds = 30.0;
     *exitCode = runSlave(network.endpoint(rank), options, memoryLimit).exitCode;
   });
+}
+
+// A real slave on rank 1 of `network` that has been sent the scene, as rank 0 sends it.
+inline std::thread startRealSlaveWithScene(LoopbackNetwork& network, const SceneDescription& d,
+                                           int* exitCode, const MemoryLimit& memoryLimit = {}) {
+  std::thread slave = startRealSlave(network, 1, exitCode, memoryLimit);
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  network.endpoint(0).broadcast(bytes, 10.0);
+  return slave;
+}
+
+// The types of the messages rank 0 receives, in order, until one of `type` (the last then) or
+// until `seconds` pass.
+inline std::vector<wire::MessageType> messagesUntil(Transport& master, wire::MessageType type,
+                                                    double seconds) {
+  std::vector<wire::MessageType> seen;
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+         seconds) {
+    const auto incoming = master.waitForMessage(0.05);
+    if (!incoming) continue;
+    seen.push_back(wire::decodeMessage(incoming->bytes).type);
+    if (seen.back() == type) break;
+  }
+  return seen;
+}
+
+// Rank 0 drops photon pass `pass` (PhotonCancel) and shuts the slave down: what the slave sent
+// until it acknowledged (Shutdown, the last), and how long that took.
+struct CancelledPass {
+  std::vector<wire::MessageType> seen;
+  double seconds = 0.0;
+};
+inline CancelledPass cancelPassAndShutDown(Transport& master, uint32_t pass, double seconds) {
+  master.send(1, wire::encodePhotonCancel({pass}));
+  master.send(1, wire::encodeShutdown());
+  const auto start = std::chrono::steady_clock::now();
+  CancelledPass c;
+  c.seen = messagesUntil(master, wire::MessageType::Shutdown, seconds);
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return c;
 }
 
 }  // namespace prism::test

@@ -332,39 +332,21 @@ TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
   const SceneDescription d = smallCausticScene();
   LoopbackNetwork network(2);
   int exitCode = -1;
-  std::thread slave = test::startRealSlave(network, 1, &exitCode);
+  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
   Transport& master = network.endpoint(0);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  master.broadcast(bytes, 10.0);
-  const auto waitFor = [&master](wire::MessageType type, double seconds) {
-    std::vector<wire::MessageType> seen;
-    const auto start = std::chrono::steady_clock::now();
-    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
-           seconds) {
-      const auto incoming = master.waitForMessage(0.05);
-      if (!incoming) continue;
-      seen.push_back(wire::decodeMessage(incoming->bytes).type);
-      if (seen.back() == type) break;
-    }
-    return seen;
-  };
-  ASSERT_EQ(waitFor(wire::MessageType::Ready, 10.0).back(), wire::MessageType::Ready);
+  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
+            wire::MessageType::Ready);
   // 20 M photons on one thread take about 10 s to trace (3.9 s for 8 M, measured).
   constexpr uint64_t kPhotons = 20'000'000;
   master.send(1, wire::encodePhotonJob({3, 0, kPhotons, kPhotons}));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  master.send(1, wire::encodePhotonCancel({3}));
-  master.send(1, wire::encodeShutdown());
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<wire::MessageType> seen = waitFor(wire::MessageType::Shutdown, 20.0);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const test::CancelledPass c = test::cancelPassAndShutDown(master, 3, 20.0);
   slave.join();
   EXPECT_EQ(exitCode, 0);
-  ASSERT_FALSE(seen.empty());
-  EXPECT_EQ(seen.back(), wire::MessageType::Shutdown);
-  EXPECT_EQ(std::count(seen.begin(), seen.end(), wire::MessageType::PhotonShare), 0);
-  EXPECT_LT(seconds, 3.0);
+  ASSERT_FALSE(c.seen.empty());
+  EXPECT_EQ(c.seen.back(), wire::MessageType::Shutdown);
+  EXPECT_EQ(std::count(c.seen.begin(), c.seen.end(), wire::MessageType::PhotonShare), 0);
+  EXPECT_LT(c.seconds, 3.0);
 }
 
 // A real slave rendering a tile of a frame that a View then ends (its liveFrom is later) stops
@@ -374,10 +356,8 @@ TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
   const SceneDescription d = smallScene();
   LoopbackNetwork network(2);
   int exitCode = -1;
-  std::thread slave = test::startRealSlave(network, 1, &exitCode);
+  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
   Transport& master = network.endpoint(0);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  master.broadcast(bytes, 10.0);
   // The frames' tiles as they arrive (frame ids), until `frame` has sent one.
   std::vector<uint32_t> tilesOf;
   const auto waitForTileOf = [&](uint32_t frame, double seconds) {
@@ -393,12 +373,8 @@ TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
     }
     return false;
   };
-  bool ready = false;
-  for (int i = 0; i < 200 && !ready; ++i) {
-    const auto incoming = master.waitForMessage(0.05);
-    ready = incoming && wire::decodeMessage(incoming->bytes).type == wire::MessageType::Ready;
-  }
-  ASSERT_TRUE(ready);
+  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
+            wire::MessageType::Ready);
   // Frame 1: the whole 64×48 image at 16384 spp as one tile, seconds of work on one thread.
   RenderView heavy{d.camera, d.render.width, d.render.height, 16384};
   master.send(1, wire::encodeView({1, 1, heavy}));
