@@ -56,12 +56,12 @@ QString photonLines(const PhotonLiveStats& p) {
              .arg(p.stored)
              .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes)))) +
          QString("passes       %1 of this view\n").arg(p.passes) +
-         QString("photon pass  trace %1, kd-tree %2, radii %3, %4\n")
+         QString("photon pass  trace %1, kd-tree %2, %3\n")
              .arg(milliseconds(p.traceSeconds))
              .arg(milliseconds(p.buildSeconds))
-             .arg(milliseconds(p.radiiSeconds))
              .arg(p.reused ? QString("the first view's, reused")
                            : "send " + milliseconds(p.distributeSeconds)) +
+         QString("radii        %1 (each rank a share)\n").arg(milliseconds(p.radiiSeconds)) +
          QString("gather r     %1 (progressive)").arg(p.radius, 0, 'g', 4);
 }
 
