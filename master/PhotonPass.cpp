@@ -176,6 +176,8 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
                                                       int threads, SlaveLink& link,
                                                       PhotonPassStats& stats, bool keep,
                                                       const std::atomic<bool>* cancel) {
+  const auto cancelled = [cancel] { return cancel && cancel->load(); };
+  if (cancelled()) return nullptr;  // before anything is sent: the slaves keep what they had
   // Sent before rank 0 builds its kd-tree: the slaves build theirs meanwhile.
   if (link.hasSlaves()) {
     const auto sendStart = SteadyClock::now();
@@ -187,6 +189,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   auto map = std::make_shared<const PhotonMap>(std::move(photonList));
   stats.buildSeconds = secondsSince(buildStart);
   stats.mapBytes = map->bytes();
+  if (cancelled()) return nullptr;
   const auto start = SteadyClock::now();
   if (!PhotonGather::needsRadii(gather, map->size())) {
     return std::make_shared<const PhotonGather>(std::move(map), gather);
@@ -227,6 +230,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
     shares[*s].doneBy = incoming.source;
   };
   if (!collectShares(shares, pass, link, local, cancel, accept, findHere)) return nullptr;
+  if (cancelled()) return nullptr;  // moved while the last share came: no disc tree to build
   stats.radiiByRank.assign(static_cast<size_t>(link.ranks()), 0);
   for (const Share& s : shares) stats.radiiByRank[static_cast<size_t>(s.doneBy)] += s.count;
   if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, radii}));
