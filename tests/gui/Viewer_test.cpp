@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "image/ImageIo.h"
 #include "master/PrismProcess.h"  // tests/master/
 
@@ -93,6 +95,26 @@ TEST_F(Viewer, TwoRanksRenderCausticMapsLikeRender) {
                                path("render.exr"));
   ASSERT_EQ(render.exitCode, 0) << render.output;
   expectSameImage(path("two.exr"), path("render.exr"));
+}
+
+// The move benchmark: the one line for scripts, exactly, and the lines after it. The camera
+// rests between moves, so views get refinement passes too (they are frames while moving, but
+// not a move's latency).
+TEST_F(Viewer, TheMoveBenchmarkPrintsItsLineForScripts) {
+  ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+  const auto run = runPrism("view " + kScene +
+                            " --width 96 --height 54 --benchmark-moves 6 --benchmark-interval 150");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const std::regex line(
+      R"re((^|\n)realtime  [0-9.]+ frames/s at 96x54, frame time median [0-9.]+ ms, )re"
+      R"re(p95 [0-9.]+ ms, [0-9]+ frames at full resolution\n)re");
+  EXPECT_TRUE(std::regex_search(run.output, line)) << run.output;
+  EXPECT_NE(run.output.find("benchmark  6 camera moves, one every 150 ms"), std::string::npos)
+      << run.output;
+  const std::regex latency(R"re(\nlatency    median [0-9.e+-]+ ms, p95 [0-9.e+-]+ ms )re"
+                           R"re(\(a move to the first frame showing it\)\n)re");
+  EXPECT_TRUE(std::regex_search(run.output, latency)) << run.output;
+  EXPECT_NE(run.output.find("\nfull res   "), std::string::npos) << run.output;
 }
 
 TEST_F(Viewer, NoDisplayIsAClearError) {
