@@ -234,7 +234,8 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   stats.radiiByRank.assign(static_cast<size_t>(link.ranks()), 0);
   for (const Share& s : shares) stats.radiiByRank[static_cast<size_t>(s.doneBy)] += s.count;
   if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, radii}));
-  auto made = std::make_shared<const PhotonGather>(std::move(map), gather, std::move(radii));
+  auto made =
+      std::make_shared<const PhotonGather>(std::move(map), gather, std::move(radii), threads);
   stats.radiiSeconds = secondsSince(start);
   return made;
 }

@@ -146,9 +146,10 @@ class PhotonWork {
 
   void acceptRadii(wire::PhotonRadiiMessage&& message) {
     PendingMap& p = pendingFor(message.pass, "radii");
-    useGather(p.pass,
-              std::make_shared<const PhotonGather>(p.map, p.gather, std::move(message.radii)),
-              p.keep);
+    useGather(
+        p.pass,
+        std::make_shared<const PhotonGather>(p.map, p.gather, std::move(message.radii), threads_),
+        p.keep);
     pending_.reset();
   }
 

@@ -15,10 +15,12 @@ PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
           map, settings,
           needsRadii(settings, map->size())
               ? photonRadii(*map, settings.k, settings.radius, settings.automaticK, threads)
-              : std::vector<float>{}) {}
+              : std::vector<float>{},
+          threads) {}
 
 PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
-                           const PhotonGatherSettings& settings, std::vector<float> radii)
+                           const PhotonGatherSettings& settings, std::vector<float> radii,
+                           int threads)
     : map_(std::move(map)), settings_(settings) {
   if (!needsRadii(settings_, map_->size())) return;
   if (radii.size() != map_->size()) {
@@ -26,7 +28,7 @@ PhotonGather::PhotonGather(std::shared_ptr<const PhotonMap> map,
                                 std::to_string(map_->size()) + " photons");
   }
   for (float& r : radii) r *= settings_.radiusScale;
-  discs_ = std::make_unique<const PhotonDiscs>(map_->photons(), radii);
+  discs_ = std::make_unique<const PhotonDiscs>(map_->photons(), radii, threads);
 }
 
 Color PhotonGather::irradiance(const Vec3& position, const Vec3& normal) const {
