@@ -37,10 +37,8 @@ void ByteWriter::writeVec3(const Vec3& v) {
 
 namespace {
 
-// On a little-endian machine an array of floats or u32s already is its wire form: meshes (12
-// bytes per vertex and per triangle, 85 MiB for 5 M triangles) are copied in one go instead of
-// byte by byte.
-constexpr bool kWireOrderIsNative = std::endian::native == std::endian::little;
+// Meshes (12 bytes per vertex and per triangle, 85 MiB for 5 M triangles) are copied in one go
+// instead of byte by byte where the wire order is native.
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
 
 }  // namespace
@@ -86,6 +84,13 @@ void ByteWriter::writeF32s(const std::vector<float>& v) {
   } else {
     for (float e : v) writeF32(e);
   }
+}
+
+void ByteReader::readRaw(void* out, size_t size) {
+  need(size);
+  if (size == 0) return;  // out may be null then, which memcpy must not see
+  std::memcpy(out, data_ + offset_, size);
+  offset_ += size;
 }
 
 void ByteReader::need(size_t n) const {

@@ -4,6 +4,7 @@
 // left before it reads or allocates, so a corrupted message throws instead of crashing.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -20,6 +21,10 @@ class WireError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// On a little-endian machine a value's bytes in memory are its wire form (numbers are written
+// little-endian): arrays of packed numbers are copied in one go instead of number by number.
+inline constexpr bool kWireOrderIsNative = std::endian::native == std::endian::little;
 
 class ByteWriter {
  public:
@@ -38,6 +43,9 @@ class ByteWriter {
   void writeU32s(const std::vector<uint32_t>& v);
   void writeF32s(const std::vector<float>& v);
   void writeU8s(const std::vector<uint8_t>& v);
+  // Bytes as they are in memory: only for values whose memory is their wire form
+  // (kWireOrderIsNative, no padding).
+  void writeRaw(const void* data, size_t size) { appendRaw(data, size); }
 
   // A u64 count, then writeOne(*this, element) for each element.
   template <typename T, typename WriteOne>
@@ -78,6 +86,8 @@ class ByteReader {
   std::vector<uint32_t> readU32s();
   std::vector<float> readF32s();
   std::vector<uint8_t> readU8s();
+  // size bytes into out as they are (see ByteWriter::writeRaw).
+  void readRaw(void* out, size_t size);
 
   // Reads what writeSequence wrote. Nothing is reserved up front: the vector grows only as
   // elements actually decode, so its memory stays proportional to the message.
