@@ -152,6 +152,16 @@ SceneDescription smallDefaultScene() {
   return d;
 }
 
+// A renderer's options: render threads on rank 0, the moving frame's preview scale (1: full
+// resolution), passes of a still camera.
+LiveOptions liveOptions(int threads, int previewScale, int maxPasses) {
+  LiveOptions options;
+  options.distribution.threads = threads;
+  options.previewScale = previewScale;
+  options.maxPasses = maxPasses;
+  return options;
+}
+
 // `prism render` of the scene from another camera.
 ImageRgb renderedFrom(SceneDescription d, const CameraDesc& camera) {
   d.camera = camera;
@@ -166,10 +176,7 @@ bool sameImage(const ImageRgb& a, const ImageRgb& b) {
 TEST(LiveRenderer, PreviewThenFullPassesEachAFrameAndPassOneIsTheRenderedImage) {
   const SceneDescription d = smallDefaultScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 4;
-  options.maxPasses = 2;
+  LiveOptions options = liveOptions(2, 4, 2);
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -216,10 +223,7 @@ TEST(LiveRenderer, PreviewThenFullPassesEachAFrameAndPassOneIsTheRenderedImage) 
 TEST(LiveRenderer, ANewViewEndsARefinementPassAndStopsItsTilesMidTile) {
   const SceneDescription d = smallDefaultScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 1;
-  options.maxPasses = 1;
+  LiveOptions options = liveOptions(2, 1, 1);
   options.distribution.tileSize = 44;  // two tiles, one a thread
   LiveRenderer renderer(scene, options);
   Recorder recorder;
@@ -270,10 +274,7 @@ TEST(LiveRenderer, AViewsFirstFrameIsFinishedWhenTheNextViewArrives) {
   d.render.width = 320;  // a frame of some milliseconds
   d.render.height = 180;
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 1;
-  options.maxPasses = 1;
+  LiveOptions options = liveOptions(2, 1, 1);
   options.distribution.tileSize = 16;
   LiveRenderer renderer(scene, options);
   Recorder recorder;
@@ -301,10 +302,7 @@ TEST(LiveRenderer, AViewsFirstFrameIsFinishedWhenTheNextViewArrives) {
 TEST(LiveRenderer, FramesWhileMovingAreFullResolutionAndBitIdenticalToRender) {
   const SceneDescription d = smallDefaultScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 4;
-  options.maxPasses = 1;
+  LiveOptions options = liveOptions(2, 4, 1);
   options.frameTimeSeconds = 10.0;  // every frame fits once one is measured
   options.distribution.tileSize = 8;
   LiveRenderer renderer(scene, options);
@@ -414,10 +412,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   const Scene scene(d);
   const CausticSettings& c = d.caustics;
   constexpr int kPasses = 3;
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 2;
-  options.maxPasses = kPasses;
+  LiveOptions options = liveOptions(2, 2, kPasses);
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -518,10 +513,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
 TEST(LiveRenderer, ALaterViewsFirstPassReusesTheFirstViewsPhotons) {
   SceneDescription d = causticScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 1;
-  options.maxPasses = 1;
+  LiveOptions options = liveOptions(2, 1, 1);
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -568,10 +560,7 @@ TEST(LiveRenderer, ALaterViewsFirstPassReusesTheFirstViewsPhotons) {
 TEST(LiveRenderer, AMoveCancelsThePhotonPassBeingTraced) {
   const SceneDescription d = causticScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 1;
-  options.maxPasses = 2;
+  LiveOptions options = liveOptions(2, 1, 2);
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -600,10 +589,7 @@ TEST(LiveRenderer, AMoveCancelsThePhotonPassBeingTraced) {
 TEST(LiveRenderer, SwitchingCausticsOrTheBudgetIsANewView) {
   const SceneDescription d = causticScene();
   const Scene scene(d);
-  LiveOptions options;
-  options.distribution.threads = 2;
-  options.previewScale = 1;
-  options.maxPasses = 1;
+  LiveOptions options = liveOptions(2, 1, 1);
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -677,12 +663,9 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
       slave.deliver(slave.render(*job));
     }
   });
-  LiveOptions options;
-  options.distribution.threads = 1;
+  LiveOptions options = liveOptions(1, 1, 1);
   options.distribution.heartbeatTimeoutSeconds = 60.0;
   options.distribution.leaseSeconds = 60.0;  // only the heartbeat can bring the tile back
-  options.previewScale = 1;
-  options.maxPasses = 1;
   LiveRenderer renderer(scene, options, &network.endpoint(0));
   Recorder recorder;
   std::exception_ptr failure;
@@ -734,12 +717,9 @@ TEST(LiveRenderer, OverTheLoopbackADeadSlaveIsRetiredWithinSeconds) {
     slave.nextJob();  // takes its jobs and dies
     slave.nextJob();
   });
-  LiveOptions options;
-  options.distribution.threads = 1;
+  LiveOptions options = liveOptions(1, 1, 1);
   options.distribution.heartbeatTimeoutSeconds = 0.6;
   options.distribution.leaseSeconds = 120.0;
-  options.previewScale = 1;
-  options.maxPasses = 1;
   LiveRenderer renderer(scene, options, &network.endpoint(0));
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -765,11 +745,8 @@ TEST(LiveRenderer, OverTheLoopbackPipelinedFramesWithARealSlaveAreBitIdentical) 
   LoopbackNetwork network(2);
   int slaveExit = -1;
   std::thread slaveThread = test::startRealSlaveWithScene(network, d, &slaveExit);
-  LiveOptions options;
-  options.distribution.threads = 1;
+  LiveOptions options = liveOptions(1, 1, 3);
   options.distribution.tileSize = 8;
-  options.previewScale = 1;
-  options.maxPasses = 3;
   std::vector<CameraDesc> cameras;
   std::vector<PassInfo> passes;
   LiveStats stats;
@@ -830,11 +807,8 @@ TEST(LiveRenderer, OverTheLoopbackALaterViewsFirstPassGathersFromTheSlavesKeptMa
   LoopbackNetwork network(2);
   int slaveExit = -1;
   std::thread slaveThread = test::startRealSlaveWithScene(network, d, &slaveExit);
-  LiveOptions options;
-  options.distribution.threads = 1;
+  LiveOptions options = liveOptions(1, 1, 1);
   options.distribution.tileSize = 8;
-  options.previewScale = 1;
-  options.maxPasses = 1;
   CameraDesc moved = d.camera;
   moved.position += Vec3(0.3f, 0.1f, 0.0f);
   std::vector<PassInfo> passes;
@@ -974,12 +948,9 @@ TEST(LiveRenderer, OverTheLoopbackASlaveRefusesCausticMapsBeyondItsOwnLimit) {
   int slaveExit = -1;
   std::thread slaveThread = test::startRealSlaveWithScene(
       network, d, &slaveExit, {causticMapBytes(scene, 64) - 1, "slave test"});
-  LiveOptions options;
-  options.distribution.threads = 1;
+  LiveOptions options = liveOptions(1, 1, 1);
   options.distribution.tileSize = 8;
   options.distribution.schedule = Schedule::Static;  // the slave gets tiles of its own
-  options.previewScale = 1;
-  options.maxPasses = 1;
   std::string failure;
   {
     LiveRenderer renderer(scene, options, &network.endpoint(0));

@@ -237,18 +237,14 @@ TEST(PhotonPass, ARealSlaveStopsFindingTheRadiiOfADroppedPassAndSendsNothing) {
   const SceneDescription d = loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml");
   const std::vector<Photon> photons = manyPhotons();
   const PhotonGatherSettings settings = slowRadii();
-  LoopbackNetwork network(2);
-  int exitCode = -1;
-  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
-  Transport& master = network.endpoint(0);
-  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
-            wire::MessageType::Ready);
+  test::RealSlaveJob job(d);
+  Transport& master = job.master();
+  ASSERT_TRUE(job.ready());
   master.send(1, wire::encodePhotonMap(kPass, settings, photons));
   master.send(1, wire::encodePhotonRadiiJob({kPass, 0, photons.size()}));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // map built, radii begun
   const test::CancelledPass c = test::cancelPassAndShutDown(master, kPass, 60.0);
-  slave.join();
-  EXPECT_EQ(exitCode, 0);
+  EXPECT_EQ(job.join(), 0);
   ASSERT_FALSE(c.seen.empty());
   EXPECT_EQ(c.seen.back(), wire::MessageType::Shutdown);
   EXPECT_EQ(std::count(c.seen.begin(), c.seen.end(), wire::MessageType::PhotonRadiiShare), 0);

@@ -35,6 +35,31 @@ inline std::thread startRealSlaveWithScene(LoopbackNetwork& network, const Scene
   return slave;
 }
 
+// A two-rank loopback job whose rank 1 is a real slave sent the scene; the test plays rank 0.
+// The slave is joined at the end even when a test stops early (it leaves at Shutdown, or on
+// its own after rank 0's silence).
+class RealSlaveJob {
+ public:
+  explicit RealSlaveJob(const SceneDescription& d)
+      : slave_(startRealSlaveWithScene(network_, d, &exitCode_)) {}
+  ~RealSlaveJob() {
+    if (slave_.joinable()) slave_.join();
+  }
+  Transport& master() { return network_.endpoint(0); }
+  // Whether the slave said Ready (its scene built) within 10 s.
+  bool ready();
+  // Waits for the slave to end; its exit code.
+  int join() {
+    slave_.join();
+    return exitCode_;
+  }
+
+ private:
+  LoopbackNetwork network_{2};
+  int exitCode_ = -1;
+  std::thread slave_;
+};
+
 // The types of the messages rank 0 receives, in order, until one of `type` (the last then) or
 // until `seconds` pass.
 inline std::vector<wire::MessageType> messagesUntil(Transport& master, wire::MessageType type,
@@ -65,6 +90,12 @@ inline CancelledPass cancelPassAndShutDown(Transport& master, uint32_t pass, dou
   c.seen = messagesUntil(master, wire::MessageType::Shutdown, seconds);
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return c;
+}
+
+inline bool RealSlaveJob::ready() {
+  const std::vector<wire::MessageType> seen =
+      messagesUntil(master(), wire::MessageType::Ready, 10.0);
+  return !seen.empty() && seen.back() == wire::MessageType::Ready;
 }
 
 }  // namespace prism::test

@@ -330,19 +330,15 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
 // after the share's seconds of tracing (the slave finishes its photon work before it leaves).
 TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) {
   const SceneDescription d = smallCausticScene();
-  LoopbackNetwork network(2);
-  int exitCode = -1;
-  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
-  Transport& master = network.endpoint(0);
-  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
-            wire::MessageType::Ready);
+  test::RealSlaveJob job(d);
+  Transport& master = job.master();
+  ASSERT_TRUE(job.ready());
   // 20 M photons on one thread take about 10 s to trace (3.9 s for 8 M, measured).
   constexpr uint64_t kPhotons = 20'000'000;
   master.send(1, wire::encodePhotonJob({3, 0, kPhotons, kPhotons}));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   const test::CancelledPass c = test::cancelPassAndShutDown(master, 3, 20.0);
-  slave.join();
-  EXPECT_EQ(exitCode, 0);
+  EXPECT_EQ(job.join(), 0);
   ASSERT_FALSE(c.seen.empty());
   EXPECT_EQ(c.seen.back(), wire::MessageType::Shutdown);
   EXPECT_EQ(std::count(c.seen.begin(), c.seen.end(), wire::MessageType::PhotonShare), 0);
@@ -354,10 +350,8 @@ TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
 // after the ended tile's seconds.
 TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
   const SceneDescription d = smallScene();
-  LoopbackNetwork network(2);
-  int exitCode = -1;
-  std::thread slave = test::startRealSlaveWithScene(network, d, &exitCode);
-  Transport& master = network.endpoint(0);
+  test::RealSlaveJob job(d);
+  Transport& master = job.master();
   // The frames' tiles as they arrive (frame ids), until `frame` has sent one.
   std::vector<uint32_t> tilesOf;
   const auto waitForTileOf = [&](uint32_t frame, double seconds) {
@@ -373,8 +367,7 @@ TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
     }
     return false;
   };
-  ASSERT_EQ(test::messagesUntil(master, wire::MessageType::Ready, 10.0).back(),
-            wire::MessageType::Ready);
+  ASSERT_TRUE(job.ready());
   // Frame 1: the whole 64×48 image at 16384 spp as one tile, seconds of work on one thread.
   RenderView heavy{d.camera, d.render.width, d.render.height, 16384};
   master.send(1, wire::encodeView({1, 1, heavy}));
@@ -392,8 +385,7 @@ TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
   master.send(1, wire::encodeShutdown());
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   waitForTileOf(1, 0.5);  // a frame-1 tile sent late would show here
-  slave.join();
-  EXPECT_EQ(exitCode, 0);
+  EXPECT_EQ(job.join(), 0);
   EXPECT_EQ(tilesOf, std::vector<uint32_t>{2});
   EXPECT_LT(seconds, 2.0);
 }
