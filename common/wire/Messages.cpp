@@ -476,6 +476,7 @@ constexpr size_t kPhotonBytes = 28;
 // (no padding), so a map of millions is copied in one go (11.6 MB: 33-50 ms number by number).
 constexpr bool kPhotonIsItsWireForm = kWireOrderIsNative && sizeof(Photon) == kPhotonBytes &&
                                       sizeof(Vec3) == 12 && sizeof(Photon::direction) == 4;
+constexpr size_t kPhotonBlock = 1024;  // photons copied in one go (28 KiB)
 
 void writePhotons(ByteWriter& w, const std::vector<Photon>& photons) {
   w.writeCount(photons.size());
@@ -494,10 +495,14 @@ void writePhotons(ByteWriter& w, const std::vector<Photon>& photons) {
 std::vector<Photon> readPhotons(ByteReader& r) {
   const size_t count = r.readCount(kPhotonBytes);
   std::vector<Photon> photons(count);
-  if constexpr (kPhotonIsItsWireForm) r.readRaw(photons.data(), count * kPhotonBytes);
   for (size_t i = 0; i < count; ++i) {
     Photon& p = photons[i];
-    if constexpr (!kPhotonIsItsWireForm) {
+    if constexpr (kPhotonIsItsWireForm) {
+      // A block at a time, checked while it is still in the cache.
+      if (i % kPhotonBlock == 0) {
+        r.readRaw(&p, std::min(kPhotonBlock, count - i) * kPhotonBytes);
+      }
+    } else {
       p.position = r.readVec3();
       p.power = r.readVec3();
       p.direction[0] = r.readU16();
