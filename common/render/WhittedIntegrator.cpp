@@ -1,5 +1,7 @@
 #include "render/WhittedIntegrator.h"
 
+#include <span>
+
 #include "math/RayOffset.h"
 #include "scene/PrimitiveRef.h"
 #include "shading/LightFalloff.h"
@@ -187,6 +189,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
 
   ScratchArray<ShadingPoint, kSize> points;
   bool lit[kSize];
+  bool anyLit = false;
   Color direct[kSize];
   for (int i = 0; i < count; ++i) {
     lit[i] = false;
@@ -194,10 +197,15 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     if (!found[i]) continue;
     shadingPoint(rays[i], hits[i], points[i]);
     lit[i] = litDirectly(points[i]);
+    anyLit = anyLit || lit[i];
   }
   // Direct light one light at a time, its shadow rays as one packet; each point adds the
   // lights up in the order directLighting() does. Rays left out of a packet get tMax below tMin.
-  for (const PointLightDesc& light : scene_.lights()) {
+  // A packet where no ray met a lit surface has no shadow rays to trace: nearly half of the
+  // default scene's (the floor's reflections, into the sky).
+  const std::span<const PointLightDesc> lights =
+      anyLit ? std::span<const PointLightDesc>(scene_.lights()) : std::span<const PointLightDesc>();
+  for (const PointLightDesc& light : lights) {
     ScratchArray<LightPath, kSize> paths;
     Ray shadows[kSize];
     bool towards[kSize];
