@@ -8,7 +8,7 @@
 #   tests/bench/frame_cost.sh [--top N] PRISM [PRISM2 ...] [-- RENDER ARGS]
 # RENDER ARGS default to the default scene at 320x180. For each binary: the frame's
 # instructions, L1 data read misses, both per pixel, then its N costliest functions (default 15).
-# Needs valgrind (Debian package `valgrind`); about 20 s a binary at the default size.
+# Needs valgrind (Debian package `valgrind`); 10–20 s a binary at the default size.
 set -euo pipefail
 usage() {
   sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
