@@ -11,7 +11,7 @@
 # Needs valgrind (Debian package `valgrind`); 10–20 s a binary at the default size.
 set -euo pipefail
 usage() {
-  sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 top=15
