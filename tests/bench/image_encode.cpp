@@ -7,34 +7,21 @@
 #include <OpenEXR/openexr.h>
 #include <png.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "MedianTime.h"
 #include "image/ExrFile.h"
 #include "image/ImageIo.h"
 #include "image/PngFile.h"
 #include "image/ToneMap.h"
 
 using namespace prism;
+using bench::medianMs;
 
 namespace {
-
-template <typename F>
-double medianMs(int runs, F&& f) {
-  std::vector<double> ms;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count());
-  }
-  std::nth_element(ms.begin(), ms.begin() + runs / 2, ms.end());
-  return ms[runs / 2];
-}
 
 double kib(const std::string& path) {
   return std::filesystem::file_size(path) / 1024.0;

@@ -3,31 +3,15 @@
 // "Photon radii found by every rank"). Prints the median of the runs.
 // Usage: prism_wire_encode [photons (415000: caustic-glass-sphere.yaml's stored)] [runs (5)]
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "MedianTime.h"
 #include "wire/Messages.h"
 
 using namespace prism;
-
-namespace {
-
-template <typename F>
-double medianMs(int runs, F&& f) {
-  std::vector<double> ms;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                     .count());
-  }
-  std::sort(ms.begin(), ms.end());
-  return ms[ms.size() / 2];
-}
-
-}  // namespace
+using bench::medianMs;
 
 int main(int argc, char** argv) {
   const size_t count = argc > 1 ? std::stoul(argv[1]) : 415000;
