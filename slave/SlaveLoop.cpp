@@ -407,6 +407,15 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
   int exitCode = 0;
   try {
     std::unique_lock<std::mutex> lock(shared);
+    // Runs f without the lock: f waits, or builds something big, while the heartbeat may send.
+    const auto unlocked = [&lock](auto&& f) {
+      lock.unlock();
+      struct Relock {
+        std::unique_lock<std::mutex>& lock;
+        ~Relock() { lock.lock(); }
+      } relock{lock};
+      return f();
+    };
     for (;;) {
       if (pool.failed()) break;
       if (interruptRequested()) {
@@ -433,9 +442,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       // may have come, a tile or photon share finished, or the idle bound passes.
       auto incoming = session.poll();
       if (!incoming) {
-        lock.unlock();
-        session.awaitActivity(kIdleCheckSeconds);
-        lock.lock();
+        unlocked([&] { session.awaitActivity(kIdleCheckSeconds); });
         incoming = session.poll();
       }
       if (!incoming) {
@@ -470,9 +477,8 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       }
       if (message.type == wire::MessageType::PhotonJob) {
         if (hang) continue;
-        lock.unlock();  // waits for a share still being traced
-        photons.start(wire::decodePhotonJob(message));
-        lock.lock();
+        // Waits for a share still being traced.
+        unlocked([&] { photons.start(wire::decodePhotonJob(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonCancel) {
@@ -480,22 +486,19 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         continue;
       }
       if (message.type == wire::MessageType::PhotonMap) {
-        lock.unlock();  // builds the kd-tree
-        photons.acceptMap(wire::decodePhotonMap(message));
-        lock.lock();
+        // Builds the kd-tree.
+        unlocked([&] { photons.acceptMap(wire::decodePhotonMap(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadiiJob) {
         if (hang) continue;
-        lock.unlock();  // waits for a share still being finished
-        photons.findRadii(wire::decodePhotonRadiiJob(message));
-        lock.lock();
+        // Waits for a share still being finished.
+        unlocked([&] { photons.findRadii(wire::decodePhotonRadiiJob(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadii) {
-        lock.unlock();  // builds the disc tree
-        photons.acceptRadii(wire::decodePhotonRadii(message));
-        lock.lock();
+        // Builds the disc tree.
+        unlocked([&] { photons.acceptRadii(wire::decodePhotonRadii(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonMapAgain) {
@@ -518,10 +521,10 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       }
       if (hang || (drop && frame.received % 2 == 0)) continue;
       frame.held.insert(job.tileIndex);  // with the count: no heartbeat sees it received, not held
-      lock.unlock();                     // the first tile of a caustic-map pass may build the maps
-      std::shared_ptr<const RenderPass> pass =
-          photons.pass(job.pass, job.terms, !frame.view || frame.view->causticMapBlur);
-      lock.lock();
+      // The first tile of a caustic-map pass may build the maps.
+      std::shared_ptr<const RenderPass> pass = unlocked([&] {
+        return photons.pass(job.pass, job.terms, !frame.view || frame.view->causticMapBlur);
+      });
       TileJob tile = tileJobFromMessage(job, frame.view, std::move(pass));
       tile.frameEnded = frame.ended;
       jobs.push(std::move(tile));

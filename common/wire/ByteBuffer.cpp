@@ -68,22 +68,22 @@ void ByteWriter::writeU8s(const std::vector<uint8_t>& v) {
   bytes_.insert(bytes_.end(), v.begin(), v.end());
 }
 
-void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
+template <typename T, typename WriteOne>
+void ByteWriter::writeArray(const std::vector<T>& v, WriteOne writeOne) {
   writeCount(v.size());
   if constexpr (kWireOrderIsNative) {
-    appendRaw(v.data(), v.size() * sizeof(uint32_t));
+    appendRaw(v.data(), v.size() * sizeof(T));
   } else {
-    for (uint32_t e : v) writeU32(e);
+    for (T e : v) writeOne(e);
   }
 }
 
+void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
+  writeArray(v, [this](uint32_t e) { writeU32(e); });
+}
+
 void ByteWriter::writeF32s(const std::vector<float>& v) {
-  writeCount(v.size());
-  if constexpr (kWireOrderIsNative) {
-    appendRaw(v.data(), v.size() * sizeof(float));
-  } else {
-    for (float e : v) writeF32(e);
-  }
+  writeArray(v, [this](float e) { writeF32(e); });
 }
 
 void ByteReader::readRaw(void* out, size_t size) {

@@ -60,6 +60,9 @@ class ByteWriter {
  private:
   void writeLittleEndian(uint64_t v, int byteCount);
   void appendRaw(const void* data, size_t size);  // bytes as they are in memory
+  // A count, then the elements: copied in one go where memory is wire order, else one by one.
+  template <typename T, typename WriteOne>
+  void writeArray(const std::vector<T>& v, WriteOne writeOne);
 
   std::vector<uint8_t> bytes_;
 };
