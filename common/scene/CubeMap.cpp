@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "accel/Simd.h"
+
 namespace prism {
 
 CubeMap::CubeMap(CubeMapDesc desc) : faces_(std::move(desc.faces)), scale_(desc.scale) {}
@@ -44,6 +46,20 @@ Color CubeMap::lookup(const Vec3& d) const {
   const int y0 = static_cast<int>(std::floor(t));
   const float fx = s - static_cast<float>(x0);
   const float fy = t - static_cast<float>(y0);
+  // Inside the face (nearly every lookup) the four texels need no clamping, and each is read as
+  // four lanes (its three channels and a neighbour's first, unused), so the three blends of
+  // glm::mix, a·(1 − f) + b·f, take one vector operation per step instead of three: the same
+  // roundings channel by channel. The face's last texel is never read this way, so no lane
+  // reads past the image.
+  const int w = image.width, h = image.height;
+  if (x0 >= 0 && y0 >= 0 && x0 + 1 < w && y0 + 1 < h && !(x0 + 2 == w && y0 + 2 == h)) {
+    const Color* texels = &image.pixels[static_cast<size_t>(y0) * w + x0];
+    const auto lanes = [](const Color* c) { return simd::load<simd::Float4>(&c->x); };
+    const simd::Float4 top = lanes(texels) * (1.0f - fx) + lanes(texels + 1) * fx;
+    const simd::Float4 bottom = lanes(texels + w) * (1.0f - fx) + lanes(texels + w + 1) * fx;
+    const simd::Float4 blend = scale_ * (top * (1.0f - fy) + bottom * fy);
+    return Color(blend[0], blend[1], blend[2]);
+  }
   const Color top = glm::mix(texel(face, x0, y0), texel(face, x0 + 1, y0), fx);
   const Color bottom = glm::mix(texel(face, x0, y0 + 1), texel(face, x0 + 1, y0 + 1), fx);
   return scale_ * glm::mix(top, bottom, fy);

@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "math/Random.h"
+
 namespace prism {
 namespace {
 
@@ -36,6 +42,81 @@ TEST(CubeMap, ScaleMultipliesRadiance) {
   CubeMapDesc d = labelledCube();
   d.scale = 2.5f;
   EXPECT_FLOAT_EQ(CubeMap(d).lookup({0, 0, -1}).x, 12.5f);
+}
+
+// Bilinear filtering written out the plain way: every texel clamped into the face, blended
+// with glm::mix. CubeMap::lookup reads interior texels without clamping and blends them as
+// vector lanes; it must give these very floats.
+Color referenceLookup(const CubeMapDesc& d, const Vec3& dir) {
+  const Vec3 a = glm::abs(dir);
+  int face;
+  float sc, tc, ma;
+  if (a.x >= a.y && a.x >= a.z) {
+    face = dir.x > 0.0f ? 0 : 1;
+    ma = a.x;
+    sc = dir.x > 0.0f ? -dir.z : dir.z;
+    tc = -dir.y;
+  } else if (a.y >= a.z) {
+    face = dir.y > 0.0f ? 2 : 3;
+    ma = a.y;
+    sc = dir.x;
+    tc = dir.y > 0.0f ? dir.z : -dir.z;
+  } else {
+    face = dir.z > 0.0f ? 4 : 5;
+    ma = a.z;
+    sc = dir.z > 0.0f ? dir.x : -dir.x;
+    tc = -dir.y;
+  }
+  const ImageRgb& image = d.faces[face];
+  const float s = 0.5f * (sc / ma + 1.0f) * static_cast<float>(image.width) - 0.5f;
+  const float t = 0.5f * (tc / ma + 1.0f) * static_cast<float>(image.height) - 0.5f;
+  const int x0 = static_cast<int>(std::floor(s)), y0 = static_cast<int>(std::floor(t));
+  const float fx = s - static_cast<float>(x0), fy = t - static_cast<float>(y0);
+  const auto texel = [&](int x, int y) {
+    return image.at(std::clamp(x, 0, image.width - 1), std::clamp(y, 0, image.height - 1));
+  };
+  const Color top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
+  const Color bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
+  return d.scale * glm::mix(top, bottom, fy);
+}
+
+bool sameBits(const Color& a, const Color& b) {
+  return std::memcmp(&a, &b, sizeof(Color)) == 0;
+}
+
+TEST(CubeMap, BilinearLookupMatchesThePlainFormulaBitForBit) {
+  // Faces of 5x3 texels with values of every magnitude, so a mixed-up width and height, a
+  // texel read from the wrong row or a blend done in another order shows in the last bit.
+  CubeMapDesc d;
+  d.scale = 0.7f;
+  Pcg32 rng(7, 11);
+  for (ImageRgb& face : d.faces) {
+    face = ImageRgb(5, 3);
+    for (Color& c : face.pixels) {
+      c = Color(rng.nextFloat(), 100.0f * rng.nextFloat(), 1e-3f * rng.nextFloat());
+    }
+  }
+  const CubeMap cube(d);
+  int mismatches = 0;
+  // Directions over every face, its edges and corners included (the clamped texels).
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 dir(2.0f * rng.nextFloat() - 1.0f, 2.0f * rng.nextFloat() - 1.0f,
+                   2.0f * rng.nextFloat() - 1.0f);
+    if (glm::length(dir) == 0.0f) continue;
+    mismatches += !sameBits(cube.lookup(dir), referenceLookup(d, dir));
+  }
+  for (int f = 0; f < 6; ++f) {
+    for (const float u : {-1.0f, -0.999f, 0.0f, 0.999f, 1.0f}) {
+      for (const float v : {-1.0f, -0.999f, 0.0f, 0.999f, 1.0f}) {
+        Vec3 dir(u, v, 1.0f);
+        if (f / 2 == 0) dir = Vec3(f % 2 ? -1.0f : 1.0f, u, v);
+        if (f / 2 == 1) dir = Vec3(u, f % 2 ? -1.0f : 1.0f, v);
+        if (f / 2 == 2) dir = Vec3(u, v, f % 2 ? -1.0f : 1.0f);
+        mismatches += !sameBits(cube.lookup(dir), referenceLookup(d, dir));
+      }
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 }  // namespace
