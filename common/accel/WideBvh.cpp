@@ -39,6 +39,29 @@ uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float 
   return mask;
 }
 
+bool WideBvh::entersTree(const Ray& ray, float tMax) const {
+  if (rootBounds_.empty()) return false;
+  const bool originInside = glm::all(glm::greaterThanEqual(ray.origin, rootBounds_.lower)) &&
+                            glm::all(glm::lessThanEqual(ray.origin, rootBounds_.upper));
+  if (originInside) return true;
+  // intersectChildrenScalar's arithmetic on the children's bounding box: each slab distance of
+  // the box lies on the permissive side of the same distance for every child (the roundings are
+  // monotonic, and a NaN, which the tests ignore, can only appear here where a child has one
+  // too or lies further in), so a ray this test rejects is rejected by every child's test.
+  float enter = ray.tMin, leave = tMax;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / ray.direction[a];
+    const bool upperFirst = std::signbit(inv);
+    const float nearPlane = upperFirst ? rootBounds_.upper[a] : rootBounds_.lower[a];
+    const float farPlane = upperFirst ? rootBounds_.lower[a] : rootBounds_.upper[a];
+    const float tNear = (nearPlane - ray.origin[a]) * inv;
+    const float tFar = (farPlane - ray.origin[a]) * inv * kSlabFarScale;
+    enter = tNear > enter ? tNear : enter;
+    leave = tFar < leave ? tFar : leave;
+  }
+  return enter <= leave;
+}
+
 void WideBvh::build(const Bvh& binary) {
   const auto start = SteadyClock::now();
   nodes_.clear();
@@ -109,6 +132,18 @@ void WideBvh::build(const Bvh& binary) {
         }
       }
       nodes_[wideIndex] = filled;
+    }
+  }
+  // The box around the root's children, for entersTree.
+  rootBounds_ = Aabb();
+  if (!nodes_.empty()) {
+    const WideBvhNode& root = nodes_[0];
+    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
+      if (!(root.bounds[0][i] <= root.bounds[1][i])) continue;  // an unused slot
+      for (int a = 0; a < 3; ++a) {
+        rootBounds_.lower[a] = std::min(rootBounds_.lower[a], root.bounds[2 * a][i]);
+        rootBounds_.upper[a] = std::max(rootBounds_.upper[a], root.bounds[2 * a + 1][i]);
+      }
     }
   }
   stats_.nodeCount = nodes_.size();

@@ -112,6 +112,12 @@ class WideBvh {
   }
   const WideBvhStats& stats() const { return stats_; }
 
+  // False only if the ray misses, within [ray.tMin, tMax], the box around the root's children,
+  // so that no walk could enter any of them: a test of a few instructions a shadow ray may take
+  // before a walk's set-up and root test. True at once for a ray starting inside the box (which
+  // the test could not reject). Same answers as walking: it never rejects what the walk enters.
+  bool entersTree(const Ray& ray, float tMax) const;
+
   // Same contract as Bvh::traverse: leafVisitor(first, count, tMax) tests primitives
   // first..first+count-1, shrinks tMax on a hit and returns true if it hit. Closest-hit walks
   // visit children nearest first; any-hit walks skip the sort and stop at the first hit.
@@ -120,6 +126,7 @@ class WideBvh {
 
  private:
   std::vector<WideBvhNode> nodes_;
+  Aabb rootBounds_;  // around the root's children; empty for an empty tree
   WideBvhStats stats_;
 };
 

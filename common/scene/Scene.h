@@ -194,6 +194,7 @@ class Scene {
   std::vector<Sphere> spheres_;
   std::vector<Cone> cones_;
   std::vector<Plane> planes_;
+  bool testTreeBoxFirst_ = false;  // occluded() asks WideBvh::entersTree before the walk
   std::vector<MeshShading> meshes_;
   std::vector<uint8_t> sphereCaustic_, coneCaustic_, planeCaustic_;  // parallel to the arrays
   std::vector<CasterBounds> casters_;

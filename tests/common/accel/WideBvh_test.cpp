@@ -157,6 +157,41 @@ TEST(WideBvh, SimdSlabTestMatchesTheScalarOne) {
   EXPECT_GT(entered, 1000);
 }
 
+// entersTree may only reject a ray that the root's node test rejects too: the shadow rays it
+// turns away never reach the walk. Rays from outside the boxes, many missing them, some
+// parallel to an axis (infinite reciprocals) and some starting in the plane of the box around
+// them all (NaN slab distances), which is where the test's own box and the children's meet.
+TEST(WideBvh, TreeBoxTestRejectsOnlyRaysTheRootRejects) {
+  const std::vector<Aabb> boxes = randomBoxes(60, 9);
+  Aabb all;
+  for (const Aabb& b : boxes) all.extend(b);
+  Bvh binary;
+  binary.build(boxes);
+  WideBvh wide;
+  wide.build(binary);
+  Pcg32 rng(5, 17);
+  int rejected = 0, entered = 0;
+  for (int i = 0; i < 50000; ++i) {
+    const Vec3 origin = randomVec(rng, -30, 30);
+    const Vec3 target = boxes[i % boxes.size()].center() + randomVec(rng, -15, 15);
+    Ray ray{origin, glm::normalize(target - origin)};
+    if (i % 5 == 0) ray.direction[i / 5 % 3] = (i % 10 == 0) ? 0.0f : -0.0f;
+    if (i % 7 == 0) ray.origin[i % 3] = (i % 2) ? all.lower[i % 3] : all.upper[i % 3];
+    const float tMax = (i % 3 == 0) ? 12.0f : kInf;
+    if (wide.entersTree(ray, tMax)) {
+      ++entered;
+      continue;
+    }
+    ++rejected;
+    float entry[WideBvhNode::kWidth];
+    ASSERT_EQ(intersectChildren(wide.nodes()[0], WideRay(ray), ray.tMin, tMax, entry), 0u) << i;
+  }
+  EXPECT_GT(rejected, 5000);
+  EXPECT_GT(entered, 5000);
+  // An empty tree is entered by nothing.
+  EXPECT_FALSE(WideBvh().entersTree(Ray{Vec3(0.0f), Vec3(0, 0, 1)}, kInf));
+}
+
 // The order a walk that never hits visits leaves in, worked out one node at a time with the
 // scalar slab test: entered children nearest first, the later lane first on equal entry
 // distances, each subtree finished before the next sibling.
