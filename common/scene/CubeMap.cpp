@@ -16,7 +16,11 @@ Color CubeMap::texel(int face, int x, int y) const {
   return image.at(x, y);
 }
 
-Color CubeMap::lookup(const Vec3& d) const {
+namespace {
+
+// CubeMap::facePoint, inlined into lookup() (a call there cost 0.4 % of the default frame).
+[[gnu::always_inline]] inline bool findFacePoint(const std::array<ImageRgb, 6>& faces,
+                                                 const Vec3& d, CubeMap::FacePoint& point) {
   // OpenGL cube-map selection (OpenGL 4.6 spec, table 8.19): the major axis picks the face,
   // (sc, tc) / |ma| give the face coordinates in [-1, 1], t growing downwards in the image.
   const Vec3 a = glm::abs(d);
@@ -38,10 +42,27 @@ Color CubeMap::lookup(const Vec3& d) const {
     sc = d.z > 0.0f ? d.x : -d.x;
     tc = -d.y;
   }
-  if (!(ma > 0.0f)) return Color(0.0f);
+  if (!(ma > 0.0f)) return false;
+  const ImageRgb& image = faces[face];
+  point = {face, 0.5f * (sc / ma + 1.0f) * static_cast<float>(image.width) - 0.5f,
+           0.5f * (tc / ma + 1.0f) * static_cast<float>(image.height) - 0.5f};
+  return true;
+}
+
+}  // namespace
+
+std::optional<CubeMap::FacePoint> CubeMap::facePoint(const Vec3& d) const {
+  FacePoint point;
+  if (!findFacePoint(faces_, d, point)) return std::nullopt;
+  return point;
+}
+
+Color CubeMap::lookup(const Vec3& d) const {
+  FacePoint point;
+  if (!findFacePoint(faces_, d, point)) return Color(0.0f);
+  const int face = point.face;
+  const float s = point.s, t = point.t;
   const ImageRgb& image = faces_[face];
-  const float s = 0.5f * (sc / ma + 1.0f) * static_cast<float>(image.width) - 0.5f;
-  const float t = 0.5f * (tc / ma + 1.0f) * static_cast<float>(image.height) - 0.5f;
   const int x0 = static_cast<int>(std::floor(s));
   const int y0 = static_cast<int>(std::floor(t));
   const float fx = s - static_cast<float>(x0);

@@ -47,31 +47,11 @@ TEST(CubeMap, ScaleMultipliesRadiance) {
 // Bilinear filtering written out the plain way: every texel clamped into the face, blended
 // with glm::mix. CubeMap::lookup reads interior texels without clamping and blends them as
 // vector lanes; it must give these very floats.
-Color referenceLookup(const CubeMapDesc& d, const Vec3& dir) {
-  const Vec3 a = glm::abs(dir);
-  int face;
-  float sc, tc, ma;
-  if (a.x >= a.y && a.x >= a.z) {
-    face = dir.x > 0.0f ? 0 : 1;
-    ma = a.x;
-    sc = dir.x > 0.0f ? -dir.z : dir.z;
-    tc = -dir.y;
-  } else if (a.y >= a.z) {
-    face = dir.y > 0.0f ? 2 : 3;
-    ma = a.y;
-    sc = dir.x;
-    tc = dir.y > 0.0f ? dir.z : -dir.z;
-  } else {
-    face = dir.z > 0.0f ? 4 : 5;
-    ma = a.z;
-    sc = dir.z > 0.0f ? dir.x : -dir.x;
-    tc = -dir.y;
-  }
-  const ImageRgb& image = d.faces[face];
-  const float s = 0.5f * (sc / ma + 1.0f) * static_cast<float>(image.width) - 0.5f;
-  const float t = 0.5f * (tc / ma + 1.0f) * static_cast<float>(image.height) - 0.5f;
-  const int x0 = static_cast<int>(std::floor(s)), y0 = static_cast<int>(std::floor(t));
-  const float fx = s - static_cast<float>(x0), fy = t - static_cast<float>(y0);
+Color referenceLookup(const CubeMap& cube, const CubeMapDesc& d, const Vec3& dir) {
+  const CubeMap::FacePoint p = *cube.facePoint(dir);
+  const ImageRgb& image = d.faces[p.face];
+  const int x0 = static_cast<int>(std::floor(p.s)), y0 = static_cast<int>(std::floor(p.t));
+  const float fx = p.s - static_cast<float>(x0), fy = p.t - static_cast<float>(y0);
   const auto texel = [&](int x, int y) {
     return image.at(std::clamp(x, 0, image.width - 1), std::clamp(y, 0, image.height - 1));
   };
@@ -103,16 +83,16 @@ TEST(CubeMap, BilinearLookupMatchesThePlainFormulaBitForBit) {
     const Vec3 dir(2.0f * rng.nextFloat() - 1.0f, 2.0f * rng.nextFloat() - 1.0f,
                    2.0f * rng.nextFloat() - 1.0f);
     if (glm::length(dir) == 0.0f) continue;
-    mismatches += !sameBits(cube.lookup(dir), referenceLookup(d, dir));
+    mismatches += !sameBits(cube.lookup(dir), referenceLookup(cube, d, dir));
   }
   for (int f = 0; f < 6; ++f) {
     for (const float u : {-1.0f, -0.999f, 0.0f, 0.999f, 1.0f}) {
       for (const float v : {-1.0f, -0.999f, 0.0f, 0.999f, 1.0f}) {
-        Vec3 dir(u, v, 1.0f);
-        if (f / 2 == 0) dir = Vec3(f % 2 ? -1.0f : 1.0f, u, v);
-        if (f / 2 == 1) dir = Vec3(u, f % 2 ? -1.0f : 1.0f, v);
-        if (f / 2 == 2) dir = Vec3(u, v, f % 2 ? -1.0f : 1.0f);
-        mismatches += !sameBits(cube.lookup(dir), referenceLookup(d, dir));
+        const float major = f % 2 ? -1.0f : 1.0f;  // the face's axis, its sign
+        const Vec3 dir = f / 2 == 0   ? Vec3(major, u, v)
+                         : f / 2 == 1 ? Vec3(u, major, v)
+                                      : Vec3(u, v, major);
+        mismatches += !sameBits(cube.lookup(dir), referenceLookup(cube, d, dir));
       }
     }
   }
