@@ -44,7 +44,7 @@ bool WideBvh::entersTree(const Ray& ray, float tMax) const {
   const bool originInside = glm::all(glm::greaterThanEqual(ray.origin, rootBounds_.lower)) &&
                             glm::all(glm::lessThanEqual(ray.origin, rootBounds_.upper));
   if (originInside) return true;
-  // intersectChildrenScalar's arithmetic on the children's bounding box: each slab distance of
+  // intersectChildrenScalar's arithmetic on the box around the children: each slab distance of
   // the box lies on the permissive side of the same distance for every child (the roundings are
   // monotonic, and a NaN, which the tests ignore, can only appear here where a child has one
   // too or lies further in), so a ray this test rejects is rejected by every child's test.
@@ -134,18 +134,8 @@ void WideBvh::build(const Bvh& binary) {
       nodes_[wideIndex] = filled;
     }
   }
-  // The box around the root's children, for entersTree.
-  rootBounds_ = Aabb();
-  if (!nodes_.empty()) {
-    const WideBvhNode& root = nodes_[0];
-    for (int i = 0; i < WideBvhNode::kWidth; ++i) {
-      if (!(root.bounds[0][i] <= root.bounds[1][i])) continue;  // an unused slot
-      for (int a = 0; a < 3; ++a) {
-        rootBounds_.lower[a] = std::min(rootBounds_.lower[a], root.bounds[2 * a][i]);
-        rootBounds_.upper[a] = std::max(rootBounds_.upper[a], root.bounds[2 * a + 1][i]);
-      }
-    }
-  }
+  // For entersTree: the binary root's box, which holds every node's (boxes are unions).
+  rootBounds_ = bin.empty() ? Aabb() : bin[0].bounds;
   stats_.nodeCount = nodes_.size();
   stats_.memoryBytes = nodes_.size() * sizeof(WideBvhNode);
   stats_.seconds = secondsSince(start);

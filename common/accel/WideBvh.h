@@ -126,7 +126,7 @@ class WideBvh {
 
  private:
   std::vector<WideBvhNode> nodes_;
-  Aabb rootBounds_;  // around the root's children; empty for an empty tree
+  Aabb rootBounds_;  // the binary root's box, around the root's children; empty for an empty tree
   WideBvhStats stats_;
 };
 
