@@ -29,18 +29,23 @@ bool WhittedIntegrator::towardsLight(const SurfaceHit& s, const PointLightDesc& 
   return true;
 }
 
-Color WhittedIntegrator::lightReflected(const ShadingPoint& p, const PointLightDesc& light,
-                                        const LightPath& path, const Vec3& toViewer) {
+Color WhittedIntegrator::reflectance(const ShadingPoint& p, const LightPath& path,
+                                     const Vec3& toViewer) {
   const MaterialDesc& m = *p.material;
-  // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
-  const Color lightAtSurface =
-      light.intensity * attenuationFactor(light.attenuation, path.distance);
   Color reflected = p.albedo * (kInvPi * path.cosTheta);
   if (!isBlack(m.specular)) {
     const float rv = glm::dot(reflect(-path.direction, p.surface.shadingNormal), toViewer);
     if (rv > 0.0f) reflected += m.specular * std::pow(rv, m.shininess);
   }
-  return lightAtSurface * reflected;
+  return reflected;
+}
+
+Color WhittedIntegrator::lightReflected(const PointLightDesc& light, const LightPath& path,
+                                        const Color& reflectance) {
+  // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
+  const Color lightAtSurface =
+      light.intensity * attenuationFactor(light.attenuation, path.distance);
+  return lightAtSurface * reflectance;
 }
 
 Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toViewer,
@@ -50,9 +55,11 @@ Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toVie
     LightPath path;
     Ray shadow;
     if (!towardsLight(p.surface, light, path, shadow)) continue;
+    const Color reflected = reflectance(p, path, toViewer);
+    if (isBlack(reflected)) continue;  // nothing to shadow (see reflectance())
     ++counters.shadow;
     if (scene_.occluded(shadow)) continue;
-    result += lightReflected(p, light, path, toViewer);
+    result += lightReflected(light, path, reflected);
   }
   return result;
 }
@@ -208,18 +215,24 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   for (const PointLightDesc& light : lights) {
     ScratchArray<LightPath, kSize> paths;
     Ray shadows[kSize];
+    Color reflected[kSize];
     bool towards[kSize];
+    bool anyTowards = false;
     for (int i = 0; i < count; ++i) {
       towards[i] = lit[i] && towardsLight(points[i].surface, light, paths[i], shadows[i]);
+      if (towards[i]) {
+        reflected[i] = reflectance(points[i], paths[i], -rays[i].direction);
+        towards[i] = !isBlack(reflected[i]);
+      }
       if (!towards[i]) shadows[i].tMax = -1.0f;
       counters.shadow += towards[i] ? 1 : 0;
+      anyTowards = anyTowards || towards[i];
     }
+    if (!anyTowards) continue;
     bool blocked[kSize];
     scene_.occluded8(shadows, count, blocked);
     for (int i = 0; i < count; ++i) {
-      if (towards[i] && !blocked[i]) {
-        direct[i] += lightReflected(points[i], light, paths[i], -rays[i].direction);
-      }
+      if (towards[i] && !blocked[i]) direct[i] += lightReflected(light, paths[i], reflected[i]);
     }
   }
 

@@ -167,6 +167,68 @@ TEST(WhittedIntegrator, DepthLimitStopsRecursionBetweenFacingMirrors) {
   EXPECT_FLOAT_EQ(c.x, 0.0f);  // every path ends on a black mirror, never escapes
 }
 
+// A mirror ball (no diffuse albedo, a narrow Phong highlight) under a light straight above it,
+// seen from above along vertical rays: the light reaches every point of the upper half, but only
+// near the top does the highlight face the viewer. Elsewhere the light adds exactly nothing,
+// blocked or not, and no shadow ray is traced for it; where it adds something the shadow ray is
+// traced and the highlight is the closed form. The packet path skips the same rays.
+TEST(WhittedIntegrator, NoShadowRayWhereTheLightAddsExactlyNothing) {
+  SceneDescription d = topDownScene(8, 2.0f);
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.0f);
+  mirror.specular = Color(0.8f);
+  mirror.shininess = 400.0f;
+  d.materials.push_back(mirror);
+  d.spheres.push_back({{0, 0, 0}, 1.0f, 0, {}});
+  PointLightDesc light;
+  light.position = {0, 10, 0};
+  light.intensity = Color(81.0f);
+  d.lights.push_back(light);
+  const Scene scene(d);
+  const WhittedIntegrator integrator(scene);
+  const auto downAt = [](float x) { return Ray{{x, 5, 0}, {0, -1, 0}}; };
+
+  // The top: the highlight looks straight at the viewer, pow(1, 400) = 1, and the light is 9
+  // units away.
+  RayCounters top;
+  const Color peak = integrator.radiance(downAt(0.0f), 0, Color(1.0f), top);
+  EXPECT_EQ(top.shadow, 1u);
+  EXPECT_NEAR(peak.x, 0.8f * 81.0f / 81.0f, 1e-4f);
+
+  // Two points the light reaches (above the horizon of the ball as the light sees it): at
+  // x = 0.8 the highlight turns away (r·v < 0), at x = 0.4 it faces the viewer but so
+  // obliquely that pow(r·v, 400) is 0 in float.
+  for (const float x : {0.4f, 0.8f}) {
+    const Vec3 p(x, std::sqrt(1.0f - x * x), 0.0f), n = p;
+    const Vec3 toLight = glm::normalize(light.position - p);
+    ASSERT_GT(glm::dot(n, toLight), 0.0f) << x;
+    const float rv = glm::dot(reflect(-toLight, n), Vec3(0, 1, 0));
+    if (x < 0.5f) {
+      ASSERT_GT(rv, 0.0f);
+      ASSERT_EQ(std::pow(rv, 400.0f), 0.0f);
+    } else {
+      ASSERT_LT(rv, 0.0f);
+    }
+    RayCounters rays;
+    EXPECT_EQ(integrator.radiance(downAt(x), 0, Color(1.0f), rays), Color(0.0f)) << x;
+    EXPECT_EQ(rays.shadow, 0u) << x;
+  }
+
+  // Eight rays from the top outwards as one packet: the same answers and the same rays.
+  Ray rays[Scene::kPacketSize];
+  Color single[Scene::kPacketSize], packet[Scene::kPacketSize];
+  RayCounters singleCount, packetCount;
+  for (int i = 0; i < Scene::kPacketSize; ++i) {
+    rays[i] = downAt(0.1f * static_cast<float>(i));
+    single[i] = integrator.radiance(rays[i], 0, Color(1.0f), singleCount);
+  }
+  integrator.radiance8(rays, Scene::kPacketSize, packet, packetCount);
+  for (int i = 0; i < Scene::kPacketSize; ++i) EXPECT_EQ(packet[i], single[i]) << i;
+  EXPECT_EQ(packetCount.shadow, singleCount.shadow);
+  EXPECT_GT(singleCount.shadow, 0u);
+  EXPECT_LT(singleCount.shadow, static_cast<uint64_t>(Scene::kPacketSize));
+}
+
 // Records the footprints the integrator asks the caustic estimate for.
 class FootprintProbe : public CausticEstimator {
  public:
