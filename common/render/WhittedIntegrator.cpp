@@ -1,52 +1,14 @@
 #include "render/WhittedIntegrator.h"
 
-#include <span>
-
 #include "math/RayOffset.h"
+#include "render/LightLanes.h"
+#include "render/PointLightPath.h"
 #include "scene/PrimitiveRef.h"
-#include "shading/LightFalloff.h"
 #include "shading/MaterialEval.h"
-#include "shading/Optics.h"
 #include "shading/SpecularSplit.h"
 #include "util/ScratchArray.h"
 
 namespace prism {
-
-bool WhittedIntegrator::towardsLight(const SurfaceHit& s, const PointLightDesc& light,
-                                     LightPath& path, Ray& shadow) {
-  const Vec3 toLight = light.position - s.position;
-  path.distance = glm::length(toLight);
-  if (!(path.distance > 0.0f)) return false;
-  path.direction = toLight / path.distance;
-  // A light below the geometric surface cannot reach it, whatever the shading normal says.
-  if (glm::dot(s.geometricNormal, path.direction) <= 0.0f) return false;
-  path.cosTheta = glm::dot(s.shadingNormal, path.direction);
-  if (path.cosTheta <= 0.0f) return false;
-  shadow.origin = s.rayOrigin(path.direction);
-  shadow.direction = path.direction;
-  shadow.tMin = 0.0f;
-  shadow.tMax = shadowRayLength(glm::length(light.position - shadow.origin));
-  return true;
-}
-
-Color WhittedIntegrator::reflectance(const ShadingPoint& p, const LightPath& path,
-                                     const Vec3& toViewer) {
-  const MaterialDesc& m = *p.material;
-  Color reflected = p.albedo * (kInvPi * path.cosTheta);
-  if (!isBlack(m.specular)) {
-    const float rv = glm::dot(reflect(-path.direction, p.surface.shadingNormal), toViewer);
-    if (rv > 0.0f) reflected += m.specular * std::pow(rv, m.shininess);
-  }
-  return reflected;
-}
-
-Color WhittedIntegrator::lightReflected(const PointLightDesc& light, const LightPath& path,
-                                        const Color& reflectance) {
-  // Irradiance factor I·att(d); times albedo/π·cosθ it is Lambertian radiance in W/(m²·sr).
-  const Color lightAtSurface =
-      light.intensity * attenuationFactor(light.attenuation, path.distance);
-  return lightAtSurface * reflectance;
-}
 
 Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toViewer,
                                         RayCounters& counters) const {
@@ -55,8 +17,8 @@ Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toVie
     LightPath path;
     Ray shadow;
     if (!towardsLight(p.surface, light, path, shadow)) continue;
-    const Color reflected = reflectance(p, path, toViewer);
-    if (isBlack(reflected)) continue;  // nothing to shadow (see reflectance())
+    const Color reflected = reflectance(p.surface, p.albedo, *p.material, path, toViewer);
+    if (isBlack(reflected)) continue;  // the light adds nothing here, blocked or not
     ++counters.shadow;
     if (scene_.occluded(shadow)) continue;
     result += lightReflected(light, path, reflected);
@@ -195,44 +157,41 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   scene_.intersect8(rays, count, hits.data(), found);
 
   ScratchArray<ShadingPoint, kSize> points;
-  bool lit[kSize];
-  bool anyLit = false;
+  uint32_t litLanes = 0;  // bit i: rays[i] met a surface that direct light reaches
   Color direct[kSize];
   for (int i = 0; i < count; ++i) {
-    lit[i] = false;
     direct[i] = Color(0.0f);
     if (!found[i]) continue;
     shadingPoint(rays[i], hits[i], points[i]);
-    lit[i] = litDirectly(points[i]);
-    anyLit = anyLit || lit[i];
+    litLanes |= litDirectly(points[i]) ? 1u << i : 0u;
   }
-  // Direct light one light at a time, its shadow rays as one packet; each point adds the
-  // lights up in the order directLighting() does. Rays left out of a packet get tMax below tMin.
-  // A packet where no ray met a lit surface has no shadow rays to trace: nearly half of the
-  // default scene's (the floor's reflections, into the sky).
-  const std::span<const PointLightDesc> lights =
-      anyLit ? std::span<const PointLightDesc>(scene_.lights()) : std::span<const PointLightDesc>();
-  for (const PointLightDesc& light : lights) {
-    ScratchArray<LightPath, kSize> paths;
-    Ray shadows[kSize];
-    Color reflected[kSize];
-    bool towards[kSize];
-    bool anyTowards = false;
-    for (int i = 0; i < count; ++i) {
-      towards[i] = lit[i] && towardsLight(points[i].surface, light, paths[i], shadows[i]);
-      if (towards[i]) {
-        reflected[i] = reflectance(points[i], paths[i], -rays[i].direction);
-        towards[i] = !isBlack(reflected[i]);
-      }
-      if (!towards[i]) shadows[i].tMax = -1.0f;
-      counters.shadow += towards[i] ? 1 : 0;
-      anyTowards = anyTowards || towards[i];
+  // Direct light one light at a time, its shadow rays as one packet, the paths to the light and
+  // the light's contribution computed for all points at once (render/LightLanes.h); each point
+  // adds the lights up in the order directLighting() does. A packet where no ray met a lit
+  // surface has no shadow rays to trace: nearly half of the default scene's (the floor's
+  // reflections, into the sky).
+  if (litLanes != 0) {
+    ShadingLanes lanes{};  // lanes of unlit points stay zero: computed, never used
+    for (uint32_t m = litLanes; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      lanes.set(i, points[i].surface, points[i].albedo, *points[i].material, -rays[i].direction);
     }
-    if (!anyTowards) continue;
-    bool blocked[kSize];
-    scene_.occluded8(shadows, count, blocked);
-    for (int i = 0; i < count; ++i) {
-      if (towards[i] && !blocked[i]) direct[i] += lightReflected(light, paths[i], reflected[i]);
+    alignas(32) ShadingLanes::Lanes directLanes[3] = {};
+    for (const PointLightDesc& light : scene_.lights()) {
+      LightPathLanes paths;
+      Ray shadows[kSize];
+      lightPathLanes(lanes, litLanes, count, light, paths, shadows);
+      if (paths.towards == 0) continue;
+      counters.shadow += static_cast<uint64_t>(__builtin_popcount(paths.towards));
+      bool blocked[kSize];
+      scene_.occluded8(shadows, count, blocked);
+      uint32_t unblocked = paths.towards;
+      for (int i = 0; i < count; ++i) unblocked &= blocked[i] ? ~(1u << i) : ~0u;
+      addLightLanes(paths, unblocked, light, directLanes);
+    }
+    for (uint32_t m = litLanes; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      direct[i] = Color(directLanes[0][i], directLanes[1][i], directLanes[2][i]);
     }
   }
 

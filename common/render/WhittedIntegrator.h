@@ -70,27 +70,6 @@ class WhittedIntegrator {
   // Whether direct light (ambient, lights) is added and the surface reflects any of it.
   bool litDirectly(const ShadingPoint& p) const;
 
-  // The path from a surface point to a point light: what the light's contribution needs once
-  // its shadow ray is found unblocked.
-  struct LightPath {
-    Vec3 direction{0.0f};
-    float distance = 0.0f;
-    float cosTheta = 0.0f;
-  };
-  // False when the light cannot reach the point (behind the surface, or at it); otherwise the
-  // path and its shadow ray.
-  static bool towardsLight(const SurfaceHit& s, const PointLightDesc& light, LightPath& path,
-                           Ray& shadow);
-  // What the surface sends towards the viewer of the light arriving along the path, per unit of
-  // the light's irradiance factor: albedo/π·cosθ plus the Phong highlight. Known before the
-  // shadow ray is traced: where it is exactly zero (a mirror or glass ball's point whose
-  // highlight is turned away, or so narrow that pow() gives 0) the light adds nothing whether
-  // blocked or not, and no shadow ray is traced. A sixth of the default scene's shadow rays.
-  static Color reflectance(const ShadingPoint& p, const LightPath& path, const Vec3& toViewer);
-  // Radiance reflected towards the viewer from an unblocked light path.
-  static Color lightReflected(const PointLightDesc& light, const LightPath& path,
-                              const Color& reflectance);
-
   // Everything shade() adds before it follows the surface's reflection and refraction:
   // ambient, direct light (directLight: its sum over the lights) and caustics.
   Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
