@@ -53,7 +53,9 @@ inline Vec3 leavingOrigin(const Vec3& p, const Vec3& n, float distance, const Ve
 // into a surface (a bulb in a ceiling, an NFF light on a wall) is not shadowed by that surface.
 // Measured (LeavingSurfaces.ALightSetIntoASurface...): stopping γ(4) short still left up to 5 of
 // 2000 floor points dark, γ(8) none; γ(16) keeps a factor of two.
-inline float shadowRayLength(float distance) {
+// A template so that vectors of distances (render/LightLanes.h) take the same multiplication.
+template <class Distance>
+inline Distance shadowRayLength(Distance distance) {
   return distance * (1.0f - gammaBound(16));
 }
 

@@ -1,7 +1,9 @@
 #include "render/LightLanes.h"
 
 #include <cmath>
+#include <cstddef>
 
+#include "math/RayOffset.h"
 #include "shading/LightFalloff.h"
 
 namespace prism {
@@ -32,11 +34,29 @@ V dot(const Vec3Lanes& a, const Vec3Lanes& b) {
   return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
-// The lanes of one vector: lightPathLanes' arithmetic; the highlight's pow() is left to the
-// caller. Returns the lanes the light reaches; rv is r·v, the highlight's cosine.
+// Rays first..first+3 of `rays` from four lanes of origins, directions and lengths (tMin 0):
+// each ray is two rows of four floats, transposed from the lanes in registers and stored whole,
+// so that the packet's constructor (RayPacket8), reading them back four floats at a time, does
+// not wait on eight single-float stores per ray.
+void storeRays(const simd::Float4 origin[3], const simd::Float4 direction[3], simd::Float4 tMax,
+               Ray* rays) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMax) == 7 * sizeof(float));
+  simd::Float4 low[4] = {origin[0], origin[1], origin[2], direction[0]};
+  simd::Float4 high[4] = {direction[1], direction[2], simd::Float4{}, tMax};
+  simd::transpose(low[0], low[1], low[2], low[3]);
+  simd::transpose(high[0], high[1], high[2], high[3]);
+  for (int k = 0; k < 4; ++k) {
+    float* ray = reinterpret_cast<float*>(&rays[k]);
+    simd::store(ray, low[k]);
+    simd::store(ray + 4, high[k]);
+  }
+}
+
+// The lanes of one vector: lightPathLanes' arithmetic but for the highlight's pow(), which is
+// left to the caller (rv: r·v, the highlight's cosine). Writes every lane's shadow ray, as if
+// the light reached it. Returns the lanes the light reaches.
 uint32_t pathsInVector(const ShadingLanes& s, int first, const PointLightDesc& light,
-                       LightPathLanes& paths, float* rv, float origins[3][ShadingLanes::kLanes],
-                       float directions[3][ShadingLanes::kLanes], float* originDistances) {
+                       LightPathLanes& paths, float* rv, Ray* shadows) {
   // WhittedIntegrator::towardsLight: the path, and whether the light can reach the point.
   const Vec3Lanes position = load3(s.position, first);
   const Vec3Lanes geometric = load3(s.geometricNormal, first);
@@ -61,19 +81,29 @@ uint32_t pathsInVector(const ShadingLanes& s, int first, const PointLightDesc& l
   const V twiceCos = 2.0f * dot(toward, shading);
   for (int a = 0; a < 3; ++a) mirrored.x[a] = toward.x[a] - twiceCos * shading.x[a];
   simd::store(rv + first, dot(mirrored, load3(s.toViewer, first)));
+  simd::store(paths.distance + first, distance);
 
   // The shadow ray: from just off the surface on the light's side (facing is not below 0 in
   // the lanes that reach it, so leavingOrigin's step is +leavingDistance along the normal).
   const V leaving = simd::load<V>(s.leavingDistance + first);
-  Vec3Lanes fromOrigin;
+  Vec3Lanes origin, fromOrigin;
   for (int a = 0; a < 3; ++a) {
-    const V origin = position.x[a] + leaving * geometric.x[a];
-    simd::store(origins[a] + first, origin);
-    simd::store(directions[a] + first, direction.x[a]);
-    fromOrigin.x[a] = light.position[a] - origin;
+    origin.x[a] = position.x[a] + leaving * geometric.x[a];
+    fromOrigin.x[a] = light.position[a] - origin.x[a];
   }
-  simd::store(originDistances + first, simd::sqrtLanes(dot(fromOrigin, fromOrigin)));
-  simd::store(paths.distance + first, distance);
+  const V length = shadowRayLength(simd::sqrtLanes(dot(fromOrigin, fromOrigin)));
+  if constexpr (kWidth == 4) {
+    storeRays(origin.x, direction.x, length, shadows + first);
+  } else {
+    simd::Float4 o[2][3], d[2][3], t[2];
+    for (int a = 0; a < 3; ++a) {
+      simd::splitHalves(origin.x[a], o[0][a], o[1][a]);
+      simd::splitHalves(direction.x[a], d[0][a], d[1][a]);
+    }
+    simd::splitHalves(length, t[0], t[1]);
+    storeRays(o[0], d[0], t[0], shadows + first);
+    storeRays(o[1], d[1], t[1], shadows + first + 4);
+  }
   return reach << first;
 }
 
@@ -98,36 +128,38 @@ void ShadingLanes::set(int lane, const SurfaceHit& s, const Color& albedoHere,
 void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const PointLightDesc& light,
                     LightPathLanes& paths, Ray* shadows) {
   constexpr int kLanes = ShadingLanes::kLanes;
-  alignas(32) float rv[kLanes], origins[3][kLanes], directions[3][kLanes], originDistances[kLanes];
+  alignas(32) float rv[kLanes], highlight[kLanes] = {};
   uint32_t reach = 0;
   for (int first = 0; first < kLanes; first += kWidth) {
-    reach |= pathsInVector(s, first, light, paths, rv, origins, directions, originDistances);
+    reach |= pathsInVector(s, first, light, paths, rv, shadows);
   }
   reach &= lanes;
-  uint32_t towards = 0;
-  for (uint32_t m = reach; m != 0; m &= m - 1) {
+  // The highlights, pow() lane by lane, then added to the reflectances as vectors.
+  uint32_t highlit = 0;
+  for (uint32_t m = reach & s.specularLanes; m != 0; m &= m - 1) {
     const int i = simd::firstLane(m);
-    float* reflectance[3] = {paths.reflectance[0], paths.reflectance[1], paths.reflectance[2]};
-    if ((s.specularLanes >> i & 1u) && rv[i] > 0.0f) {
-      const float highlight = std::pow(rv[i], s.shininess[i]);
-      for (int c = 0; c < 3; ++c) reflectance[c][i] += s.specular[c][i] * highlight;
-    }
-    // Where the light adds exactly nothing, blocked or not, no shadow ray.
-    const bool black =
-        reflectance[0][i] <= 0.0f && reflectance[1][i] <= 0.0f && reflectance[2][i] <= 0.0f;
-    towards |= black ? 0u : 1u << i;
+    if (!(rv[i] > 0.0f)) continue;
+    highlight[i] = std::pow(rv[i], s.shininess[i]);
+    highlit |= 1u << i;
   }
-  paths.towards = towards;
-  for (int i = 0; i < count; ++i) {
-    Ray& shadow = shadows[i];
-    if (!(towards >> i & 1u)) {
-      shadow.tMax = -1.0f;
-      continue;
+  uint32_t black = 0;
+  for (int first = 0; first < kLanes; first += kWidth) {
+    const M add = simd::lanesOf<M>(highlit >> first);
+    const V h = simd::load<V>(highlight + first);
+    M blackLanes = ~M{};
+    for (int c = 0; c < 3; ++c) {
+      const V before = simd::load<V>(paths.reflectance[c] + first);
+      const V after =
+          simd::select<V>(add, before + simd::load<V>(s.specular[c] + first) * h, before);
+      simd::store(paths.reflectance[c] + first, after);
+      blackLanes &= after <= 0.0f;
     }
-    shadow.origin = Vec3(origins[0][i], origins[1][i], origins[2][i]);
-    shadow.direction = Vec3(directions[0][i], directions[1][i], directions[2][i]);
-    shadow.tMin = 0.0f;
-    shadow.tMax = shadowRayLength(originDistances[i]);
+    black |= simd::laneMask(blackLanes) << first;
+  }
+  // Where the light adds exactly nothing, blocked or not, no shadow ray: the ray is left empty.
+  paths.towards = reach & ~black;
+  for (uint32_t m = ~paths.towards & ((1u << count) - 1u); m != 0; m &= m - 1) {
+    shadows[simd::firstLane(m)].tMax = -1.0f;
   }
 }
 
