@@ -1,7 +1,6 @@
 #include "render/LightLanes.h"
 
 #include <cmath>
-#include <cstddef>
 
 #include "math/RayOffset.h"
 #include "shading/LightFalloff.h"
@@ -10,54 +9,14 @@ namespace prism {
 
 namespace {
 
-// The vector the build does best: eight lanes with AVX, four (twice) without.
-#if defined(__AVX__)
-using V = simd::Float8;
-#else
-using V = simd::Float4;
-#endif
-using M = simd::MaskOf<V>;
-constexpr int kWidth = static_cast<int>(sizeof(V) / sizeof(float));
-
-struct Vec3Lanes {
-  V x[3];
-};
-
-// Lanes first..first+kWidth-1 of each coordinate.
-Vec3Lanes load3(const ShadingLanes::Lanes lanes[3], int first) {
-  return {{simd::load<V>(lanes[0] + first), simd::load<V>(lanes[1] + first),
-           simd::load<V>(lanes[2] + first)}};
-}
-
-// glm::dot's order: (a.x·b.x + a.y·b.y) + a.z·b.z.
-V dot(const Vec3Lanes& a, const Vec3Lanes& b) {
-  return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
-}
-
-// Rays first..first+3 of `rays` from four lanes of origins, directions and lengths (tMin 0):
-// each ray is two rows of four floats, transposed from the lanes in registers and stored whole,
-// so that the packet's constructor (RayPacket8), reading them back four floats at a time, does
-// not wait on eight single-float stores per ray.
-void storeRays(const simd::Float4 origin[3], const simd::Float4 direction[3], simd::Float4 tMax,
-               Ray* rays) {
-  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMax) == 7 * sizeof(float));
-  simd::Float4 low[4] = {origin[0], origin[1], origin[2], direction[0]};
-  simd::Float4 high[4] = {direction[1], direction[2], simd::Float4{}, tMax};
-  simd::transpose(low[0], low[1], low[2], low[3]);
-  simd::transpose(high[0], high[1], high[2], high[3]);
-  for (int k = 0; k < 4; ++k) {
-    float* ray = reinterpret_cast<float*>(&rays[k]);
-    simd::store(ray, low[k]);
-    simd::store(ray + 4, high[k]);
-  }
-}
+using namespace lanes;
 
 // The lanes of one vector: lightPathLanes' arithmetic but for the highlight's pow(), which is
 // left to the caller (rv: r·v, the highlight's cosine). Writes every lane's shadow ray, as if
 // the light reached it. Returns the lanes the light reaches.
 uint32_t pathsInVector(const ShadingLanes& s, int first, const PointLightDesc& light,
                        LightPathLanes& paths, float* rv, Ray* shadows) {
-  // WhittedIntegrator::towardsLight: the path, and whether the light can reach the point.
+  // towardsLight (render/PointLightPath.h): the path, and whether the light can reach the point.
   const Vec3Lanes position = load3(s.position, first);
   const Vec3Lanes geometric = load3(s.geometricNormal, first);
   const Vec3Lanes shading = load3(s.shadingNormal, first);
@@ -71,7 +30,7 @@ uint32_t pathsInVector(const ShadingLanes& s, int first, const PointLightDesc& l
   const uint32_t reach = simd::laneMask(distance > 0.0f) & ~simd::laneMask(facing <= 0.0f) &
                          ~simd::laneMask(cosTheta <= 0.0f);
 
-  // WhittedIntegrator::reflectance: albedo/π·cosθ, plus the highlight where r·v > 0.
+  // reflectance (render/PointLightPath.h): albedo/π·cosθ, plus the highlight where r·v > 0.
   const V diffuseScale = kInvPi * cosTheta;
   for (int c = 0; c < 3; ++c) {
     simd::store(paths.reflectance[c] + first, simd::load<V>(s.albedo[c] + first) * diffuseScale);
@@ -91,39 +50,12 @@ uint32_t pathsInVector(const ShadingLanes& s, int first, const PointLightDesc& l
     origin.x[a] = position.x[a] + leaving * geometric.x[a];
     fromOrigin.x[a] = light.position[a] - origin.x[a];
   }
-  const V length = shadowRayLength(simd::sqrtLanes(dot(fromOrigin, fromOrigin)));
-  if constexpr (kWidth == 4) {
-    storeRays(origin.x, direction.x, length, shadows + first);
-  } else {
-    simd::Float4 o[2][3], d[2][3], t[2];
-    for (int a = 0; a < 3; ++a) {
-      simd::splitHalves(origin.x[a], o[0][a], o[1][a]);
-      simd::splitHalves(direction.x[a], d[0][a], d[1][a]);
-    }
-    simd::splitHalves(length, t[0], t[1]);
-    storeRays(o[0], d[0], t[0], shadows + first);
-    storeRays(o[1], d[1], t[1], shadows + first + 4);
-  }
+  storeRays(origin, direction, shadowRayLength(simd::sqrtLanes(dot(fromOrigin, fromOrigin))),
+            shadows + first);
   return reach << first;
 }
 
 }  // namespace
-
-void ShadingLanes::set(int lane, const SurfaceHit& s, const Color& albedoHere,
-                       const MaterialDesc& m, const Vec3& toViewerHere) {
-  for (int a = 0; a < 3; ++a) {
-    position[a][lane] = s.position[a];
-    geometricNormal[a][lane] = s.geometricNormal[a];
-    shadingNormal[a][lane] = s.shadingNormal[a];
-    albedo[a][lane] = albedoHere[a];
-    specular[a][lane] = m.specular[a];
-    toViewer[a][lane] = toViewerHere[a];
-  }
-  leavingDistance[lane] = s.leavingDistance;
-  shininess[lane] = m.shininess;
-  const bool hasSpecular = !(m.specular.x <= 0.0f && m.specular.y <= 0.0f && m.specular.z <= 0.0f);
-  specularLanes = (specularLanes & ~(1u << lane)) | (hasSpecular ? 1u << lane : 0u);
-}
 
 void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const PointLightDesc& light,
                     LightPathLanes& paths, Ray* shadows) {
@@ -165,7 +97,7 @@ void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const Poin
 
 void addLightLanes(const LightPathLanes& paths, uint32_t unblocked, const PointLightDesc& light,
                    ShadingLanes::Lanes direct[3]) {
-  // WhittedIntegrator::lightReflected: I·att(d) times the reflectance.
+  // lightReflected (render/PointLightPath.h): I·att(d) times the reflectance.
   const Attenuation& a = light.attenuation;
   for (int first = 0; first < ShadingLanes::kLanes; first += kWidth) {
     const V d = simd::load<V>(paths.distance + first);

@@ -1,37 +1,18 @@
-// Direct light from a point light for the shading points of a packet, all at once: each point is
-// a lane of a vector (accel/Simd.h; two four-lane halves in an SSE2 build, whose eight-lane
-// comparisons GCC would split into one scalar comparison per lane), so the path to the light, the
-// shadow ray's origin and length and the surface's reflectance take one vector operation each
-// instead of one per point. Lane by lane the arithmetic is WhittedIntegrator's scalar
-// towardsLight(), reflectance() and lightReflected() (no operation reordered, no fused
-// multiply-add), so every lane's answer is the scalar one to the bit; only pow() is taken lane by
-// lane (the library's own).
+// Direct light from a point light for the shading points of a packet, all at once
+// (render/ShadingLanes.h): the path to the light, the shadow ray's origin and length and the
+// surface's reflectance take one vector operation each instead of one per point. Lane by lane
+// the arithmetic is render/PointLightPath.h's towardsLight(), reflectance() and
+// lightReflected(), so every lane's answer is the scalar one to the bit; only pow() is taken
+// lane by lane (the library's own).
 #pragma once
 
 #include <cstdint>
 
-#include "accel/Simd.h"
-#include "geometry/HitRecord.h"
 #include "math/Ray.h"
+#include "render/ShadingLanes.h"
 #include "scene/SceneDescription.h"
 
 namespace prism {
-
-// The shading points of a packet as lanes: what direct light reads of them, one array of lanes
-// per coordinate.
-struct ShadingLanes {
-  static constexpr int kLanes = 8;
-  using Lanes = float[kLanes];
-
-  alignas(32) Lanes position[3], geometricNormal[3], shadingNormal[3], leavingDistance;
-  alignas(32) Lanes albedo[3], specular[3], shininess, toViewer[3];
-  uint32_t specularLanes = 0;  // lanes whose material has a Phong highlight (specular not black)
-
-  // Lane `lane` is the point s of a material m with diffuse albedo `albedo` (already evaluated
-  // at the point), seen along -toViewer.
-  void set(int lane, const SurfaceHit& s, const Color& albedo, const MaterialDesc& m,
-           const Vec3& toViewer);
-};
 
 // One light's paths from the lanes, once they are known to reach it.
 struct LightPathLanes {

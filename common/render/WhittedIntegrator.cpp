@@ -2,6 +2,7 @@
 
 #include "math/RayOffset.h"
 #include "render/LightLanes.h"
+#include "render/MirrorLanes.h"
 #include "render/PointLightPath.h"
 #include "scene/PrimitiveRef.h"
 #include "shading/MaterialEval.h"
@@ -157,12 +158,15 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   scene_.intersect8(rays, count, hits.data(), found);
 
   ScratchArray<ShadingPoint, kSize> points;
-  uint32_t litLanes = 0;  // bit i: rays[i] met a surface that direct light reaches
+  ShadingLanes lanes{};  // the points again as vector lanes; lanes without one stay zero
+  uint32_t foundLanes = 0, litLanes = 0;  // bit i: rays[i] met a surface; one direct light reaches
   Color direct[kSize];
   for (int i = 0; i < count; ++i) {
     direct[i] = Color(0.0f);
     if (!found[i]) continue;
     shadingPoint(rays[i], hits[i], points[i]);
+    lanes.set(i, points[i].surface, points[i].albedo, *points[i].material, -rays[i].direction);
+    foundLanes |= 1u << i;
     litLanes |= litDirectly(points[i]) ? 1u << i : 0u;
   }
   // Direct light one light at a time, its shadow rays as one packet, the paths to the light and
@@ -171,11 +175,6 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // surface has no shadow rays to trace: nearly half of the default scene's (the floor's
   // reflections, into the sky).
   if (litLanes != 0) {
-    ShadingLanes lanes{};  // lanes of unlit points stay zero: computed, never used
-    for (uint32_t m = litLanes; m != 0; m &= m - 1) {
-      const int i = __builtin_ctz(m);
-      lanes.set(i, points[i].surface, points[i].albedo, *points[i].material, -rays[i].direction);
-    }
     alignas(32) ShadingLanes::Lanes directLanes[3] = {};
     for (const PointLightDesc& light : scene_.lights()) {
       LightPathLanes paths;
@@ -196,10 +195,15 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   }
 
   // The bounces: each ray's reflected ray, then its refracted one (the order shade() adds them
-  // in), k for the k-th bounce of a ray.
+  // in), k for the k-th bounce of a ray. Points that only reflect (no transmittance: floors,
+  // mirrors, metals) take forEachBounce's reflected ray from the lanes, every lane's mirror ray
+  // computed at once (render/MirrorLanes.h); points that refract go through forEachBounce.
   Ray onward[2][kSize];
   Color scale[2][kSize], contribution[2][kSize];
   uint32_t bouncing[2] = {0, 0};
+  const RenderSettings& settings = scene_.settings();
+  const bool bounces = depth < settings.maxDepth && foundLanes != 0;
+  if (bounces) mirrorRayLanes(lanes, onward[0]);
   for (uint32_t m = live; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
     if (!found[i]) {
@@ -207,6 +211,18 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       continue;
     }
     results[i] = surfaceRadiance(points[i], direct[i], {});
+    if (!bounces) continue;
+    const MaterialDesc& material = *points[i].material;
+    if (isBlack(material.transmittance)) {
+      const Color reflectContribution = weights[i] * material.reflectance;
+      if (maxComponent(reflectContribution) > settings.minContribution) {
+        ++counters.secondary;
+        scale[0][i] = material.reflectance;
+        contribution[0][i] = reflectContribution;
+        bouncing[0] |= 1u << i;
+      }
+      continue;
+    }
     int k = 0;
     forEachBounce(rays[i], hits[i], points[i], {}, depth, weights[i], {}, counters,
                   [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
