@@ -27,8 +27,8 @@ struct Plane {
   Vec3 surfacePoint(const Vec3& q, Vec3& error) const {
     const float distance = glm::dot(normal, q) - offset;
     const Vec3 p = q - distance * normal;
-    const float termSize = glm::dot(glm::abs(normal), glm::abs(q)) + std::fabs(offset);
-    error = gammaBound(5) * glm::abs(p) +
+    const float termSize = glm::dot(absComponents(normal), absComponents(q)) + std::fabs(offset);
+    error = gammaBound(5) * absComponents(p) +
             Vec3(gammaBound(4) * termSize + gammaBound(2) * std::fabs(distance));
     return p;
   }

@@ -48,7 +48,7 @@ struct Sphere {
   // does not grow with the ray's length.
   Vec3 pointAlong(const Vec3& n, Vec3& error) const {
     const Vec3 fromCenter = radius * n;
-    error = gammaBound(7) * glm::abs(fromCenter) + gammaBound(1) * glm::abs(center);
+    error = gammaBound(7) * absComponents(fromCenter) + gammaBound(1) * absComponents(center);
     return center + fromCenter;
   }
 };

@@ -26,7 +26,7 @@ struct Triangle {
   // however far the ray came from.
   Vec3 pointAt(float u, float v, Vec3& error) const {
     const Vec3 p0 = (1.0f - u - v) * v0, p1 = u * v1, p2 = v * v2;
-    error = gammaBound(7) * (glm::abs(p0) + glm::abs(p1) + glm::abs(p2));
+    error = gammaBound(7) * (absComponents(p0) + absComponents(p1) + absComponents(p2));
     return p0 + p1 + p2;
   }
 

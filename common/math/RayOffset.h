@@ -23,9 +23,9 @@ namespace prism {
 // off its surface, and an origin never becomes subnormal (a microcode assist in every later test
 // of the ray). It does not depend on the ray: SurfaceHit keeps it for all rays leaving a hit.
 inline float leavingDistance(const Vec3& p, const Vec3& positionError, const Vec3& n) {
-  const Vec3 absN = glm::abs(n);
+  const Vec3 absN = absComponents(n);
   const float reach = (1.0f + gammaBound(8)) * glm::dot(absN, positionError) +
-                      gammaBound(3) * glm::dot(absN, glm::abs(p));
+                      gammaBound(3) * glm::dot(absN, absComponents(p));
   return std::max(reach, std::numeric_limits<float>::min());
 }
 
@@ -40,7 +40,7 @@ inline float leavingDistance(const Vec3& p, const Vec3& positionError, const Vec
 // with γ(4), none with γ(8). γ(16) keeps a factor of two. It grows with the ray's length, as the
 // ordering's uncertainty does: about 10⁻⁶ of it, below what the incoming ray can resolve.
 inline Vec3 hitDistanceError(float t, const Vec3& direction) {
-  return gammaBound(16) * t * glm::abs(direction);
+  return gammaBound(16) * t * absComponents(direction);
 }
 
 // The origin for a ray leaving p in direction w: `distance` along n, to the side w goes.

@@ -24,6 +24,13 @@ inline float meanComponent(const Vec3& v) {
 inline float minComponent(const Vec3& v) {
   return std::min(v.x, std::min(v.y, v.z));
 }
+// |v| per component, with std::fabs: one bitwise AND each, where glm::abs (x >= 0 ? x : -x)
+// compiles to a comparison and a branch per component. They differ only for -0, which
+// glm::abs keeps and fabs makes +0: use it where the sign of a zero cannot matter, as in the
+// error bounds (math/RayOffset.h), whose sums of magnitudes end in a max with a positive floor.
+inline Vec3 absComponents(const Vec3& v) {
+  return Vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z));
+}
 inline float maxAbsComponent(const Vec3& v) {
   return maxComponent(glm::abs(v));
 }

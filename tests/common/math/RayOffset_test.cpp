@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <random>
 #include <string>
@@ -52,6 +53,41 @@ TEST(RayOffset, AnExactPointStillMovesOffTheSurfaceButNeverToASubnormal) {
   EXPECT_EQ(origin.z, -1.0f);
   const Vec3 below = leavingOrigin(p, up, distance, -up);
   EXPECT_EQ(below.y, -std::numeric_limits<float>::min());
+}
+
+// The error bounds take magnitudes with absComponents (std::fabs), which makes -0 into +0 where
+// glm::abs kept it: the distance a ray leaves by must not see the difference. Every combination
+// of signed zeros in the point, its error and the normal (with the other components zero or
+// not) gives the same distance to the bit.
+TEST(RayOffset, TheLeavingDistanceDoesNotSeeTheSignOfAZero) {
+  const float values[] = {0.0f, -0.0f, 0.5f, -3.0f};
+  int checked = 0;
+  for (int code = 0; code < 4 * 4 * 4 * 4 * 4 * 4; ++code) {
+    int rest = code;
+    const auto next = [&] {
+      const float v = values[rest % 4];
+      rest /= 4;
+      return v;
+    };
+    const Vec3 p(next(), next(), 2.0f), error(next(), next(), 0.0f), n(next(), next(), 0.0f);
+    const auto flipZeros = [](Vec3 v) {
+      for (int a = 0; a < 3; ++a) v[a] = v[a] == 0.0f ? -v[a] : v[a];
+      return v;
+    };
+    const float distance = leavingDistance(p, error, n);
+    for (const Vec3& q : {p, flipZeros(p)}) {
+      for (const Vec3& e : {error, flipZeros(error)}) {
+        for (const Vec3& m : {n, flipZeros(n)}) {
+          const float other = leavingDistance(q, e, m);
+          ASSERT_EQ(std::memcmp(&other, &distance, sizeof(float)), 0) << code;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 4 * 4 * 4 * 4 * 4 * 4 * 8);
+  EXPECT_FALSE(std::signbit(absComponents(Vec3(-0.0f)).x));
+  EXPECT_EQ(absComponents(Vec3(-2.0f, 3.0f, -0.5f)), Vec3(2.0f, 3.0f, 0.5f));
 }
 
 TEST(RayOffset, AShadowRayStopsAMillionthShortOfTheLight) {
