@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/FloorToInt.h"
 #include "shading/LightFalloff.h"
 #include "shading/SpecularSplit.h"
 #include "util/Parallel.h"
@@ -106,7 +107,7 @@ class TexelTransport {
     if (!e) return lost();
     const int n = receivers_.resolution();
     const float fx = e->x - 0.5f, fy = e->y - 0.5f;
-    const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
+    const int i0 = floorToInt<int>(fx), j0 = floorToInt<int>(fy);
     const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
     int index[4];
     float weight[4];
@@ -294,7 +295,7 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   if (!p) return Color(0.0f);
   const int n = frustum_.resolution();
   const float fx = p->x - 0.5f, fy = p->y - 0.5f;
-  const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
+  const int i0 = floorToInt<int>(fx), j0 = floorToInt<int>(fy);
   const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
   Color acc(0.0f);
   float wsum = 0.0f;

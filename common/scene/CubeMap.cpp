@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "accel/Simd.h"
+#include "math/FloorToInt.h"
 
 namespace prism {
 
@@ -63,8 +64,8 @@ Color CubeMap::lookup(const Vec3& d) const {
   const int face = point.face;
   const float s = point.s, t = point.t;
   const ImageRgb& image = faces_[face];
-  const int x0 = static_cast<int>(std::floor(s));
-  const int y0 = static_cast<int>(std::floor(t));
+  const int x0 = floorToInt<int>(s);
+  const int y0 = floorToInt<int>(t);
   const float fx = s - static_cast<float>(x0);
   const float fy = t - static_cast<float>(y0);
   // Inside the face (nearly every lookup) the four texels need no clamping, and each is read as

@@ -1,6 +1,7 @@
 // Evaluates material properties that vary over a surface.
 #pragma once
 
+#include "math/FloorToInt.h"
 #include "scene/SceneDescription.h"
 
 namespace prism {
@@ -12,9 +13,8 @@ namespace prism {
 inline Color diffuseAlbedo(const MaterialDesc& m, const Vec3& p) {
   if (!m.checker) return m.diffuse;
   constexpr float kBoundaryShift = 1e-3f;
-  const Vec3 cell = glm::floor(p / m.checker->scale + kBoundaryShift);
-  const long parity =
-      static_cast<long>(cell.x) + static_cast<long>(cell.y) + static_cast<long>(cell.z);
+  const Vec3 q = p / m.checker->scale + kBoundaryShift;
+  const long parity = floorToInt<long>(q.x) + floorToInt<long>(q.y) + floorToInt<long>(q.z);
   return (parity & 1) ? m.checker->colorB : m.checker->colorA;
 }
 
