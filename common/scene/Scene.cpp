@@ -636,18 +636,48 @@ void Scene::intersect8Lanes(const Ray* rays, int count, HitRecord* hits, bool* f
         return intersectLeafRays8<false, V>(rays, packet, firstPack, packCount, mask, rayTMax,
                                             hits);
       });
-  for (int i = 0; i < count; ++i) {
-    if (!(live >> i & 1u)) continue;
-    found[i] = (hitMask >> i & 1u) != 0;
-    for (uint32_t p = 0; p < planes_.size(); ++p) {
-      float t;
-      if (planes_[p].intersect(rays[i], tMax[i], t)) {
-        tMax[i] = t;
-        hits[i] = {t, PrimitiveRef::make(PrimitiveKind::Plane, p), 0.0f, 0.0f};
-        found[i] = true;
-      }
+  int plane[RayPacket8::kSize];
+  const uint32_t planeMask = planes_.empty() ? 0u : planeLanes<V>(packet, live, tMax, plane);
+  for (uint32_t m = live; m != 0; m &= m - 1) {
+    const int i = simd::firstLane(m);
+    found[i] = ((hitMask | planeMask) >> i & 1u) != 0;
+    if (planeMask >> i & 1u) {
+      hits[i] = {tMax[i], PrimitiveRef::make(PrimitiveKind::Plane, static_cast<uint32_t>(plane[i])),
+                 0.0f, 0.0f};
     }
   }
+}
+
+template <class V>
+uint32_t Scene::planeLanes(const RayPacket8& packet, uint32_t live, float* tMax, int* plane) const {
+  using M = simd::MaskOf<V>;
+  constexpr int kWidth = static_cast<int>(sizeof(V) / sizeof(float));
+  uint32_t hit = 0;
+  for (int at = 0; at < RayPacket8::kSize; at += kWidth) {
+    const auto lanes = [&](const float* p) { return simd::load<V>(p + at); };
+    V limit = lanes(tMax);
+    M which = M{} - 1;  // the plane each lane hits, -1 for none
+    M anyPlane = M{};
+    for (uint32_t p = 0; p < planes_.size(); ++p) {
+      // Plane::intersect: dot(n, d), then t = (offset - dot(n, o)) / dot(n, d).
+      const Vec3& n = planes_[p].normal;
+      const V denominator = n.x * lanes(packet.rayDirection[0]) +
+                            n.y * lanes(packet.rayDirection[1]) +
+                            n.z * lanes(packet.rayDirection[2]);
+      const V t = (planes_[p].offset -
+                   (n.x * lanes(packet.rayOrigin[0]) + n.y * lanes(packet.rayOrigin[1]) +
+                    n.z * lanes(packet.rayOrigin[2]))) /
+                  denominator;
+      const M meets = (denominator != 0.0f) & (t > lanes(packet.rayTMin)) & (t < limit);
+      limit = simd::select<V>(meets, t, limit);
+      which = simd::selectInt(meets, M{} + static_cast<int32_t>(p), which);
+      anyPlane |= meets;
+    }
+    simd::store(tMax + at, limit);
+    for (int k = 0; k < kWidth; ++k) plane[at + k] = which[k];
+    hit |= simd::laneMask(anyPlane) << at;
+  }
+  return hit & live;
 }
 
 template <class V>
@@ -658,18 +688,19 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
     for (int i = 0; i < count; ++i) blocked[i] = (live >> i & 1u) && occluded(rays[i]);
     return;
   }
-  // Planes first, ray by ray, as occluded() tests them; a blocked ray leaves the packet.
-  if (!planes_.empty()) {
-    for (uint32_t m = live; m != 0; m &= m - 1) {
-      const int i = simd::firstLane(m);
-      if (blockedByPlane(rays[i])) {
-        blocked[i] = true;
-        live &= ~(1u << i);
-      }
-    }
-  }
   if (live == 0) return;  // nothing to trace (and no ray to fill the packet's lanes with)
   const RayPacket8 packet(rays, live);
+  // Planes first, all rays at once, as occluded() tests them; a blocked ray leaves the packet
+  // (whose bounds, taken over every ray, stay conservative for the others).
+  if (!planes_.empty()) {
+    alignas(32) float tMax[RayPacket8::kSize];
+    std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
+    int plane[RayPacket8::kSize];
+    const uint32_t byPlane = planeLanes<V>(packet, live, tMax, plane);
+    for (uint32_t m = byPlane; m != 0; m &= m - 1) blocked[simd::firstLane(m)] = true;
+    live &= ~byPlane;
+    if (live == 0) return;
+  }
   if (!packet.coherent) {
     for (uint32_t m = live; m != 0; m &= m - 1) {
       const int i = simd::firstLane(m);

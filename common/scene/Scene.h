@@ -172,6 +172,11 @@ class Scene {
   // Whether a plane lies on the ray within (tMin, tMax): the shadow test's planes, which are
   // outside the BVH.
   bool blockedByPlane(const Ray& ray) const;
+  // The planes against the packet's rays in `live`, |V| rays to a vector, the same arithmetic
+  // as Plane::intersect lane by lane: each ray's nearest plane hit before tMax[i] shrinks
+  // tMax[i] and sets plane[i] to the plane's index. Returns the rays that hit a plane.
+  template <class V>
+  uint32_t planeLanes(const RayPacket8& packet, uint32_t live, float* tMax, int* plane) const;
   // Whether the leaf entries [first, first + count) are all spheres.
   bool onlySpheres(uint32_t first, uint32_t count) const;
   // The watertight test's per-ray shear, or nothing computed when another test is chosen.

@@ -553,6 +553,11 @@ SceneDescription spheresOverAPlane() {
   PlaneDesc floor;
   floor.point = {0.0f, -1.0f, 0.0f};
   d.planes.push_back(floor);
+  // A tilted wall behind, meeting the floor: rays meet both, and each must keep the nearer.
+  PlaneDesc wall;
+  wall.point = {0.0f, 0.0f, -2.5f};
+  wall.normal = glm::normalize(Vec3(0.3f, 0.2f, 1.0f));
+  d.planes.push_back(wall);
   d.meshes.push_back(
       triangleSoup(rng, 40, Vec3(-3.0f, -1.0f, -3.0f), Vec3(6.0f, 3.0f, 6.0f), 0.3f));
   return d;
@@ -572,7 +577,7 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
   std::vector<int> laneCounts{4};
   if (simd::cpuHasAvx2()) laneCounts.push_back(8);
   for (const auto& [name, d] : scenes) {
-    int hits = 0, sphereHits = 0, blockedCount = 0;
+    int hits = 0, sphereHits = 0, blockedCount = 0, planeHits[2] = {0, 0};
     for (int lanes : laneCounts) {
       Scene scene(d);
       scene.setPacketLanes(lanes);
@@ -616,6 +621,9 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
           if (!singleFound) continue;
           ++hits;
           sphereHits += PrimitiveRef::kind(single.primitive) == PrimitiveKind::Sphere ? 1 : 0;
+          if (PrimitiveRef::kind(single.primitive) == PrimitiveKind::Plane) {
+            ++planeHits[PrimitiveRef::index(single.primitive)];
+          }
           ASSERT_EQ(std::memcmp(&packetHits[i], &single, sizeof(HitRecord)), 0) << where << round;
         }
       }
@@ -624,6 +632,8 @@ TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
     EXPECT_GT(blockedCount, 10000) << name;
     if (name == "spheres over a plane") {
       EXPECT_GT(sphereHits, 5000) << name;
+      EXPECT_GT(planeHits[0], 1000) << name;
+      EXPECT_GT(planeHits[1], 1000) << name;
     }
   }
 }
