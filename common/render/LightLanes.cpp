@@ -62,7 +62,9 @@ void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const Poin
   constexpr int kLanes = ShadingLanes::kLanes;
   alignas(32) float rv[kLanes], highlight[kLanes] = {};
   uint32_t reach = 0;
+  constexpr uint32_t kVectorLanes = (1u << kWidth) - 1u;
   for (int first = 0; first < kLanes; first += kWidth) {
+    if ((lanes >> first & kVectorLanes) == 0) continue;  // no point in this vector
     reach |= pathsInVector(s, first, light, paths, rv, shadows);
   }
   reach &= lanes;
@@ -76,6 +78,7 @@ void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const Poin
   }
   uint32_t black = 0;
   for (int first = 0; first < kLanes; first += kWidth) {
+    if ((reach >> first & kVectorLanes) == 0) continue;
     const M add = simd::lanesOf<M>(highlit >> first);
     const V h = simd::load<V>(highlight + first);
     M blackLanes = ~M{};
@@ -100,6 +103,7 @@ void addLightLanes(const LightPathLanes& paths, uint32_t unblocked, const PointL
   // lightReflected (render/PointLightPath.h): I·att(d) times the reflectance.
   const Attenuation& a = light.attenuation;
   for (int first = 0; first < ShadingLanes::kLanes; first += kWidth) {
+    if ((unblocked >> first & ((1u << kWidth) - 1u)) == 0) continue;  // nothing to add here
     const V d = simd::load<V>(paths.distance + first);
     const V attenuation = 1.0f / (a.constant + a.linear * d + a.quadratic * d * d);
     const M add = simd::lanesOf<M>(unblocked >> first);
