@@ -94,7 +94,9 @@ void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const Poin
   // Where the light adds exactly nothing, blocked or not, no shadow ray: the ray is left empty.
   paths.towards = reach & ~black;
   for (uint32_t m = ~paths.towards & ((1u << count) - 1u); m != 0; m &= m - 1) {
-    shadows[simd::firstLane(m)].tMax = -1.0f;
+    Ray& empty = shadows[simd::firstLane(m)];
+    empty.tMin = 0.0f;
+    empty.tMax = -1.0f;
   }
 }
 

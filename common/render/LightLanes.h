@@ -24,7 +24,8 @@ struct LightPathLanes {
 // and what the surface reflects of it towards the viewer; lanes where that reflectance is
 // exactly zero (a mirror's highlight turned away or underflowing) are left out of
 // `paths.towards` like unreachable ones. Writes shadows[i] for every lane i of paths.towards and
-// sets tMax = -1 (an empty ray) for every other lane below `count`.
+// makes every other lane below `count` an empty ray (tMin 0, tMax -1; its other fields are not
+// written).
 void lightPathLanes(const ShadingLanes& s, uint32_t lanes, int count, const PointLightDesc& light,
                     LightPathLanes& paths, Ray* shadows);
 

@@ -178,12 +178,12 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     alignas(32) ShadingLanes::Lanes directLanes[3] = {};
     for (const PointLightDesc& light : scene_.lights()) {
       LightPathLanes paths;
-      Ray shadows[kSize];
-      lightPathLanes(lanes, litLanes, count, light, paths, shadows);
+      ScratchArray<Ray, kSize> shadows;  // every ray below count written by lightPathLanes
+      lightPathLanes(lanes, litLanes, count, light, paths, shadows.data());
       if (paths.towards == 0) continue;
       counters.shadow += static_cast<uint64_t>(__builtin_popcount(paths.towards));
       bool blocked[kSize];
-      scene_.occluded8(shadows, count, blocked);
+      scene_.occluded8(shadows.data(), count, blocked);
       uint32_t unblocked = paths.towards;
       for (int i = 0; i < count; ++i) unblocked &= blocked[i] ? ~(1u << i) : ~0u;
       addLightLanes(paths, unblocked, light, directLanes);
@@ -198,12 +198,12 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // in), k for the k-th bounce of a ray. Points that only reflect (no transmittance: floors,
   // mirrors, metals) take forEachBounce's reflected ray from the lanes, every lane's mirror ray
   // computed at once (render/MirrorLanes.h); points that refract go through forEachBounce.
-  Ray onward[2][kSize];
+  ScratchArray<Ray, kSize> onward[2];  // rays below count written below, or emptied
   Color scale[2][kSize], contribution[2][kSize];
   uint32_t bouncing[2] = {0, 0};
   const RenderSettings& settings = scene_.settings();
   const bool bounces = depth < settings.maxDepth && foundLanes != 0;
-  if (bounces) mirrorRayLanes(lanes, onward[0]);
+  if (bounces) mirrorRayLanes(lanes, onward[0].data());
   for (uint32_t m = live; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
     if (!found[i]) {
@@ -241,10 +241,14 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // before its refraction. Lanes without a bounce are left out (tMax below tMin).
   for (int k = 0; k < 2 && bouncing[k] != 0; ++k) {
     for (int i = 0; i < count; ++i) {
-      if (!(bouncing[k] >> i & 1u)) onward[k][i].tMax = -1.0f;
+      if (!(bouncing[k] >> i & 1u)) {
+        onward[k][i].tMin = 0.0f;
+        onward[k][i].tMax = -1.0f;
+      }
     }
     Color arriving[kSize];
-    radiancePacket(onward[k], count, bouncing[k], depth + 1, contribution[k], arriving, counters);
+    radiancePacket(onward[k].data(), count, bouncing[k], depth + 1, contribution[k], arriving,
+                   counters);
     for (uint32_t m = bouncing[k]; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
       results[i] += scale[k][i] * arriving[i];

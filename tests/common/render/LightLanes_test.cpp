@@ -80,6 +80,7 @@ TEST(LightLanes, EveryLaneIsTheScalarPathBitForBit) {
     }
     LightPathLanes paths;
     Ray shadows[ShadingLanes::kLanes];
+    for (Ray& shadow : shadows) shadow.tMin = shadow.tMax = 5.0f;  // left from a previous light
     lightPathLanes(s, lanes, count, light, paths, shadows);
     const uint32_t unblocked = paths.towards & static_cast<uint32_t>(rng.nextFloat() * 256.0f);
     alignas(32) ShadingLanes::Lanes direct[3];
@@ -99,7 +100,8 @@ TEST(LightLanes, EveryLaneIsTheScalarPathBitForBit) {
       ASSERT_EQ((paths.towards >> i & 1u) != 0, towards) << "round " << round << " lane " << i;
       Color expectedDirect(0.125f * static_cast<float>(i));
       if (!towards) {
-        EXPECT_EQ(shadows[i].tMax, -1.0f);
+        EXPECT_EQ(shadows[i].tMax, -1.0f);  // an empty ray
+        EXPECT_EQ(shadows[i].tMin, 0.0f);
         (reaches ? skippedAsBlack : unreachable) += 1;
       } else {
         ++traced;
