@@ -44,6 +44,7 @@ struct RayPacket8 {
   alignas(32) float rayTMin[kSize];
   alignas(32) float rayTMax[kSize];
 
+  // live (bit i: rays[i]) must not be empty.
   RayPacket8(const Ray* rays, uint32_t live) {
     using simd::Float4;
     using simd::load;
@@ -51,7 +52,7 @@ struct RayPacket8 {
     // Each ray is two rows of four floats (origin, direction x; direction y, z, tMin, tMax);
     // four rays' rows transposed in registers give the columns. Writing the floats one by one
     // and reading them four at a time would stall every read on its stores.
-    const int fill = simd::firstLane(live | 1u);
+    const int fill = simd::firstLane(live);  // live is not empty (the callers return first)
     for (int at = 0; at < kSize; at += 4) {
       Float4 row[2][4];
       for (int k = 0; k < 4; ++k) {

@@ -48,6 +48,27 @@ TEST(RayPacket8, OriginsFarApartForTheirLengthAreNotCoherent) {
   EXPECT_TRUE(RayPacket8(rays, 0xFFu).coherent);
 }
 
+// A dead ray (tMax below tMin, as the renderer empties a lane) is left out wherever it sits:
+// its lane repeats a live ray, so its direction, origin and length do not widen the packet's
+// bounds. (The first live ray once was always lane 0, dead or not: a shadow packet whose first
+// lane had no ray was never coherent.)
+TEST(RayPacket8, ADeadRayInAnyLaneIsLeftOut) {
+  for (int dead = 0; dead < RayPacket8::kSize; ++dead) {
+    Ray rays[RayPacket8::kSize];
+    shadowRays(0.01f, rays);
+    rays[dead] = Ray{Vec3(40.0f, -7.0f, 3.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f, -1.0f};
+    const uint32_t live = 0xFFu & ~(1u << dead);
+    const RayPacket8 packet(rays, live);
+    EXPECT_TRUE(packet.coherent) << "dead lane " << dead;
+    const int firstLive = dead == 0 ? 1 : 0;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(packet.rayDirection[a][dead], rays[firstLive].direction[a]) << dead;
+      EXPECT_EQ(packet.rayOrigin[a][dead], rays[firstLive].origin[a]) << dead;
+    }
+    EXPECT_LT(packet.originHigh[0], 1.0f) << dead;
+  }
+}
+
 // Rays without an end (camera rays, bounces) have no limit on their origins' spread.
 TEST(RayPacket8, RaysWithoutAnEndHaveNoOriginLimit) {
   Ray rays[RayPacket8::kSize];
