@@ -287,10 +287,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
 
 Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   // Most receiver points see no caustic: the answer there is 0, found without projecting.
-  if (!(glm::all(glm::greaterThanEqual(position, lit_.lower)) &&
-        glm::all(glm::lessThanEqual(position, lit_.upper)))) {
-    return Color(0.0f);
-  }
+  if (!lit_.contains(position)) return Color(0.0f);
   const std::optional<LightSpacePoint> p = frustum_.project(position);
   if (!p) return Color(0.0f);
   const int n = frustum_.resolution();

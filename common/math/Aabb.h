@@ -12,6 +12,11 @@ struct Aabb {
   Vec3 upper{-std::numeric_limits<float>::infinity()};
 
   bool empty() const { return lower.x > upper.x || lower.y > upper.y || lower.z > upper.z; }
+  // Whether p lies in the box, its faces included (never for a NaN coordinate).
+  bool contains(const Vec3& p) const {
+    return p.x >= lower.x && p.y >= lower.y && p.z >= lower.z && p.x <= upper.x && p.y <= upper.y &&
+           p.z <= upper.z;
+  }
   void extend(const Vec3& p) {
     lower = glm::min(lower, p);
     upper = glm::max(upper, p);

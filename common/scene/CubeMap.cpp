@@ -24,7 +24,7 @@ namespace {
                                                  const Vec3& d, CubeMap::FacePoint& point) {
   // OpenGL cube-map selection (OpenGL 4.6 spec, table 8.19): the major axis picks the face,
   // (sc, tc) / |ma| give the face coordinates in [-1, 1], t growing downwards in the image.
-  const Vec3 a = glm::abs(d);
+  const Vec3 a = absComponents(d);  // only compared, and a zero major axis fails
   int face;
   float sc, tc, ma;
   if (a.x >= a.y && a.x >= a.z) {
