@@ -162,14 +162,20 @@ inline M selectInt(M m, M a, M b) {
   return (a & m) | (b & ~m);
 }
 
-// Lane i all ones where bit i of `bits` is set: laneMask's inverse.
+// Lane i all ones where bit i of `bits` is set: laneMask's inverse. The bits go to every lane
+// at once, each lane keeps its own and compares it with zero (three vector instructions, where
+// building the lanes one by one took four scalar ones a lane).
 template <class M>
 inline M lanesOf(uint32_t bits) {
-  M m;
-  for (int i = 0; i < static_cast<int>(sizeof(M) / sizeof(int32_t)); ++i) {
-    m[i] = -static_cast<int32_t>(bits >> i & 1u);
+  constexpr int kLanes = static_cast<int>(sizeof(M) / sizeof(int32_t));
+  static_assert(kLanes == 4 || kLanes == 8);
+  M own;
+  if constexpr (kLanes == 4) {
+    own = M{1, 2, 4, 8};
+  } else {
+    own = M{1, 2, 4, 8, 16, 32, 64, 128};
   }
-  return m;
+  return ((M{} + static_cast<int32_t>(bits)) & own) != 0;
 }
 
 // Bit i is set when lane i of the comparison result is true (all ones).
