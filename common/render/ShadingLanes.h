@@ -14,6 +14,7 @@
 #include "geometry/HitRecord.h"
 #include "math/Ray.h"
 #include "scene/SceneDescription.h"
+#include "shading/SpecularSplit.h"
 
 namespace prism {
 
@@ -25,8 +26,8 @@ struct ShadingLanes {
   alignas(32) Lanes albedo[3], specular[3], shininess, toViewer[3];
   uint32_t specularLanes = 0;  // lanes whose material has a Phong highlight (specular not black)
 
-  // Lane `lane` is the point s of a material m with diffuse albedo `albedo` (already evaluated
-  // at the point), seen along -toViewer.
+  // Lane `lane` is the point s of material m, its diffuse albedo there albedoHere, seen along
+  // -toViewerHere.
   void set(int lane, const SurfaceHit& s, const Color& albedoHere, const MaterialDesc& m,
            const Vec3& toViewerHere) {
     for (int a = 0; a < 3; ++a) {
@@ -39,8 +40,7 @@ struct ShadingLanes {
     }
     leavingDistance[lane] = s.leavingDistance;
     shininess[lane] = m.shininess;
-    const bool black = m.specular.x <= 0.0f && m.specular.y <= 0.0f && m.specular.z <= 0.0f;
-    specularLanes = (specularLanes & ~(1u << lane)) | (black ? 0u : 1u << lane);
+    specularLanes = (specularLanes & ~(1u << lane)) | (isBlack(m.specular) ? 0u : 1u << lane);
   }
 };
 

@@ -158,8 +158,9 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   scene_.intersect8(rays, count, hits.data(), found);
 
   ScratchArray<ShadingPoint, kSize> points;
-  ShadingLanes lanes{};  // the points again as vector lanes; lanes without one stay zero
-  uint32_t foundLanes = 0, litLanes = 0;  // bit i: rays[i] met a surface; one direct light reaches
+  ShadingLanes lanes{};     // the points again as vector lanes; lanes without one stay zero
+  uint32_t foundLanes = 0;  // bit i: rays[i] met a surface
+  uint32_t litLanes = 0;    // and direct light is added there (litDirectly)
   Color direct[kSize];
   for (int i = 0; i < count; ++i) {
     direct[i] = Color(0.0f);
@@ -214,6 +215,8 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     if (!bounces) continue;
     const MaterialDesc& material = *points[i].material;
     if (isBlack(material.transmittance)) {
+      // forEachBounce's reflected ray where nothing is transmitted (splitSpecular's weights are
+      // then the material's own), its origin and direction from mirrorRayLanes.
       const Color reflectContribution = weights[i] * material.reflectance;
       if (maxComponent(reflectContribution) > settings.minContribution) {
         ++counters.secondary;

@@ -31,9 +31,10 @@ class WhittedIntegrator {
   // The same for up to Scene::kPacketSize camera rays at once (depth 0, weight 1, no
   // differential): their first hits found as one packet (Scene::intersect8), the shadow rays of
   // those hits as one packet per light (Scene::occluded8), their reflection and refraction rays
-  // as packets (every pixel's first bounce, then its second); the shading, and everything past
-  // the first bounce, ray by ray. Each result is bit-identical to radiance() of its ray, and
-  // counts the same rays. Only for integrators that use no differentials.
+  // as packets (every pixel's first bounce, then its second) while they stay coherent; direct
+  // light and mirror rays for all the packet's points at once as vector lanes, the rest of the
+  // shading ray by ray. Each result is bit-identical to radiance() of its ray, and counts the
+  // same rays. Only for integrators that use no differentials.
   void radiance8(const Ray* rays, int count, Color* results, RayCounters& counters) const;
   // Whether radiance() uses a differential: only a caustic estimate that averages over the
   // pixel's footprint does (photon gathers; not the caustic map), so otherwise the tracing loop
@@ -50,9 +51,10 @@ class WhittedIntegrator {
               RayCounters& counters, const RayDifferential& differential) const;
   // radiance() of the rays in `live` (bit i: rays[i]; the others have tMax below tMin), at
   // depth `depth` with path weights `weights`: their hits as one packet, their shadow rays as
-  // one packet per light, their reflected and refracted rays as packets again, the shading ray
-  // by ray. Bounce packets of fewer than kMinPacketRays rays, or whose directions spread
-  // (Scene::coherentDirections), go ray by ray.
+  // one packet per light, their reflected and refracted rays as packets again; direct light
+  // and the mirror rays of points that do not refract as vector lanes (render/LightLanes.h,
+  // render/MirrorLanes.h), the rest of the shading ray by ray. Bounce packets of fewer than
+  // kMinPacketRays rays, or whose directions spread (Scene::coherentDirections), go ray by ray.
   void radiancePacket(const Ray* rays, int count, uint32_t live, int depth, const Color* weights,
                       Color* results, RayCounters& counters) const;
   static constexpr int kMinPacketRays = 3;
