@@ -3,31 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 
+#include "common/render/LaneTestSupport.h"
 #include "math/Random.h"
 #include "render/PointLightPath.h"
 
 namespace prism {
 namespace {
-
-bool sameBits(float a, float b) {
-  return std::memcmp(&a, &b, sizeof(float)) == 0;
-}
-
-bool sameBits(const Vec3& a, const Vec3& b) {
-  return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z);
-}
-
-Vec3 randomUnit(Pcg32& rng) {
-  for (;;) {
-    const Vec3 v(2.0f * rng.nextFloat() - 1.0f, 2.0f * rng.nextFloat() - 1.0f,
-                 2.0f * rng.nextFloat() - 1.0f);
-    const float length = glm::length(v);
-    if (length > 0.1f && length <= 1.0f) return v / length;
-  }
-}
 
 // A shading point of every kind the lanes must tell apart: lit from the front, behind its
 // geometric or its shading normal, at the light itself, with NaN normals (a degenerate

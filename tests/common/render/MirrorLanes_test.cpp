@@ -2,26 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
-
+#include "common/render/LaneTestSupport.h"
 #include "math/Random.h"
 #include "shading/SpecularSplit.h"
 
 namespace prism {
 namespace {
-
-bool sameBits(const Vec3& a, const Vec3& b) {
-  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
-}
-
-Vec3 randomUnit(Pcg32& rng) {
-  for (;;) {
-    const Vec3 v(2.0f * rng.nextFloat() - 1.0f, 2.0f * rng.nextFloat() - 1.0f,
-                 2.0f * rng.nextFloat() - 1.0f);
-    const float length = glm::length(v);
-    if (length > 0.1f && length <= 1.0f) return v / length;
-  }
-}
 
 // Every lane's mirror ray is reflectedDirection's direction and rayOrigin's origin to the bit,
 // over 20 000 random packets: shading normals leaning far from the geometric one (so that some
