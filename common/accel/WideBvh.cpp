@@ -41,9 +41,7 @@ uint32_t intersectChildrenScalar(const WideBvhNode& node, const Ray& ray, float 
 
 bool WideBvh::entersTree(const Ray& ray, float tMax) const {
   if (rootBounds_.empty()) return false;
-  const bool originInside = glm::all(glm::greaterThanEqual(ray.origin, rootBounds_.lower)) &&
-                            glm::all(glm::lessThanEqual(ray.origin, rootBounds_.upper));
-  if (originInside) return true;
+  if (rootBounds_.contains(ray.origin)) return true;
   // intersectChildrenScalar's arithmetic on the box around the children: each slab distance of
   // the box lies on the permissive side of the same distance for every child (the roundings are
   // monotonic, and a NaN, which the tests ignore, can only appear here where a child has one

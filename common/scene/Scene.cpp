@@ -674,7 +674,9 @@ uint32_t Scene::planeLanes(const RayPacket8& packet, uint32_t live, float* tMax,
       anyPlane |= meets;
     }
     simd::store(tMax + at, limit);
-    for (int k = 0; k < kWidth; ++k) plane[at + k] = which[k];
+    if (plane != nullptr) {
+      for (int k = 0; k < kWidth; ++k) plane[at + k] = which[k];
+    }
     hit |= simd::laneMask(anyPlane) << at;
   }
   return hit & live;
@@ -695,8 +697,7 @@ void Scene::occluded8Lanes(const Ray* rays, int count, bool* blocked) const {
   if (!planes_.empty()) {
     alignas(32) float tMax[RayPacket8::kSize];
     std::memcpy(tMax, packet.rayTMax, sizeof(tMax));
-    int plane[RayPacket8::kSize];
-    const uint32_t byPlane = planeLanes<V>(packet, live, tMax, plane);
+    const uint32_t byPlane = planeLanes<V>(packet, live, tMax, nullptr);
     for (uint32_t m = byPlane; m != 0; m &= m - 1) blocked[simd::firstLane(m)] = true;
     live &= ~byPlane;
     if (live == 0) return;

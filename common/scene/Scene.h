@@ -174,7 +174,8 @@ class Scene {
   bool blockedByPlane(const Ray& ray) const;
   // The planes against the packet's rays in `live`, |V| rays to a vector, the same arithmetic
   // as Plane::intersect lane by lane: each ray's nearest plane hit before tMax[i] shrinks
-  // tMax[i] and sets plane[i] to the plane's index. Returns the rays that hit a plane.
+  // tMax[i] and sets plane[i] to the plane's index (unless plane is null: shadow rays need not
+  // know which). Returns the rays that hit a plane.
   template <class V>
   uint32_t planeLanes(const RayPacket8& packet, uint32_t live, float* tMax, int* plane) const;
   // Whether the leaf entries [first, first + count) are all spheres.
