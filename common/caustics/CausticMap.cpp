@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "accel/Simd.h"
 #include "math/FloorToInt.h"
 #include "shading/LightFalloff.h"
 #include "shading/SpecularSplit.h"
@@ -294,21 +295,46 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   const float fx = p->x - 0.5f, fy = p->y - 0.5f;
   const int i0 = floorToInt<int>(fx), j0 = floorToInt<int>(fy);
   const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
-  Color acc(0.0f);
-  float wsum = 0.0f;
+  // The four texels around the point, clamped to the grid, as the lanes of one vector each:
+  // corner c is (i0 + (c & 1), j0 + (c >> 1)).
+  const LookupTexel* view = &lookup_[static_cast<size_t>(p->view) * n * n];
+  const int iLow = std::clamp(i0, 0, n - 1), iHigh = std::clamp(i0 + 1, 0, n - 1);
+  const size_t rowLow = static_cast<size_t>(std::clamp(j0, 0, n - 1)) * n;
+  const size_t rowHigh = static_cast<size_t>(std::clamp(j0 + 1, 0, n - 1)) * n;
+  const LookupTexel* corners[4] = {view + rowLow + iLow, view + rowLow + iHigh,
+                                   view + rowHigh + iLow, view + rowHigh + iHigh};
+  using simd::Float4;
+  // Rows (normal, distance) of the corners, transposed to lanes of each.
+  Float4 nx = simd::load<Float4>(&corners[0]->normal.x);
+  Float4 ny = simd::load<Float4>(&corners[1]->normal.x);
+  Float4 nz = simd::load<Float4>(&corners[2]->normal.x);
+  Float4 distance = simd::load<Float4>(&corners[3]->normal.x);
+  simd::transpose(nx, ny, nz, distance);
+  const Float4 tolerance{corners[0]->tolerance, corners[1]->tolerance, corners[2]->tolerance,
+                         corners[3]->tolerance};
+  // The shadow-map test: only the receiver the light sees in a texel gets its caustic (a texel
+  // without one has a zero normal and fails it). The dot product in glm::dot's order.
+  const Float4 dot = (Float4{normal.x, normal.x, normal.x, normal.x} * nx +
+                      Float4{normal.y, normal.y, normal.y, normal.y} * ny) +
+                     Float4{normal.z, normal.z, normal.z, normal.z} * nz;
+  const Float4 gap = distance - Float4{p->distance, p->distance, p->distance, p->distance};
+  const simd::Int4 magnitude = reinterpret_cast<simd::Int4>(gap) & 0x7fffffff;  // std::abs
+  const simd::Int4 fails = (dot <= 0.0f) | (reinterpret_cast<Float4>(magnitude) > tolerance);
+  // Bilinear weights, zero (+0) for the corners that fail. The sums below start at +0 and add
+  // products of non-negative numbers, so adding a +0 leaves them exactly as skipping it would.
+  const Float4 weights = simd::select(
+      fails, Float4{}, Float4{1.0f - ax, ax, 1.0f - ax, ax} * Float4{1.0f - ay, 1.0f - ay, ay, ay});
+  // Each texel's irradiance as lanes 1–3 of its second half (lane 0 holds the tolerance); a
+  // failing corner's product is left out whatever its texel holds.
+  Float4 acc{};
   for (int c = 0; c < 4; ++c) {
-    const int i = std::clamp(i0 + (c & 1), 0, n - 1), j = std::clamp(j0 + (c >> 1), 0, n - 1);
-    const LookupTexel& t = lookup_[(static_cast<size_t>(p->view) * n + j) * n + i];
-    // The shadow-map test: only the receiver the light sees in this texel gets its caustic (a
-    // texel without one has a zero normal and fails it).
-    if (glm::dot(normal, t.normal) <= 0.0f || std::abs(t.distance - p->distance) > t.tolerance) {
-      continue;
-    }
-    const float w = ((c & 1) ? ax : 1.0f - ax) * ((c >> 1) ? ay : 1.0f - ay);
-    acc += w * t.irradiance;
-    wsum += w;
+    const Float4 w{weights[c], weights[c], weights[c], weights[c]};
+    const simd::Int4 left = {fails[c], fails[c], fails[c], fails[c]};
+    acc += simd::select(left, Float4{}, w * simd::load<Float4>(&corners[c]->tolerance));
   }
-  return wsum > 1e-4f ? acc / wsum : Color(0.0f);
+  const float wsum = ((weights[0] + weights[1]) + weights[2]) + weights[3];
+  if (!(wsum > 1e-4f)) return Color(0.0f);
+  return Color(acc[1] / wsum, acc[2] / wsum, acc[3] / wsum);
 }
 
 }  // namespace prism

@@ -11,6 +11,7 @@
 // bit-identical for any thread or rank count.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -72,12 +73,16 @@ class CausticMap {
   std::vector<CasterTexel> casters_;
   // What a lookup reads of a texel, in one 32-byte record: two share a cache line, where the
   // receiver map's texel and the irradiance apart took up to two lines each.
+  // irradiance() reads its halves as vectors of four: (normal, distance) and (tolerance,
+  // irradiance).
   struct alignas(32) LookupTexel {
     Vec3 normal{0.0f};  // the receiver's; zero where there is none, which fails every lookup
     float distance = 0.0f;
     float tolerance = 0.0f;  // depthTolerance() of the receiver
     Color irradiance{0.0f};
   };
+  static_assert(offsetof(LookupTexel, distance) == 12 && offsetof(LookupTexel, tolerance) == 16 &&
+                offsetof(LookupTexel, irradiance) == 20);
   static_assert(sizeof(LookupTexel) == kLookupTexelBytes);
 
   std::vector<LookupTexel> lookup_;

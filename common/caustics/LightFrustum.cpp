@@ -53,6 +53,12 @@ LightFrustum::LightFrustum(const Vec3& light, const std::vector<CasterBounds>& c
     const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (const Vec3& a : axes) views_.push_back(viewAlong(a, 1.0f));
   }
+  for (const LightView& v : views_) {
+    columns_.push_back({simd::Float4{v.axis.x, v.right.x, v.up.x, 0.0f},
+                        simd::Float4{v.axis.y, v.right.y, v.up.y, 0.0f},
+                        simd::Float4{v.axis.z, v.right.z, v.up.z, 0.0f},
+                        static_cast<float>(n_) / (2.0f * v.tanHalf)});
+  }
 }
 
 float LightFrustum::halfAngleDegrees() const {
@@ -81,17 +87,20 @@ std::optional<LightSpacePoint> LightFrustum::project(const Vec3& p) const {
   const Vec3 d = p - light_;
   const float dist = glm::length(d);
   if (!(dist > 0.0f)) return std::nullopt;
+  // Lane by lane (d.x·a.x + d.y·a.y) + d.z·a.z: glm::dot's order, so the same roundings.
+  const simd::Float4 dx{d.x, d.x, d.x, d.x}, dy{d.y, d.y, d.y, d.y}, dz{d.z, d.z, d.z, d.z};
   for (size_t k = 0; k < views_.size(); ++k) {
-    const LightView& v = views_[k];
-    const float z = glm::dot(d, v.axis);
+    const ViewColumns& c = columns_[k];
+    const simd::Float4 along = c.x * dx + c.y * dy + c.z * dz;  // axis, right, up
+    const float z = along[0];
     if (!(z > 0.0f)) continue;
-    const float u = glm::dot(d, v.right) / z, w = glm::dot(d, v.up) / z;
-    if (std::abs(u) > v.tanHalf || std::abs(w) > v.tanHalf) continue;
-    const float scale = static_cast<float>(n_) / (2.0f * v.tanHalf);
+    const float tanHalf = views_[k].tanHalf;
+    const float u = along[1] / z, w = along[2] / z;
+    if (std::abs(u) > tanHalf || std::abs(w) > tanHalf) continue;
     LightSpacePoint out;
     out.view = static_cast<int>(k);
-    out.x = std::clamp((u + v.tanHalf) * scale, 0.0f, static_cast<float>(n_) - 1e-3f);
-    out.y = std::clamp((w + v.tanHalf) * scale, 0.0f, static_cast<float>(n_) - 1e-3f);
+    out.x = std::clamp((u + tanHalf) * c.scale, 0.0f, static_cast<float>(n_) - 1e-3f);
+    out.y = std::clamp((w + tanHalf) * c.scale, 0.0f, static_cast<float>(n_) - 1e-3f);
     out.distance = dist;
     return out;
   }

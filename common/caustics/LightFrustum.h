@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "accel/Simd.h"
 #include "math/Vec.h"
 #include "scene/Scene.h"
 
@@ -49,9 +50,17 @@ class LightFrustum {
   std::optional<LightSpacePoint> project(const Vec3& p) const;
 
  private:
+  // A view's axis, right and up as the lanes of three columns, so project() takes the three
+  // dot products with a point at once, and its texels per unit of the plane at distance 1.
+  struct ViewColumns {
+    simd::Float4 x, y, z;  // lanes: axis, right, up, 0
+    float scale = 1.0f;    // n / (2 tanHalf)
+  };
+
   Vec3 light_;
   int n_ = 0;
   std::vector<LightView> views_;
+  std::vector<ViewColumns> columns_;  // one per view
 };
 
 }  // namespace prism

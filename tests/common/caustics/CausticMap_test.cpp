@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <optional>
+#include <random>
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonTracer.h"
@@ -185,6 +188,118 @@ TEST(CausticMap, EveryPointThatCanReadALitTexelIsInsideTheLitBounds) {
   EXPECT_TRUE(inside({0.0f, 0.0f, 0.0f}));
   EXPECT_FALSE(inside({0.0f, 0.0f, 3.0f}));  // past the light's view of the ball (tan 0.6 · 4)
   EXPECT_FALSE(inside({0.0f, 1.0f, 0.0f}));  // inside the ball, far above the floor
+}
+
+// irradiance() reads the four texels around a point as vector lanes; it must give what the
+// bilinear shadow-map lookup gives written out corner by corner with glm, bit for bit: with one
+// view and with six (a caster above the light as well as below it), at points on lit receivers,
+// beside them, and anywhere around the lit box, under random normals.
+struct ReferenceTexel {
+  Vec3 normal{0.0f};
+  float distance = 0.0f, tolerance = 0.0f;
+  Color irradiance{0.0f};
+};
+
+ReferenceTexel referenceTexel(const CausticMap& map, int view, int i, int j) {
+  const LightFrustum& frustum = map.frustum();
+  const int n = frustum.resolution();
+  const ReceiverTexel& t = map.receivers().at(view, i, j);
+  ReferenceTexel r;
+  r.irradiance = map.texelIrradiance((static_cast<size_t>(view) * n + j) * n + i);
+  if (!t.valid) return r;
+  r.normal = t.normal;
+  r.distance = t.distance;
+  r.tolerance = CausticMap::depthTolerance(t, 2.0f * frustum.views()[0].tanHalf / n);
+  return r;
+}
+
+std::optional<LightSpacePoint> referenceProject(const LightFrustum& frustum, const Vec3& p) {
+  const Vec3 d = p - frustum.light();
+  const float dist = glm::length(d);
+  if (!(dist > 0.0f)) return std::nullopt;
+  const float n = static_cast<float>(frustum.resolution());
+  for (size_t k = 0; k < frustum.views().size(); ++k) {
+    const LightView& v = frustum.views()[k];
+    const float z = glm::dot(d, v.axis);
+    if (!(z > 0.0f)) continue;
+    const float u = glm::dot(d, v.right) / z, w = glm::dot(d, v.up) / z;
+    if (std::abs(u) > v.tanHalf || std::abs(w) > v.tanHalf) continue;
+    const float scale = n / (2.0f * v.tanHalf);
+    return LightSpacePoint{static_cast<int>(k),
+                           std::clamp((u + v.tanHalf) * scale, 0.0f, n - 1e-3f),
+                           std::clamp((w + v.tanHalf) * scale, 0.0f, n - 1e-3f), dist};
+  }
+  return std::nullopt;
+}
+
+Color referenceIrradiance(const CausticMap& map, const Vec3& position, const Vec3& normal) {
+  const std::optional<LightSpacePoint> p = referenceProject(map.frustum(), position);
+  if (!p) return Color(0.0f);
+  const int n = map.frustum().resolution();
+  const float fx = p->x - 0.5f, fy = p->y - 0.5f;
+  const int i0 = static_cast<int>(std::floor(fx)), j0 = static_cast<int>(std::floor(fy));
+  const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
+  Color acc(0.0f);
+  float wsum = 0.0f;
+  for (int c = 0; c < 4; ++c) {
+    const int i = std::clamp(i0 + (c & 1), 0, n - 1), j = std::clamp(j0 + (c >> 1), 0, n - 1);
+    const ReferenceTexel t = referenceTexel(map, p->view, i, j);
+    if (glm::dot(normal, t.normal) <= 0.0f || std::abs(t.distance - p->distance) > t.tolerance) {
+      continue;
+    }
+    const float w = ((c & 1) ? ax : 1.0f - ax) * ((c >> 1) ? ay : 1.0f - ay);
+    acc += w * t.irradiance;
+    wsum += w;
+  }
+  return wsum > 1e-4f ? acc / wsum : Color(0.0f);
+}
+
+TEST(CausticMap, LookupIsTheBilinearShadowMapTestBitForBit) {
+  SceneDescription above = sphereScene(1.5f, 48, 1);
+  above.spheres.push_back({{0.3f, 6.5f, 0.2f}, 0.8f, 0, {}});  // casters all around: six views
+  for (const bool cube : {false, true}) {
+    const Scene scene(cube ? above : sphereScene(1.5f, 64, 2));
+    const CausticMap map(scene, 0, scene.causticSettings(), 0);
+    ASSERT_FALSE(map.empty());
+    ASSERT_EQ(map.frustum().cube(), cube);
+    const LightFrustum& frustum = map.frustum();
+    const int n = frustum.resolution();
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    size_t compared = 0, lit = 0;
+    const auto compare = [&](const Vec3& position, const Vec3& normal) {
+      const Color got = map.irradiance(position, normal);
+      const Color want = referenceIrradiance(map, position, normal);
+      ASSERT_EQ(std::memcmp(&got, &want, sizeof(Color)), 0)
+          << "at " << position.x << ", " << position.y << ", " << position.z << ": " << got.x
+          << " against " << want.x;
+      ++compared;
+      lit += maxComponent(got) > 0.0f ? 1 : 0;
+    };
+    // Points on and around every receiver texel the light sees, lit or not.
+    for (int view = 0; view < static_cast<int>(frustum.views().size()); ++view) {
+      for (int j = 0; j < n; j += 3) {
+        for (int i = 0; i < n; i += 3) {
+          const ReceiverTexel& t = map.receivers().at(view, i, j);
+          if (!t.valid) continue;
+          const float x = i + 0.5f + 0.9f * unit(random), y = j + 0.5f + 0.9f * unit(random);
+          const float r = t.distance * (1.0f + 0.004f * unit(random));
+          const Vec3 position = frustum.light() + r * frustum.direction(view, x, y);
+          compare(position, t.normal);
+          compare(position,
+                  glm::normalize(t.normal + 0.8f * Vec3(unit(random), unit(random), unit(random))));
+        }
+      }
+    }
+    // Anywhere around the lit box, facing anywhere.
+    const Aabb& box = map.litBounds();
+    const Vec3 centre = 0.5f * (box.lower + box.upper), half = box.upper - centre + 0.5f;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec3 position = centre + half * Vec3(unit(random), unit(random), unit(random));
+      compare(position, glm::normalize(Vec3(unit(random), unit(random), unit(random))));
+    }
+    EXPECT_GT(lit, compared / 20) << "too few points read a lit texel to test the blend";
+  }
 }
 
 TEST(CausticMap, IsTheSameForAnyThreadCount) {
