@@ -88,19 +88,21 @@ inline void storeRays(const simd::Float4 origin[3], const simd::Float4 direction
 }
 
 // The same for the kWidth lanes of a vector: rays first..first+kWidth-1.
+// (Preprocessor branches, as for V: outside a template both arms of an `if constexpr` must
+// compile.)
 inline void storeRays(const Vec3Lanes& origin, const Vec3Lanes& direction, V tMax, Ray* rays) {
-  if constexpr (kWidth == 4) {
-    storeRays(origin.x, direction.x, tMax, rays);
-  } else {
-    simd::Float4 o[2][3], d[2][3], t[2];
-    for (int a = 0; a < 3; ++a) {
-      simd::splitHalves(origin.x[a], o[0][a], o[1][a]);
-      simd::splitHalves(direction.x[a], d[0][a], d[1][a]);
-    }
-    simd::splitHalves(tMax, t[0], t[1]);
-    storeRays(o[0], d[0], t[0], rays);
-    storeRays(o[1], d[1], t[1], rays + 4);
+#if defined(__AVX__)
+  simd::Float4 o[2][3], d[2][3], t[2];
+  for (int a = 0; a < 3; ++a) {
+    simd::splitHalves(origin.x[a], o[0][a], o[1][a]);
+    simd::splitHalves(direction.x[a], d[0][a], d[1][a]);
   }
+  simd::splitHalves(tMax, t[0], t[1]);
+  storeRays(o[0], d[0], t[0], rays);
+  storeRays(o[1], d[1], t[1], rays + 4);
+#else
+  storeRays(origin.x, direction.x, tMax, rays);
+#endif
 }
 
 }  // namespace lanes
