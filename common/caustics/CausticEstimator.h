@@ -22,6 +22,12 @@ class CausticEstimator {
     (void)footprint;
     return irradiance(s.position, s.geometricNormal);
   }
+  // irradianceAt(*points[i]) for each of `count` points (no footprint: a packet's points), into
+  // out[i]. Estimators whose lookups wait on memory override it to overlap the points' reads;
+  // each answer is the one irradianceAt gives, to the bit.
+  virtual void irradianceAtEach(const SurfaceHit* const* points, int count, Color* out) const {
+    for (int i = 0; i < count; ++i) out[i] = irradianceAt(*points[i]);
+  }
   // Whether irradianceAt reads the footprint. The renderer carries ray differentials only for
   // estimators that do: they cost every ray of a frame some arithmetic.
   virtual bool usesFootprint() const { return false; }

@@ -286,24 +286,32 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
   stats_.filterSeconds = secondsSince(start);
 }
 
-Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
+bool CausticMap::locate(const Vec3& position, TexelCorners& at) const {
   // Most receiver points see no caustic: the answer there is 0, found without projecting.
-  if (!lit_.contains(position)) return Color(0.0f);
+  if (!lit_.contains(position)) return false;
   const std::optional<LightSpacePoint> p = frustum_.project(position);
-  if (!p) return Color(0.0f);
+  if (!p) return false;
   const int n = frustum_.resolution();
   const float fx = p->x - 0.5f, fy = p->y - 0.5f;
   const int i0 = floorToInt<int>(fx), j0 = floorToInt<int>(fy);
-  const float ax = fx - static_cast<float>(i0), ay = fy - static_cast<float>(j0);
-  // The four texels around the point, clamped to the grid, as the lanes of one vector each:
-  // corner c is (i0 + (c & 1), j0 + (c >> 1)).
+  at.ax = fx - static_cast<float>(i0);
+  at.ay = fy - static_cast<float>(j0);
+  at.distance = p->distance;
   const LookupTexel* view = &lookup_[static_cast<size_t>(p->view) * n * n];
   const int iLow = std::clamp(i0, 0, n - 1), iHigh = std::clamp(i0 + 1, 0, n - 1);
-  const size_t rowLow = static_cast<size_t>(std::clamp(j0, 0, n - 1)) * n;
-  const size_t rowHigh = static_cast<size_t>(std::clamp(j0 + 1, 0, n - 1)) * n;
-  const LookupTexel* corners[4] = {view + rowLow + iLow, view + rowLow + iHigh,
-                                   view + rowHigh + iLow, view + rowHigh + iHigh};
+  const LookupTexel* rowLow = view + static_cast<size_t>(std::clamp(j0, 0, n - 1)) * n;
+  const LookupTexel* rowHigh = view + static_cast<size_t>(std::clamp(j0 + 1, 0, n - 1)) * n;
+  at.corners[0] = rowLow + iLow;
+  at.corners[1] = rowLow + iHigh;
+  at.corners[2] = rowHigh + iLow;
+  at.corners[3] = rowHigh + iHigh;
+  return true;
+}
+
+Color CausticMap::blend(const TexelCorners& at, const Vec3& normal) {
+  // The four corners as the lanes of one vector each.
   using simd::Float4;
+  const LookupTexel* const* corners = at.corners;
   // Rows (normal, distance) of the corners, transposed to lanes of each.
   Float4 nx = simd::load<Float4>(&corners[0]->normal.x);
   Float4 ny = simd::load<Float4>(&corners[1]->normal.x);
@@ -317,11 +325,12 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   const Float4 dot = (Float4{normal.x, normal.x, normal.x, normal.x} * nx +
                       Float4{normal.y, normal.y, normal.y, normal.y} * ny) +
                      Float4{normal.z, normal.z, normal.z, normal.z} * nz;
-  const Float4 gap = distance - Float4{p->distance, p->distance, p->distance, p->distance};
+  const Float4 gap = distance - Float4{at.distance, at.distance, at.distance, at.distance};
   const simd::Int4 magnitude = reinterpret_cast<simd::Int4>(gap) & 0x7fffffff;  // std::abs
   const simd::Int4 fails = (dot <= 0.0f) | (reinterpret_cast<Float4>(magnitude) > tolerance);
   // Bilinear weights, zero (+0) for the corners that fail. The sums below start at +0 and add
   // products of non-negative numbers, so adding a +0 leaves them exactly as skipping it would.
+  const float ax = at.ax, ay = at.ay;
   const Float4 weights = simd::select(
       fails, Float4{}, Float4{1.0f - ax, ax, 1.0f - ax, ax} * Float4{1.0f - ay, 1.0f - ay, ay, ay});
   // Each texel's irradiance as lanes 1–3 of its second half (lane 0 holds the tolerance); a
@@ -334,7 +343,26 @@ Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
   }
   const float wsum = ((weights[0] + weights[1]) + weights[2]) + weights[3];
   if (!(wsum > 1e-4f)) return Color(0.0f);
-  return Color(acc[1] / wsum, acc[2] / wsum, acc[3] / wsum);
+  const Float4 average = acc / Float4{wsum, wsum, wsum, wsum};  // one division for the three
+  return Color(average[1], average[2], average[3]);
+}
+
+Color CausticMap::irradiance(const Vec3& position, const Vec3& normal) const {
+  TexelCorners at;
+  return locate(position, at) ? blend(at, normal) : Color(0.0f);
+}
+
+void CausticMap::addIrradiance(const SurfaceHit* const* points, int count, Color* sums) const {
+  constexpr int kBatch = 8;
+  for (int first = 0; first < count; first += kBatch) {
+    const int n = std::min(kBatch, count - first);
+    TexelCorners at[kBatch];
+    bool found[kBatch];
+    for (int i = 0; i < n; ++i) found[i] = locate(points[first + i]->position, at[i]);
+    for (int i = 0; i < n; ++i) {
+      sums[first + i] += found[i] ? blend(at[i], points[first + i]->geometricNormal) : Color(0.0f);
+    }
+  }
 }
 
 }  // namespace prism

@@ -57,6 +57,10 @@ class CausticMap {
   // Caustic irradiance at a receiver point facing `normal`: bilinear over the texels around its
   // projection whose receiver is this point (within a depth tolerance) and faces its way.
   Color irradiance(const Vec3& position, const Vec3& normal) const;
+  // sums[i] += irradiance(points[i]->position, points[i]->geometricNormal) for `count` points:
+  // every point projected and its texels found first, then the texels read, so that the reads,
+  // which mostly miss the cache, overlap instead of waiting one by one.
+  void addIrradiance(const SurfaceHit* const* points, int count, Color* sums) const;
   // Bytes a texel's lookup record takes (beside the receiver and caster texels).
   static constexpr size_t kLookupTexelBytes = 32;
 
@@ -83,6 +87,17 @@ class CausticMap {
   };
   static_assert(offsetof(LookupTexel, distance) == 12 && offsetof(LookupTexel, tolerance) == 16 &&
                 offsetof(LookupTexel, irradiance) == 20);
+
+  // Where a point reads the map: its four texels (corner c at (i0 + (c & 1), j0 + (c >> 1)),
+  // clamped to the grid), its bilinear weights and its distance from the light.
+  struct TexelCorners {
+    const LookupTexel* corners[4];
+    float ax, ay, distance;
+  };
+  // False where the point can read nothing (outside the lit box, behind or beside every view).
+  bool locate(const Vec3& position, TexelCorners& at) const;
+  // The bilinear blend of the corners that pass the shadow-map test for a point facing `normal`.
+  static Color blend(const TexelCorners& at, const Vec3& normal);
   static_assert(sizeof(LookupTexel) == kLookupTexelBytes);
 
   std::vector<LookupTexel> lookup_;

@@ -16,6 +16,12 @@ Color CausticMapEstimator::irradiance(const Vec3& position, const Vec3& normal) 
   return sum;
 }
 
+void CausticMapEstimator::irradianceAtEach(const SurfaceHit* const* points, int count,
+                                           Color* out) const {
+  for (int i = 0; i < count; ++i) out[i] = Color(0.0f);
+  for (const auto& map : maps_) map->addIrradiance(points, count, out);
+}
+
 CausticMapStats CausticMapEstimator::stats() const {
   CausticMapStats s;
   for (const auto& map : maps_) s += map->stats();

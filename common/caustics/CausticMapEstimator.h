@@ -26,6 +26,8 @@ class CausticMapEstimator : public CausticEstimator {
   CausticMapEstimator(const Scene& scene, const CausticSettings& settings, int threads);
 
   Color irradiance(const Vec3& position, const Vec3& normal) const override;
+  // Map by map, every point's texels found before any is read (CausticMap::addIrradiance).
+  void irradianceAtEach(const SurfaceHit* const* points, int count, Color* out) const override;
 
   bool empty() const { return maps_.empty(); }
   const std::vector<std::unique_ptr<CausticMap>>& maps() const { return maps_; }

@@ -37,16 +37,25 @@ bool WhittedIntegrator::litDirectly(const ShadingPoint& p) const {
   return terms_.direct && (!isBlack(p.albedo) || !isBlack(p.material->specular));
 }
 
+bool WhittedIntegrator::receivesCaustics(const ShadingPoint& p) const {
+  return terms_.caustics && (p.surface.caustic & kReceivesCaustics) && !isBlack(p.albedo);
+}
+
 Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& directLight,
                                          const PixelFootprint& footprint) const {
+  return surfaceRadiance(
+      p, directLight,
+      receivesCaustics(p) ? terms_.caustics->irradianceAt(p.surface, footprint) : Color(0.0f));
+}
+
+Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& directLight,
+                                         const Color& causticIrradiance) const {
   Color result(0.0f);
   if (terms_.direct) {
     result = p.material->ambient * scene_.ambientLight();
     if (litDirectly(p)) result += directLight;
   }
-  if (terms_.caustics && (p.surface.caustic & kReceivesCaustics) && !isBlack(p.albedo)) {
-    result += p.albedo * kInvPi * terms_.caustics->irradianceAt(p.surface, footprint);
-  }
+  if (receivesCaustics(p)) result += p.albedo * kInvPi * causticIrradiance;
   return result;
 }
 
@@ -195,6 +204,23 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
     }
   }
 
+  // The caustic estimates of all the points that receive one, at once: a caustic map's lookups
+  // mostly miss the cache, and asked together their reads overlap.
+  Color caustic[kSize];
+  if (terms_.caustics) {
+    const SurfaceHit* receivers[kSize];
+    int receiving[kSize], receiverCount = 0;
+    for (uint32_t m = foundLanes; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      if (!receivesCaustics(points[i])) continue;
+      receivers[receiverCount] = &points[i].surface;
+      receiving[receiverCount++] = i;
+    }
+    Color estimates[kSize];
+    terms_.caustics->irradianceAtEach(receivers, receiverCount, estimates);
+    for (int k = 0; k < receiverCount; ++k) caustic[receiving[k]] = estimates[k];
+  }
+
   // The bounces: each ray's reflected ray, then its refracted one (the order shade() adds them
   // in), k for the k-th bounce of a ray. Points that only reflect (no transmittance: floors,
   // mirrors, metals) take forEachBounce's reflected ray from the lanes, every lane's mirror ray
@@ -211,7 +237,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       results[i] = escaped(rays[i]);
       continue;
     }
-    results[i] = surfaceRadiance(points[i], direct[i], {});
+    results[i] = surfaceRadiance(points[i], direct[i], caustic[i]);
     if (!bounces) continue;
     const MaterialDesc& material = *points[i].material;
     if (isBlack(material.transmittance)) {

@@ -73,9 +73,15 @@ class WhittedIntegrator {
   bool litDirectly(const ShadingPoint& p) const;
 
   // Everything shade() adds before it follows the surface's reflection and refraction:
-  // ambient, direct light (directLight: its sum over the lights) and caustics.
+  // ambient, direct light (directLight: its sum over the lights) and caustics, estimated over
+  // the pixel's footprint.
   Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
                         const PixelFootprint& footprint) const;
+  // The same with the caustic irradiance at p already estimated (read where receivesCaustics).
+  Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
+                        const Color& causticIrradiance) const;
+  // Whether a caustic estimate is added at p.
+  bool receivesCaustics(const ShadingPoint& p) const;
 
   // Calls send(origin, direction, weight, contribution, onward) for the reflected and then the
   // refracted ray the hit sends on, where there is one: weight scales the radiance it brings back,

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <optional>
 #include <random>
+#include <vector>
 
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonTracer.h"
@@ -299,6 +300,38 @@ TEST(CausticMap, LookupIsTheBilinearShadowMapTestBitForBit) {
       compare(position, glm::normalize(Vec3(unit(random), unit(random), unit(random))));
     }
     EXPECT_GT(lit, compared / 20) << "too few points read a lit texel to test the blend";
+  }
+}
+
+// A packet's points ask for their caustics at once (irradianceAtEach, the reads of all points'
+// texels overlapping); each answer must be the one irradianceAt gives alone, in batches longer
+// than the eight points CausticMap takes at a time, with points that read nothing among them.
+TEST(CausticMap, PointsAskedTogetherGetTheirOwnAnswers) {
+  const Scene scene(sphereScene(1.5f, 64, 2));
+  const CausticMapEstimator estimator(scene, 0);
+  ASSERT_FALSE(estimator.empty());
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<SurfaceHit> hits(21);
+  for (size_t i = 0; i < hits.size(); ++i) {
+    // Floor points under the ball (lit), some far outside the caustic, some facing down.
+    const float reach = i % 5 == 4 ? 6.0f : 1.2f;
+    hits[i].position = {reach * unit(random), 0.0f, reach * unit(random)};
+    hits[i].geometricNormal = i % 7 == 3 ? Vec3(0, -1, 0) : Vec3(0, 1, 0);
+  }
+  for (const int count : {1, 8, 21}) {
+    std::vector<const SurfaceHit*> points;
+    for (int i = 0; i < count; ++i) points.push_back(&hits[static_cast<size_t>(i)]);
+    std::vector<Color> together(static_cast<size_t>(count));
+    estimator.irradianceAtEach(points.data(), count, together.data());
+    size_t lit = 0;
+    for (int i = 0; i < count; ++i) {
+      const Color alone = estimator.irradianceAt(*points[static_cast<size_t>(i)]);
+      const Color& got = together[static_cast<size_t>(i)];
+      ASSERT_EQ(std::memcmp(&got, &alone, sizeof(Color)), 0) << "point " << i << " of " << count;
+      lit += maxComponent(alone) > 0.0f ? 1 : 0;
+    }
+    if (count == 21) EXPECT_GE(lit, 8u) << "too few points under the caustic to test the batch";
   }
 }
 
