@@ -75,14 +75,16 @@ void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, 
     sum[k] = Color(0.0f);
   }
   for (int i = 0; i < sampler_.count(); ++i) {
-    // Each ray is made in its place: assigned from a returned Ray, it was copied with 16-byte
-    // loads before the camera's 4-byte stores had landed (a store-forwarding stall).
-    ScratchArray<Ray, kSize> packet;
+    // The image-plane points, then the rays four at a time as vector lanes, each stored whole
+    // in its place (Camera::generateRays).
+    alignas(16) float pointX[kSize], pointY[kSize];
     for (int k = 0; k < count; ++k) {
       const Vec2 offset = sampler_.offset(i, *rng[k]);
-      ::new (&packet[k]) Ray(camera_.generateRay(static_cast<float>(x + k % columns) + offset.x,
-                                                 static_cast<float>(y + k / columns) + offset.y));
+      pointX[k] = static_cast<float>(x + k % columns) + offset.x;
+      pointY[k] = static_cast<float>(y + k / columns) + offset.y;
     }
+    ScratchArray<Ray, kSize> packet;
+    camera_.generateRays(pointX, pointY, count, packet.data());
     rays.primary += static_cast<uint64_t>(count);
     Color samples[kSize];
     integrator_.radiance8(packet.data(), count, samples, rays);

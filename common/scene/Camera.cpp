@@ -1,5 +1,9 @@
 #include "scene/Camera.h"
 
+#include <cstddef>
+
+#include "accel/Simd.h"
+
 namespace prism {
 
 Camera::Camera(const CameraDesc& desc, int imageWidth, int imageHeight)
@@ -36,6 +40,40 @@ Ray Camera::generateRay(float x, float y) const {
     ray.tMin = nearClip_;
   }
   return ray;
+}
+
+void Camera::generateRays(const float* x, const float* y, int count, Ray* rays) const {
+  using simd::Float4;
+  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMin) == 6 * sizeof(float));
+  int first = 0;
+  if (projection_ == Projection::Perspective) {
+    for (; first + 4 <= count; first += 4) {
+      // generateRay's arithmetic, lane by lane (glm::normalize is v · (1 / √(v·v)), glm::dot
+      // (a.x·b.x + a.y·b.y) + a.z·b.z).
+      const Float4 sx = (2.0f * simd::load<Float4>(x + first) * invWidth_ - 1.0f) * halfWidth_;
+      const Float4 sy = (1.0f - 2.0f * simd::load<Float4>(y + first) * invHeight_) * halfHeight_;
+      Float4 d[3];
+      for (int a = 0; a < 3; ++a) d[a] = (forward_[a] + sx * right_[a]) + sy * up_[a];
+      const Float4 scale = 1.0f / simd::sqrtLanes((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]);
+      for (int a = 0; a < 3; ++a) d[a] = d[a] * scale;
+      const Float4 tMin = nearClip_ / ((d[0] * forward_.x + d[1] * forward_.y) + d[2] * forward_.z);
+      // Each ray is two rows of four floats, transposed from the lanes and stored whole (the
+      // packet reads them back four floats at a time).
+      const float end = Ray{}.tMax;  // the ray's own default: no end
+      const Vec3& o = position_;
+      Float4 low[4] = {Float4{o.x, o.x, o.x, o.x}, Float4{o.y, o.y, o.y, o.y},
+                       Float4{o.z, o.z, o.z, o.z}, d[0]};
+      Float4 high[4] = {d[1], d[2], tMin, Float4{end, end, end, end}};
+      simd::transpose(low[0], low[1], low[2], low[3]);
+      simd::transpose(high[0], high[1], high[2], high[3]);
+      for (int k = 0; k < 4; ++k) {
+        float* ray = reinterpret_cast<float*>(&rays[first + k]);
+        simd::store(ray, low[k]);
+        simd::store(ray + 4, high[k]);
+      }
+    }
+  }
+  for (; first < count; ++first) rays[first] = generateRay(x[first], y[first]);
 }
 
 RayDifferential Camera::pixelDifferential(const Ray& ray) const {

@@ -16,6 +16,9 @@ class Camera {
 
   // A unit-direction ray through the image-plane point (x, y), in pixels.
   Ray generateRay(float x, float y) const;
+  // rays[i] = generateRay(x[i], y[i]) for `count` points (a pixel block's), four at a time as
+  // vector lanes: the same operations in the same order, so the same rays to the bit.
+  void generateRays(const float* x, const float* y, int count, Ray* rays) const;
   // How ray (from generateRay) changes per pixel step in x and in y: the pixel's own footprint
   // for every sample of it, not a 1/spp share (with shares a focus narrower than a pixel could
   // fall between its samples' footprints or into a neighbour's: docs/accuracy.md).

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <random>
+#include <vector>
+
 namespace prism {
 namespace {
 
@@ -88,6 +92,46 @@ TEST(Camera, APixelStepTurnsTheRayByThePixelAngleOrMovesItByThePixelWidth) {
   EXPECT_NEAR(glm::distance(flat.dOdx, Vec3(0.1f, 0, 0)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::distance(flat.dOdy, Vec3(0, -0.1f, 0)), 0.0f, 1e-6f);
   EXPECT_EQ(flat.dDdx, Vec3(0.0f));
+}
+
+// A pixel block's rays are made four at a time as vector lanes (Camera::generateRays); each must
+// be the ray generateRay gives alone, to the bit: perspective cameras of several shapes and
+// near planes (a camera at −0 among them, whose origin keeps its sign), orthographic ones, and
+// every count from 1 to 8 (the lanes and the rays left over).
+TEST(Camera, RaysMadeFourAtATimeAreTheSingleRaysBitForBit) {
+  std::vector<CameraDesc> cameras;
+  CameraDesc tilted;
+  tilted.position = {-0.0f, 3.2f, 8.5f};
+  tilted.lookAt = {0.3f, 1.1f, -0.7f};
+  tilted.fovDegrees = 38.0f;
+  tilted.nearClip = 0.25f;
+  cameras.push_back(tilted);
+  cameras.push_back(lookingDownMinusZ(120.0f));
+  CameraDesc orthographic = tilted;
+  orthographic.projection = Projection::Orthographic;
+  orthographic.width = 7.0f;
+  cameras.push_back(orthographic);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (const CameraDesc& d : cameras) {
+    const Camera camera(d, 640, 360);
+    for (int count = 1; count <= 8; ++count) {
+      for (int trial = 0; trial < 200; ++trial) {
+        float x[8], y[8];
+        for (int i = 0; i < count; ++i) {
+          x[i] = 640.0f * unit(random);
+          y[i] = 360.0f * unit(random);
+        }
+        Ray rays[8];
+        camera.generateRays(x, y, count, rays);
+        for (int i = 0; i < count; ++i) {
+          const Ray alone = camera.generateRay(x[i], y[i]);
+          ASSERT_EQ(std::memcmp(&rays[i], &alone, sizeof(Ray)), 0)
+              << "ray " << i << " of " << count << " at " << x[i] << ", " << y[i];
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
