@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -268,6 +269,8 @@ TEST(CausticMap, LookupIsTheBilinearShadowMapTestBitForBit) {
     std::mt19937 random(7);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     size_t compared = 0, lit = 0;
+    std::vector<SurfaceHit> asked;  // every point again, for the lookups of several at once
+    std::vector<Color> wanted;
     const auto compare = [&](const Vec3& position, const Vec3& normal) {
       const Color got = map.irradiance(position, normal);
       const Color want = referenceIrradiance(map, position, normal);
@@ -276,6 +279,10 @@ TEST(CausticMap, LookupIsTheBilinearShadowMapTestBitForBit) {
           << " against " << want.x;
       ++compared;
       lit += maxComponent(got) > 0.0f ? 1 : 0;
+      asked.push_back({});
+      asked.back().position = position;
+      asked.back().geometricNormal = normal;
+      wanted.push_back(want);
     };
     // Points on and around every receiver texel the light sees, lit or not.
     for (int view = 0; view < static_cast<int>(frustum.views().size()); ++view) {
@@ -300,6 +307,23 @@ TEST(CausticMap, LookupIsTheBilinearShadowMapTestBitForBit) {
       compare(position, glm::normalize(Vec3(unit(random), unit(random), unit(random))));
     }
     EXPECT_GT(lit, compared / 20) << "too few points read a lit texel to test the blend";
+    // addIrradiance, 1 to 8 points at a time (lanes of four and the points left over), adds
+    // the same answers to the sums.
+    for (size_t first = 0, batch = 1; first < asked.size(); first += batch, batch = batch % 8 + 1) {
+      const int count = static_cast<int>(std::min(batch, asked.size() - first));
+      const SurfaceHit* points[8];
+      Color sums[8];
+      for (int i = 0; i < count; ++i) {
+        points[i] = &asked[first + static_cast<size_t>(i)];
+        sums[i] = Color(0.0f);
+      }
+      map.addIrradiance(points, count, sums);
+      for (int i = 0; i < count; ++i) {
+        const Color want = Color(0.0f) + wanted[first + static_cast<size_t>(i)];
+        ASSERT_EQ(std::memcmp(&sums[i], &want, sizeof(Color)), 0)
+            << "point " << first + static_cast<size_t>(i) << ", asked " << count << " at once";
+      }
+    }
   }
 }
 
