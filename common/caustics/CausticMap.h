@@ -76,15 +76,15 @@ class CausticMap {
   std::unique_ptr<ReceiverMap> receivers_;
   std::vector<CasterTexel> casters_;
   // What a lookup reads of a texel, in one 32-byte record: two share a cache line, where the
-  // receiver map's texel and the irradiance apart took up to two lines each.
-  // irradiance() reads its halves as vectors of four: (normal, distance) and (tolerance,
-  // irradiance).
+  // receiver map's texel and the irradiance apart took up to two lines each. blend() reads its
+  // halves as vectors of four: (normal, distance) and (tolerance, irradiance).
   struct alignas(32) LookupTexel {
     Vec3 normal{0.0f};  // the receiver's; zero where there is none, which fails every lookup
     float distance = 0.0f;
     float tolerance = 0.0f;  // depthTolerance() of the receiver
     Color irradiance{0.0f};
   };
+  static_assert(sizeof(LookupTexel) == kLookupTexelBytes);
   static_assert(offsetof(LookupTexel, distance) == 12 && offsetof(LookupTexel, tolerance) == 16 &&
                 offsetof(LookupTexel, irradiance) == 20);
 
@@ -98,7 +98,6 @@ class CausticMap {
   bool locate(const Vec3& position, TexelCorners& at) const;
   // The bilinear blend of the corners that pass the shadow-map test for a point facing `normal`.
   static Color blend(const TexelCorners& at, const Vec3& normal);
-  static_assert(sizeof(LookupTexel) == kLookupTexelBytes);
 
   std::vector<LookupTexel> lookup_;
   Aabb lit_;
