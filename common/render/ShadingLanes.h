@@ -7,9 +7,9 @@
 // no multiply-add, so each lane's result is the scalar result to the bit.
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
 
+#include "accel/RayRows.h"
 #include "accel/Simd.h"
 #include "geometry/HitRecord.h"
 #include "math/Ray.h"
@@ -69,22 +69,11 @@ inline V dot(const Vec3Lanes& a, const Vec3Lanes& b) {
   return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
-// Rays first..first+3 of `rays` from four lanes of origins, directions and ends (tMin 0): each
-// ray is two rows of four floats, transposed from the lanes in registers and stored whole, so
-// that the packet's constructor (RayPacket8), reading them back four floats at a time, does not
-// wait on eight single-float stores per ray.
+// Rays first..first+3 of `rays` from four lanes of origins, directions and ends (tMin 0),
+// each stored whole (accel/RayRows.h).
 inline void storeRays(const simd::Float4 origin[3], const simd::Float4 direction[3],
                       simd::Float4 tMax, Ray* rays) {
-  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMax) == 7 * sizeof(float));
-  simd::Float4 low[4] = {origin[0], origin[1], origin[2], direction[0]};
-  simd::Float4 high[4] = {direction[1], direction[2], simd::Float4{}, tMax};
-  simd::transpose(low[0], low[1], low[2], low[3]);
-  simd::transpose(high[0], high[1], high[2], high[3]);
-  for (int k = 0; k < 4; ++k) {
-    float* ray = reinterpret_cast<float*>(&rays[k]);
-    simd::store(ray, low[k]);
-    simd::store(ray + 4, high[k]);
-  }
+  simd::storeRays(origin, direction, simd::Float4{}, tMax, rays);
 }
 
 // The same for the kWidth lanes of a vector: rays first..first+kWidth-1.

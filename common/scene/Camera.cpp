@@ -1,7 +1,6 @@
 #include "scene/Camera.h"
 
-#include <cstddef>
-
+#include "accel/RayRows.h"
 #include "accel/Simd.h"
 
 namespace prism {
@@ -44,7 +43,6 @@ Ray Camera::generateRay(float x, float y) const {
 
 void Camera::generateRays(const float* x, const float* y, int count, Ray* rays) const {
   using simd::Float4;
-  static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, tMin) == 6 * sizeof(float));
   int first = 0;
   if (projection_ == Projection::Perspective) {
     for (; first + 4 <= count; first += 4) {
@@ -57,20 +55,11 @@ void Camera::generateRays(const float* x, const float* y, int count, Ray* rays) 
       const Float4 scale = 1.0f / simd::sqrtLanes((d[0] * d[0] + d[1] * d[1]) + d[2] * d[2]);
       for (int a = 0; a < 3; ++a) d[a] = d[a] * scale;
       const Float4 tMin = nearClip_ / ((d[0] * forward_.x + d[1] * forward_.y) + d[2] * forward_.z);
-      // Each ray is two rows of four floats, transposed from the lanes and stored whole (the
-      // packet reads them back four floats at a time).
       const float end = Ray{}.tMax;  // the ray's own default: no end
       const Vec3& o = position_;
-      Float4 low[4] = {Float4{o.x, o.x, o.x, o.x}, Float4{o.y, o.y, o.y, o.y},
-                       Float4{o.z, o.z, o.z, o.z}, d[0]};
-      Float4 high[4] = {d[1], d[2], tMin, Float4{end, end, end, end}};
-      simd::transpose(low[0], low[1], low[2], low[3]);
-      simd::transpose(high[0], high[1], high[2], high[3]);
-      for (int k = 0; k < 4; ++k) {
-        float* ray = reinterpret_cast<float*>(&rays[first + k]);
-        simd::store(ray, low[k]);
-        simd::store(ray + 4, high[k]);
-      }
+      const Float4 origin[3] = {Float4{o.x, o.x, o.x, o.x}, Float4{o.y, o.y, o.y, o.y},
+                                Float4{o.z, o.z, o.z, o.z}};
+      simd::storeRays(origin, d, tMin, Float4{end, end, end, end}, rays + first);
     }
   }
   for (; first < count; ++first) rays[first] = generateRay(x[first], y[first]);
