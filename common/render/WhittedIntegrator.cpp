@@ -43,19 +43,19 @@ bool WhittedIntegrator::receivesCaustics(const ShadingPoint& p) const {
 
 Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& directLight,
                                          const PixelFootprint& footprint) const {
-  return surfaceRadiance(
-      p, directLight,
-      receivesCaustics(p) ? terms_.caustics->irradianceAt(p.surface, footprint) : Color(0.0f));
+  if (!receivesCaustics(p)) return surfaceRadiance(p, directLight, nullptr);
+  const Color caustic = terms_.caustics->irradianceAt(p.surface, footprint);
+  return surfaceRadiance(p, directLight, &caustic);
 }
 
 Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& directLight,
-                                         const Color& causticIrradiance) const {
+                                         const Color* causticIrradiance) const {
   Color result(0.0f);
   if (terms_.direct) {
     result = p.material->ambient * scene_.ambientLight();
     if (litDirectly(p)) result += directLight;
   }
-  if (receivesCaustics(p)) result += p.albedo * kInvPi * causticIrradiance;
+  if (causticIrradiance) result += p.albedo * kInvPi * *causticIrradiance;
   return result;
 }
 
@@ -207,6 +207,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // The caustic estimates of all the points that receive one, at once: a caustic map's lookups
   // mostly miss the cache, and asked together their reads overlap.
   Color caustic[kSize];
+  uint32_t receivingLanes = 0;  // bit i: points[i] receives caustics, its estimate in caustic[i]
   if (terms_.caustics) {
     const SurfaceHit* receivers[kSize];
     int receiving[kSize], receiverCount = 0;
@@ -215,6 +216,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       if (!receivesCaustics(points[i])) continue;
       receivers[receiverCount] = &points[i].surface;
       receiving[receiverCount++] = i;
+      receivingLanes |= 1u << i;
     }
     Color estimates[kSize];
     terms_.caustics->irradianceAtEach(receivers, receiverCount, estimates);
@@ -237,7 +239,8 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       results[i] = escaped(rays[i]);
       continue;
     }
-    results[i] = surfaceRadiance(points[i], direct[i], caustic[i]);
+    results[i] =
+        surfaceRadiance(points[i], direct[i], (receivingLanes >> i & 1u) ? &caustic[i] : nullptr);
     if (!bounces) continue;
     const MaterialDesc& material = *points[i].material;
     if (isBlack(material.transmittance)) {

@@ -77,9 +77,10 @@ class WhittedIntegrator {
   // the pixel's footprint.
   Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
                         const PixelFootprint& footprint) const;
-  // The same with the caustic irradiance at p already estimated (read where receivesCaustics).
+  // The same with the caustic irradiance at p already estimated: null where p receives none
+  // (receivesCaustics).
   Color surfaceRadiance(const ShadingPoint& p, const Color& directLight,
-                        const Color& causticIrradiance) const;
+                        const Color* causticIrradiance) const;
   // Whether a caustic estimate is added at p.
   bool receivesCaustics(const ShadingPoint& p) const;
 
