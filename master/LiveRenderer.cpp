@@ -55,6 +55,13 @@ namespace {
 
 constexpr size_t kFrameTimeWindow = 60;  // frames the frame-time statistics cover
 
+// Tile news (a tile handed out, a tile finished) reach the listener in batches: the first of a
+// batch waits up to this long for company, half a display refresh. Told one by one they woke
+// the coordinator and the window twice a tile, and on a machine whose cores all render each
+// wake-up preempts a render thread. A pass's end, and a pass's last tile handed out (the next
+// pass may start), are told at once.
+constexpr double kNewsDelay = 0.008;
+
 // Whether the view's refinement passes trace a photon pass first.
 bool tracesPhotons(const ViewSettings& view) {
   return view.caustics == CausticMethod::PhotonMap && view.debugView == DebugView::Image;
@@ -337,20 +344,23 @@ LiveRenderer::Pass* LiveRenderer::findLocked(uint32_t frame) {
 }
 
 void LiveRenderer::tileAssigned(uint32_t frame, uint32_t tile, int rank) {
-  bool allAssigned = false;
+  bool wakeNow = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     Pass* p = findLocked(frame);
     if (!p) return;
     p->events.push_back({Event::Kind::Assigned, frame, tile, rank, nullptr, 0.0, {}});
+    bool allAssigned = false;
     if (tile < p->assigned.size() && !p->assigned[tile]) {
       p->assigned[tile] = true;
       allAssigned = ++p->assignedCount == p->assigned.size();
     }
+    // With all tiles handed out the coordinator queues the next frame now.
+    wakeNow = newsQueuedLocked(allAssigned);
   }
+  if (!wakeNow) return;
   changed_.notify_all();
-  // The coordinator queues the next frame now; it may be waiting for the slaves' messages.
-  if (allAssigned) link_.wake();
+  link_.wake();  // it may be waiting for the slaves' messages
 }
 
 bool LiveRenderer::wantsTiles(uint32_t frame) {
@@ -359,11 +369,17 @@ bool LiveRenderer::wantsTiles(uint32_t frame) {
 }
 
 void LiveRenderer::tileFinished(uint32_t frame, TileResult&& tile, int rank) {
+  if (!tileFinishedLocked(frame, std::move(tile), rank)) return;
+  changed_.notify_all();
+  link_.wake();  // the coordinator may be waiting for the slaves' messages
+}
+
+bool LiveRenderer::tileFinishedLocked(uint32_t frame, TileResult&& tile, int rank) {
   const std::lock_guard<std::mutex> lock(mutex_);
   // The dispatcher accepts only tiles of frames it still runs, and a pass that setView() drops
   // has its frame ended first; a pass may have been dropped in between, though.
   Pass* pass = findLocked(frame);
-  if (!pass) return;
+  if (!pass) return false;
   Pass& p = *pass;
   p.busySeconds += tile.seconds;
   const uint32_t index = tile.tileIndex;
@@ -388,7 +404,7 @@ void LiveRenderer::tileFinished(uint32_t frame, TileResult&& tile, int rank) {
       if (p.info.pass == 1) live_.firstFullSeconds = sinceView;
     }
   }
-  changed_.notify_all();
+  return newsQueuedLocked(p.finished);
 }
 
 void LiveRenderer::takeDeliveriesLocked(std::vector<Event>& out) {
@@ -408,10 +424,34 @@ void LiveRenderer::takeDeliveriesLocked(std::vector<Event>& out) {
   }
 }
 
-bool LiveRenderer::deliverableLocked() const {
+void LiveRenderer::takeDueDeliveriesLocked(std::vector<Event>& out) {
+  if (!newsDueLocked()) return;
+  takeDeliveriesLocked(out);
+  // News left behind belong to a pass after one still running, and follow that one's end,
+  // which is urgent news of its own.
+  newsSince_ = -1.0;
+  newsUrgent_ = false;
+}
+
+bool LiveRenderer::newsQueuedLocked(bool urgent) {
+  const bool first = newsSince_ < 0.0;
+  if (first) newsSince_ = now();
+  newsUrgent_ = newsUrgent_ || urgent;
+  // The first news of a batch wakes the coordinator too: it then sleeps until the batch is due.
+  return urgent || first;
+}
+
+bool LiveRenderer::newsDueLocked() const {
   if (passes_.empty()) return false;
-  const Pass& p = *passes_.front();
-  return !p.announced || !p.events.empty() || p.finished;
+  if (!passes_.front()->announced) return true;  // a pass begins: the listener hears it at once
+  if (newsUrgent_) return true;
+  return newsSince_ >= 0.0 && now() - newsSince_ >= kNewsDelay;
+}
+
+double LiveRenderer::untilNewsDueLocked(double bound) const {
+  if (bound <= 0.0 || newsDueLocked()) return 0.0;
+  if (newsSince_ < 0.0) return bound;
+  return std::clamp(newsSince_ + kNewsDelay - now(), 0.0, bound);
 }
 
 LiveStats LiveRenderer::statsLocked(double elapsedSeconds, std::vector<RankStats> ranks) {
@@ -459,7 +499,7 @@ void LiveRenderer::run(LiveListener& listener) {
         const std::lock_guard<std::mutex> lock(mutex_);
         if (stopped_ || dispatcher_.localFailed()) break;
         plan = nextPassLocked();
-        takeDeliveriesLocked(events);
+        takeDueDeliveriesLocked(events);
       }
       // The news first: a photon pass traced below must not hold up the frame before it.
       for (Event& e : events) {
@@ -499,14 +539,24 @@ void LiveRenderer::run(LiveListener& listener) {
         }
       }
       if (started) continue;  // its first tiles may be news already; the next frame may be due
+      // A view, a stop, a frame finished or handed out, or a batch of tile news begun wakes this
+      // wait; it lasts until the batch is due, and is bounded for the statistics.
+      constexpr double kStatsBound = 0.05;
       if (link_.hasSlaves()) {
-        // A view, a stop, a finished tile or a frame handed out wakes this wait; the bound is
-        // for the statistics.
-        dispatcher_.service(0.05);
+        double wait = 0.0;
+        {
+          const std::lock_guard<std::mutex> lock(mutex_);
+          wait = untilNewsDueLocked(kStatsBound);
+        }
+        dispatcher_.service(wait);
       } else {
         std::unique_lock<std::mutex> lock(mutex_);
-        changed_.wait_for(lock, std::chrono::milliseconds(50),
-                          [this] { return stopped_ || deliverableLocked() || mayStartLocked(); });
+        const double end = now() + kStatsBound;
+        while (!(stopped_ || newsDueLocked() || mayStartLocked())) {
+          const double wait = untilNewsDueLocked(end - now());
+          if (wait <= 0.0) break;
+          changed_.wait_for(lock, std::chrono::duration<double>(wait));
+        }
       }
       bool due = false;
       {

@@ -225,8 +225,20 @@ class LiveRenderer final : private FrameListener {
   // must wait for.
   bool mayStartLocked() const;
   void frameFinishedLocked(const Pass& pass, double end);
+  // tileFinished's part under the lock; whether the coordinator must wake for it.
+  bool tileFinishedLocked(uint32_t frame, TileResult&& tile, int rank);
+  // Every pass's news the listener may hear now, in order (the front pass's, and those after it
+  // once it has ended).
   void takeDeliveriesLocked(std::vector<Event>& out);
-  bool deliverableLocked() const;
+  // The same when newsDueLocked(); then the batch is over.
+  void takeDueDeliveriesLocked(std::vector<Event>& out);
+  // A tile's news (assigned, finished) was queued: whether the coordinator must wake for it.
+  // urgent: it ends a pass, or hands out a pass's last tile (the next may start).
+  bool newsQueuedLocked(bool urgent);
+  // Whether the news queued should reach the listener now (see kNewsDelay).
+  bool newsDueLocked() const;
+  // How long the coordinator may sleep before the news queued fall due, at most `bound`.
+  double untilNewsDueLocked(double bound) const;
   std::shared_ptr<const RenderPass> passLight(const PassPlan& plan);
   std::shared_ptr<const RenderPass> causticMapLight(const PassPlan& plan);
   PassInfo beginPassLocked(const PassPlan& plan, std::shared_ptr<const RenderPass> light,
@@ -253,7 +265,9 @@ class LiveRenderer final : private FrameListener {
   // Passes started whose end the listener has not heard yet, oldest first (two at most: the
   // pipeline's current frame and the next).
   std::deque<std::unique_ptr<Pass>> passes_;
-  int lastIndex_ = -1;  // the last pass begun of the current view; -1: none yet
+  double newsSince_ = -1.0;  // when the oldest undelivered tile news was queued; -1: none
+  bool newsUrgent_ = false;  // news queued that the listener should hear at once
+  int lastIndex_ = -1;       // the last pass begun of the current view; -1: none yet
   ResolutionGovernor governor_;
   std::deque<double> frameSeconds_;  // recent frames' times, newest last
   double lastFrameEnd_ = 0.0;        // when the last frame finished (seconds since start_)

@@ -182,6 +182,7 @@ std::optional<TileJob> TileDispatcher::nextLocalJob() {
 }
 
 void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
+  bool frameDone = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     RankStats& s = delivered_[static_cast<size_t>(rank)];
@@ -198,14 +199,18 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
     s.busySeconds += tile.seconds;
     ++frame->done;
     if (frame->listener) frame->listener->tileFinished(frameId, std::move(tile), rank);
+    frameDone = frame->complete();
     // A complete frame behind the current one has nothing left to do here.
-    if (frame->complete() && frame != frames_.back().get()) {
+    if (frameDone && frame != frames_.back().get()) {
       reissuedBefore_ += frame->scheduler.reissuedCount();
       frames_.erase(std::find_if(frames_.begin(), frames_.end(),
                                  [frame](const auto& f) { return f.get() == frame; }));
     }
   }
-  wake();  // the coordinator feeds, or finishes the frame, at once
+  // The coordinator finishes the frame at once. A tile alone changes nothing it waits for (a
+  // slave's load is its own tiles), so it is not woken for one: with every core rendering, each
+  // wake-up would preempt a render thread. A listener wakes it for news it wants sooner.
+  if (frameDone) wake();
 }
 
 void TileDispatcher::wake() {

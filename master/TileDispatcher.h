@@ -59,7 +59,8 @@ class FrameListener {
   // Whether the frame's tiles are still wanted: the viewer drops a pass a moment before it ends
   // its frame here, and a tile arriving in between is stale like one of an ended frame.
   virtual bool wantsTiles(uint32_t /*frame*/) { return true; }
-  // A tile of the frame, accepted: the first copy, matching the plan.
+  // A tile of the frame, accepted: the first copy, matching the plan. The coordinating thread
+  // is woken for the frame's last tile only; a listener that wants it sooner wakes it.
   virtual void tileFinished(uint32_t frame, TileResult&& tile, int rank) = 0;
 };
 
@@ -93,7 +94,7 @@ class TileDispatcher {
   size_t tilesDone();
 
   // One step of the coordinating thread: feeds the slaves, waits up to waitSeconds for a
-  // message or a change here (a tile finished on this rank, stop(), wake()), routes every
+  // message or a change here (a frame finished on this rank, stop(), wake()), routes every
   // message that has arrived, and retires silent slaves and expired leases. Throws
   // std::runtime_error when a slave reports an error or sends what it must not.
   void service(double waitSeconds);
