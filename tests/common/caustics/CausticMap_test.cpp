@@ -355,7 +355,9 @@ TEST(CausticMap, PointsAskedTogetherGetTheirOwnAnswers) {
       ASSERT_EQ(std::memcmp(&got, &alone, sizeof(Color)), 0) << "point " << i << " of " << count;
       lit += maxComponent(alone) > 0.0f ? 1 : 0;
     }
-    if (count == 21) EXPECT_GE(lit, 8u) << "too few points under the caustic to test the batch";
+    if (count == 21) {
+      EXPECT_GE(lit, 8u) << "too few points under the caustic to test the batch";
+    }
   }
 }
 
