@@ -155,7 +155,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // Bounces that spread out (off curved mirrors) or leave few rays cost a packet more than they
   // share: those rays go on alone.
   if (depth > 0 &&
-      (__builtin_popcount(live) < kMinPacketRays || !Scene::coherentDirections(rays, live))) {
+      (simd::laneCount(live) < kMinPacketRays || !Scene::coherentDirections(rays, live))) {
     for (uint32_t m = live; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
       results[i] = radiance(rays[i], depth, weights[i], counters);
@@ -191,7 +191,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       ScratchArray<Ray, kSize> shadows;  // every ray below count written by lightPathLanes
       lightPathLanes(lanes, litLanes, count, light, paths, shadows.data());
       if (paths.towards == 0) continue;
-      counters.shadow += static_cast<uint64_t>(__builtin_popcount(paths.towards));
+      counters.shadow += static_cast<uint64_t>(simd::laneCount(paths.towards));
       bool blocked[kSize];
       scene_.occluded8(shadows.data(), count, blocked);
       uint32_t unblocked = paths.towards;

@@ -433,7 +433,7 @@ uint32_t Scene::intersectLeafRays8(const Ray* rays, const RayPacket8& packet, ui
     if (active == 0) continue;
     // With few of the lanes' rays reaching the leaf, four triangles per test against one ray
     // wastes fewer lanes than one triangle against all of them.
-    if (__builtin_popcount(active) < kMinRaysPerLaneTest) {
+    if (simd::laneCount(active) < kMinRaysPerLaneTest) {
       oneByOne(active << at);
       continue;
     }

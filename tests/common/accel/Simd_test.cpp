@@ -20,5 +20,24 @@ TEST(Simd, LanesOfSetsExactlyTheLanesOfItsBits) {
   }
 }
 
+// laneCount agrees with a count bit by bit on every 16-bit pattern and on patterns spread
+// over all 32 bits (the bit-parallel sum carries between its bytes).
+TEST(Simd, LaneCountIsTheNumberOfSetBits) {
+  const auto counted = [](uint32_t mask) {
+    int n = 0;
+    for (int bit = 0; bit < 32; ++bit) n += (mask >> bit) & 1u;
+    return n;
+  };
+  for (uint32_t mask = 0; mask < (1u << 16); ++mask) {
+    ASSERT_EQ(simd::laneCount(mask), counted(mask)) << mask;
+  }
+  uint32_t state = 12345u;
+  for (int i = 0; i < 100000; ++i) {
+    state = state * 1664525u + 1013904223u;
+    ASSERT_EQ(simd::laneCount(state), counted(state)) << state;
+  }
+  EXPECT_EQ(simd::laneCount(0xffffffffu), 32);
+}
+
 }  // namespace
 }  // namespace prism
