@@ -213,19 +213,25 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
   stats_.casterSeconds = secondsSince(start);
 
   start = SteadyClock::now();
-  // Flux to irradiance: a receiver texel covers Ω·d²/cos θ of its surface.
-  std::vector<Color> irradiance(texels, Color(0.0f));
-  for (int view = 0; view < views; ++view) {
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const ReceiverTexel& t = receivers_->at(view, i, j);
-        const size_t k = (static_cast<size_t>(view) * n + j) * n + i;
-        if (!t.valid) continue;
-        const double area = frustum_.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
-        irradiance[k] = flux[k] * static_cast<float>(1.0 / area);
+  // Row by row on every thread from here on: each row's texels depend on the rows before only
+  // through what the previous step wrote, so the results are the same for any thread count.
+  const uint64_t rowCount = static_cast<uint64_t>(rows);
+  // Flux to irradiance, in place: a receiver texel covers Ω·d²/cos θ of its surface.
+  std::vector<Color>& irradiance = flux;
+  parallelFor(rowCount, threads, [&](uint64_t r) {
+    const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
+    for (int i = 0; i < n; ++i) {
+      const ReceiverTexel& t = receivers_->at(view, i, j);
+      const size_t k = static_cast<size_t>(r) * n + i;
+      if (!t.valid) {
+        irradiance[k] = Color(0.0f);
+        continue;
       }
+      const double area = frustum_.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
+      irradiance[k] = flux[k] * static_cast<float>(1.0 / area);
     }
-  }
+  });
+  const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
   if (settings.mapBlurRadius > 0 && settings.mapBlurSigma > 0.0f) {
     const int radius = settings.mapBlurRadius;
     std::vector<float> kernel(static_cast<size_t>(radius) + 1);
@@ -233,56 +239,61 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
       kernel[static_cast<size_t>(k)] = std::exp(-0.5f * static_cast<float>(k * k) /
                                                 (settings.mapBlurSigma * settings.mapBlurSigma));
     }
-    const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
     // Separable, over receiver texels only and not across depth jumps (a receiver's edge), with
-    // the weights renormalised over the texels taken.
+    // the weights renormalised over the texels taken. Each pass writes the other buffer.
+    std::vector<Color> blurred(texels);
     const auto pass = [&](int di, int dj) {
-      std::vector<Color> out(texels, Color(0.0f));
-      for (int view = 0; view < views; ++view) {
-        for (int j = 0; j < n; ++j) {
-          for (int i = 0; i < n; ++i) {
-            const ReceiverTexel& c = receivers_->at(view, i, j);
-            if (!c.valid) continue;
-            const float tol = depthTolerance(c, texelSize);
-            Color acc(0.0f);
-            float wsum = 0.0f;
-            for (int k = -radius; k <= radius; ++k) {
-              const int ii = i + k * di, jj = j + k * dj;
-              if (ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
-              const ReceiverTexel& t = receivers_->at(view, ii, jj);
-              if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
-              const float w = kernel[static_cast<size_t>(std::abs(k))];
-              acc += w * irradiance[(static_cast<size_t>(view) * n + jj) * n + ii];
-              wsum += w;
-            }
-            out[(static_cast<size_t>(view) * n + j) * n + i] = acc / wsum;
+      parallelFor(rowCount, threads, [&](uint64_t r) {
+        const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
+        for (int i = 0; i < n; ++i) {
+          const ReceiverTexel& c = receivers_->at(view, i, j);
+          Color& out = blurred[static_cast<size_t>(r) * n + i];
+          if (!c.valid) {
+            out = Color(0.0f);
+            continue;
           }
+          const float tol = depthTolerance(c, texelSize);
+          Color acc(0.0f);
+          float wsum = 0.0f;
+          for (int k = -radius; k <= radius; ++k) {
+            const int ii = i + k * di, jj = j + k * dj;
+            if (ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
+            const ReceiverTexel& t = receivers_->at(view, ii, jj);
+            if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
+            const float w = kernel[static_cast<size_t>(std::abs(k))];
+            acc += w * irradiance[(static_cast<size_t>(view) * n + jj) * n + ii];
+            wsum += w;
+          }
+          out = acc / wsum;
         }
-      }
-      irradiance = std::move(out);
+      });
+      irradiance.swap(blurred);
     };
     pass(1, 0);
     pass(0, 1);
   }
-  const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
   lookup_.resize(texels);
-  for (int view = 0; view < views; ++view) {
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const ReceiverTexel& t = receivers_->at(view, i, j);
-        const size_t k = (static_cast<size_t>(view) * n + j) * n + i;
-        lookup_[k].irradiance = irradiance[k];
-        if (!t.valid) continue;
-        const float tolerance = depthTolerance(t, texelSize);
-        lookup_[k].normal = t.normal;
-        lookup_[k].distance = t.distance;
-        lookup_[k].tolerance = tolerance;
-        if (!isBlack(irradiance[k])) {
-          lit_.extend(texelReach(frustum_, light.position, view, i, j, t.distance, tolerance));
-        }
+  // The lit box row by row, then joined: a box's bounds are minima and maxima, the same in any
+  // order.
+  std::vector<Aabb> rowLit(static_cast<size_t>(rows));
+  parallelFor(rowCount, threads, [&](uint64_t r) {
+    const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
+    for (int i = 0; i < n; ++i) {
+      const ReceiverTexel& t = receivers_->at(view, i, j);
+      const size_t k = static_cast<size_t>(r) * n + i;
+      lookup_[k].irradiance = irradiance[k];
+      if (!t.valid) continue;
+      const float tolerance = depthTolerance(t, texelSize);
+      lookup_[k].normal = t.normal;
+      lookup_[k].distance = t.distance;
+      lookup_[k].tolerance = tolerance;
+      if (!isBlack(irradiance[k])) {
+        rowLit[static_cast<size_t>(r)].extend(
+            texelReach(frustum_, light.position, view, i, j, t.distance, tolerance));
       }
     }
-  }
+  });
+  for (const Aabb& box : rowLit) lit_.extend(box);
   stats_.filterSeconds = secondsSince(start);
 }
 
