@@ -205,7 +205,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
       transport.start(s, ray.direction, flux);
     }
   });
-  std::vector<Color> flux(texels, Color(0.0f));
+  HugePageVector<Color> flux(texels, Color(0.0f));
   for (int row = 0; row < rows; ++row) {  // in texel order: the same sums for any thread count
     for (const Splat& s : rowSplats[static_cast<size_t>(row)]) flux[s.texel] += s.flux;
     stats_ += rowStats[static_cast<size_t>(row)];
@@ -217,7 +217,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
   // through what the previous step wrote, so the results are the same for any thread count.
   const uint64_t rowCount = static_cast<uint64_t>(rows);
   // Flux to irradiance, in place: a receiver texel covers Ω·d²/cos θ of its surface.
-  std::vector<Color>& irradiance = flux;
+  HugePageVector<Color>& irradiance = flux;
   parallelFor(rowCount, threads, [&](uint64_t r) {
     const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
     for (int i = 0; i < n; ++i) {
@@ -241,7 +241,7 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
     }
     // Separable, over receiver texels only and not across depth jumps (a receiver's edge), with
     // the weights renormalised over the texels taken. Each pass writes the other buffer.
-    std::vector<Color> blurred(texels);
+    HugePageVector<Color> blurred(texels);
     const auto pass = [&](int di, int dj) {
       parallelFor(rowCount, threads, [&](uint64_t r) {
         const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;

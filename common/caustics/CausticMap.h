@@ -19,6 +19,7 @@
 #include "caustics/ReceiverMap.h"
 #include "math/Aabb.h"
 #include "scene/Scene.h"
+#include "util/HugePages.h"
 
 namespace prism {
 
@@ -48,7 +49,7 @@ class CausticMap {
   bool empty() const { return frustum_.empty(); }
   const LightFrustum& frustum() const { return frustum_; }
   const ReceiverMap& receivers() const { return *receivers_; }
-  const std::vector<CasterTexel>& casters() const { return casters_; }
+  const HugePageVector<CasterTexel>& casters() const { return casters_; }
   // Caustic irradiance of a receiver texel (W/m²), numbered view-major then rows, after the blur.
   const Color& texelIrradiance(size_t texel) const { return lookup_[texel].irradiance; }
   size_t texelCount() const { return lookup_.size(); }
@@ -74,7 +75,7 @@ class CausticMap {
  private:
   LightFrustum frustum_;
   std::unique_ptr<ReceiverMap> receivers_;
-  std::vector<CasterTexel> casters_;
+  HugePageVector<CasterTexel> casters_;
   // What a lookup reads of a texel, in one 32-byte record: two share a cache line, where the
   // receiver map's texel and the irradiance apart took up to two lines each. blend() reads its
   // halves as vectors of four: (normal, distance) and (tolerance, irradiance).
@@ -99,7 +100,7 @@ class CausticMap {
   // The bilinear blend of the corners that pass the shadow-map test for a point facing `normal`.
   static Color blend(const TexelCorners& at, const Vec3& normal);
 
-  std::vector<LookupTexel> lookup_;
+  HugePageVector<LookupTexel> lookup_;
   Aabb lit_;
   CausticMapStats stats_;
 };

@@ -10,6 +10,7 @@
 
 #include "caustics/LightFrustum.h"
 #include "scene/Scene.h"
+#include "util/HugePages.h"
 
 namespace prism {
 
@@ -36,7 +37,7 @@ class ReceiverMap {
 
  private:
   int n_ = 0;
-  std::vector<ReceiverTexel> texels_;  // view-major, then rows
+  HugePageVector<ReceiverTexel> texels_;  // view-major, then rows
 };
 
 }  // namespace prism

@@ -1,6 +1,7 @@
 #include "util/HugePages.h"
 
 #include <cstdint>
+#include <new>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -10,7 +11,7 @@ namespace prism {
 
 void preferHugePages(const void* data, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr size_t kHugePage = size_t{2} << 20;
+  constexpr size_t kHugePage = kHugePageBytes;
   // Below two huge pages the aligned span inside may be empty; not worth the system call.
   if (data == nullptr || bytes < 2 * kHugePage) return;
   const uintptr_t begin = reinterpret_cast<uintptr_t>(data);
@@ -23,6 +24,19 @@ void preferHugePages(const void* data, size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+void* allocateHugePageBlock(size_t bytes) {
+  void* block = ::operator new (bytes, std::align_val_t{kHugePageBytes});
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const size_t whole = bytes & ~(kHugePageBytes - 1);
+  if (whole > 0) madvise(block, whole, MADV_HUGEPAGE);  // advice only: an error changes nothing
+#endif
+  return block;
+}
+
+void releaseHugePageBlock(void* block) noexcept {
+  ::operator delete (block, std::align_val_t{kHugePageBytes});
 }
 
 }  // namespace prism

@@ -69,5 +69,30 @@ TEST(HugePages, SmallAndEmptyRangesAreLeftAlone) {
   EXPECT_EQ(small[999], 7);
 }
 
+// A HugePageVector of a huge page or more starts on a 2 MiB boundary, and its first huge page is
+// advised where the kernel takes advice; smaller ones are ordinary. Both hold what is put in,
+// through growth (reallocation moves between the two kinds of block) and copies.
+TEST(HugePages, AHugePageVectorStartsOnAHugePage) {
+  HugePageVector<float> large(size_t{1} << 20, 2.0f);  // 4 MiB
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(large.data()) % kHugePageBytes, 0u);
+  const std::string mode = transparentHugePageMode();
+  if (!mode.empty() && mode != "never") {
+    const std::string flags = vmFlagsAt(large.data());
+    ASSERT_FALSE(flags.empty()) << "no mapping found in /proc/self/smaps";
+    EXPECT_NE(flags.find(" hg"), std::string::npos) << flags;
+  }
+  HugePageVector<float> grown(10, 3.0f);
+  for (size_t i = 0; i < (size_t{3} << 20); ++i) grown.push_back(static_cast<float>(i));
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(grown.data()) % kHugePageBytes, 0u);
+  EXPECT_EQ(grown[9], 3.0f);
+  EXPECT_EQ(grown.back(), static_cast<float>((size_t{3} << 20) - 1));
+  const HugePageVector<float> copy = large;
+  EXPECT_EQ(copy.size(), large.size());
+  EXPECT_EQ(copy.back(), 2.0f);
+  grown.resize(5);
+  grown.shrink_to_fit();  // back to an ordinary block
+  EXPECT_EQ(grown[4], 3.0f);
+}
+
 }  // namespace
 }  // namespace prism
