@@ -155,9 +155,10 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   }
   info.view = view;
   info.light = std::move(light);
-  const int tileSize = options_.distribution.tileSize > 0
-                           ? std::max(8, info.scale.side(options_.distribution.tileSize))
-                           : automaticTileSize(view->width, view->height, liveThreads);
+  const int tileSize =
+      options_.distribution.tileSize > 0
+          ? std::max(8, info.scale.side(options_.distribution.tileSize))
+          : streamedTileSize(view->width, view->height, view->samplesPerPixel, liveThreads);
   info.tiles = planTiles(view->width, view->height, tileSize);
   passes_.push_back(std::make_unique<Pass>(info, now()));
   live_.frame = info.frame;

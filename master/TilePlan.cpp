@@ -24,4 +24,14 @@ int automaticTileSize(int imageWidth, int imageHeight, int workerThreads) {
   return std::clamp(edge, 8, 64);
 }
 
+int streamedTileSize(int imageWidth, int imageHeight, int samplesPerPixel, int workerThreads) {
+  constexpr double kMinTileSamples = 16384.0;
+  constexpr double kMinTilesPerWorker = 4.0;
+  const double bySamples = std::sqrt(kMinTileSamples / std::max(1, samplesPerPixel));
+  const double byBalance = std::sqrt(static_cast<double>(imageWidth) * imageHeight /
+                                     (kMinTilesPerWorker * std::max(1, workerThreads)));
+  const int edge = static_cast<int>(std::min(bySamples, byBalance) / 8.0) * 8;
+  return std::clamp(edge, 8, 128);
+}
+
 }  // namespace prism
