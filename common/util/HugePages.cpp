@@ -11,12 +11,11 @@ namespace prism {
 
 void preferHugePages(const void* data, size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr size_t kHugePage = kHugePageBytes;
   // Below two huge pages the aligned span inside may be empty; not worth the system call.
-  if (data == nullptr || bytes < 2 * kHugePage) return;
+  if (data == nullptr || bytes < 2 * kHugePageBytes) return;
   const uintptr_t begin = reinterpret_cast<uintptr_t>(data);
-  const uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
-  const uintptr_t last = (begin + bytes) & ~(kHugePage - 1);
+  const uintptr_t first = (begin + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+  const uintptr_t last = (begin + bytes) & ~(kHugePageBytes - 1);
   if (last <= first) return;
   // Advice only: an error (no THP in this kernel, a range not from mmap) changes nothing.
   madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
