@@ -1,5 +1,7 @@
 #include "scene/Camera.h"
 
+#include <new>
+
 #include "accel/RayRows.h"
 #include "accel/Simd.h"
 
@@ -62,7 +64,9 @@ void Camera::generateRays(const float* x, const float* y, int count, Ray* rays) 
       simd::storeRays(origin, d, tMin, Float4{end, end, end, end}, rays + first);
     }
   }
-  for (; first < count; ++first) rays[first] = generateRay(x[first], y[first]);
+  // The rest made in their places: assigned from a returned Ray, a ray was copied with 16-byte
+  // loads before generateRay's 4-byte stores had landed (a store-forwarding stall).
+  for (; first < count; ++first) ::new (&rays[first]) Ray(generateRay(x[first], y[first]));
 }
 
 RayDifferential Camera::pixelDifferential(const Ray& ray) const {
