@@ -29,9 +29,25 @@ inline V load(const float* p) {
   return v;
 }
 
+// x in every lane, bit for bit: a -0 stays -0. (`V{} + x`, the obvious spelling, is an addition
+// to +0 that the compiler must keep, an instruction a broadcast, and turns -0 into +0; a loop
+// over the lanes compiles to a chain of inserts.)
 template <class V>
 inline V broadcast(float x) {
-  return V{} + x;
+  static_assert(sizeof(V) == 16 || sizeof(V) == 32);
+#if defined(__AVX__)
+  if constexpr (sizeof(V) == 32) return reinterpret_cast<V>(_mm256_set1_ps(x));
+#endif
+#if defined(__SSE2__)
+  const Float4 half = reinterpret_cast<Float4>(_mm_set1_ps(x));
+#else
+  const Float4 half = {x, x, x, x};
+#endif
+  if constexpr (sizeof(V) == 16) {
+    return half;
+  } else {
+    return __builtin_shufflevector(half, half, 0, 1, 2, 3, 0, 1, 2, 3);
+  }
 }
 
 // Written with intrinsics where the vector width has them: GCC does not turn a vector `?:`

@@ -140,9 +140,11 @@ TEST(WideBvh, SimdSlabTestMatchesTheScalarOne) {
       ray.direction[i / 4 % 3] = (i % 8 == 0) ? 0.0f : -0.0f;
     }
     if (i % 16 == 0) ray.origin.x = node.bounds[0][i % 7];  // in a slab plane
+    ray.tMin = 0.0f;
     const float tMax = (i % 3 == 0) ? 5.0f : kInf;
     float entryLanes[WideBvhNode::kWidth];
-    const uint32_t mask = intersectChildren(node, WideRay(ray), 0.0f, tMax, entryLanes);
+    const uint32_t mask =
+        intersectChildren(node, WideRay(ray), simd::broadcast<SlabLanes>(tMax), entryLanes);
     float entry[WideBvhNode::kWidth];
     const uint32_t scalarMask = intersectChildrenScalar(node, ray, 0.0f, tMax, entry);
     ASSERT_EQ(mask, scalarMask) << i;
@@ -184,7 +186,10 @@ TEST(WideBvh, TreeBoxTestRejectsOnlyRaysTheRootRejects) {
     }
     ++rejected;
     float entry[WideBvhNode::kWidth];
-    ASSERT_EQ(intersectChildren(wide.nodes()[0], WideRay(ray), ray.tMin, tMax, entry), 0u) << i;
+    ASSERT_EQ(
+        intersectChildren(wide.nodes()[0], WideRay(ray), simd::broadcast<SlabLanes>(tMax), entry),
+        0u)
+        << i;
   }
   EXPECT_GT(rejected, 5000);
   EXPECT_GT(entered, 5000);
