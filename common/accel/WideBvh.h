@@ -39,15 +39,12 @@ using SlabLanes = simd::Float8;
 using SlabLanes = simd::Float4;
 #endif
 
-// What a ray needs for the slab test of every node: origin, reciprocal direction, and which
-// plane of each axis it meets first. Origin, reciprocal direction and tMin are also kept
-// broadcast to every lane, built once a walk: a node test then reads them from memory (an
-// operand of its subtraction or multiplication) instead of broadcasting them again after each
-// leaf call, which clobbers every vector register. With 5–7 node tests a walk that is about a
-// third of a node test's instructions.
+// What a ray needs for the slab test of every node: which plane of each axis it meets first, and
+// its origin, reciprocal direction and tMin broadcast to every lane, made once a walk. The walk
+// calls its leaf visitor between node tests, and a call clobbers every vector register; node
+// tests that broadcast these again after each took 122 instructions where they now take 75
+// (docs/performance.md, "A node test's instructions").
 struct WideRay {
-  float origin[3];
-  float invDir[3];
   int nearSide[3];  // 0: lower plane first (direction >= +0), 1: upper plane first
   SlabLanes originLanes[3];
   SlabLanes invDirLanes[3];
@@ -56,11 +53,10 @@ struct WideRay {
 
   explicit WideRay(const Ray& ray) {
     for (int a = 0; a < 3; ++a) {
-      origin[a] = ray.origin[a];
-      invDir[a] = 1.0f / ray.direction[a];
-      nearSide[a] = std::signbit(invDir[a]) ? 1 : 0;  // -0 gives -inf: upper plane first
-      originLanes[a] = simd::broadcast<SlabLanes>(origin[a]);
-      invDirLanes[a] = simd::broadcast<SlabLanes>(invDir[a]);
+      const float invDir = 1.0f / ray.direction[a];
+      nearSide[a] = std::signbit(invDir) ? 1 : 0;  // -0 gives -inf: upper plane first
+      originLanes[a] = simd::broadcast<SlabLanes>(ray.origin[a]);
+      invDirLanes[a] = simd::broadcast<SlabLanes>(invDir);
     }
     tMinLanes = simd::broadcast<SlabLanes>(ray.tMin);
     farScaleLanes = simd::broadcast<SlabLanes>(kSlabFarScale);

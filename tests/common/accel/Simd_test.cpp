@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <limits>
+
 namespace prism {
 namespace {
 
@@ -17,6 +20,27 @@ TEST(Simd, LanesOfSetsExactlyTheLanesOfItsBits) {
     const simd::Int8 m = simd::lanesOf<simd::Int8>(bits);
     for (int i = 0; i < 8; ++i) EXPECT_EQ(m[i], (bits >> i & 1u) ? -1 : 0) << bits << " " << i;
     EXPECT_EQ(simd::laneMask(m), bits);
+  }
+}
+
+// broadcast puts x in every lane bit for bit: -0 stays -0 (an addition to +0 would make it +0),
+// and infinities, NaN and subnormals pass unchanged, in four lanes and in eight.
+TEST(Simd, BroadcastKeepsEveryBit) {
+  const float values[] = {-0.0f,
+                          0.0f,
+                          1.5f,
+                          -3.25e-41f,
+                          std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(),
+                          std::numeric_limits<float>::quiet_NaN()};
+  for (const float x : values) {
+    const simd::Float4 four = simd::broadcast<simd::Float4>(x);
+    const simd::Float8 eight = simd::broadcast<simd::Float8>(x);
+    for (int i = 0; i < 8; ++i) {
+      const float fourLane = four[i % 4], eightLane = eight[i];
+      EXPECT_EQ(std::memcmp(&fourLane, &x, sizeof x), 0) << x << " lane " << i % 4;
+      EXPECT_EQ(std::memcmp(&eightLane, &x, sizeof x), 0) << x << " lane " << i;
+    }
   }
 }
 
