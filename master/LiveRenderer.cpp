@@ -370,12 +370,12 @@ bool LiveRenderer::wantsTiles(uint32_t frame) {
 }
 
 void LiveRenderer::tileFinished(uint32_t frame, TileResult&& tile, int rank) {
-  if (!tileFinishedLocked(frame, std::move(tile), rank)) return;
+  if (!recordFinishedTile(frame, std::move(tile), rank)) return;
   changed_.notify_all();
   link_.wake();  // the coordinator may be waiting for the slaves' messages
 }
 
-bool LiveRenderer::tileFinishedLocked(uint32_t frame, TileResult&& tile, int rank) {
+bool LiveRenderer::recordFinishedTile(uint32_t frame, TileResult&& tile, int rank) {
   const std::lock_guard<std::mutex> lock(mutex_);
   // The dispatcher accepts only tiles of frames it still runs, and a pass that setView() drops
   // has its frame ended first; a pass may have been dropped in between, though.

@@ -225,8 +225,9 @@ class LiveRenderer final : private FrameListener {
   // must wait for.
   bool mayStartLocked() const;
   void frameFinishedLocked(const Pass& pass, double end);
-  // tileFinished's part under the lock; whether the coordinator must wake for it.
-  bool tileFinishedLocked(uint32_t frame, TileResult&& tile, int rank);
+  // tileFinished's bookkeeping; takes the lock itself (unlike the *Locked functions, which
+  // expect it held). Returns whether the coordinator must wake for the tile.
+  bool recordFinishedTile(uint32_t frame, TileResult&& tile, int rank);
   // Every pass's news the listener may hear now, in order (the front pass's, and those after it
   // once it has ended).
   void takeDeliveriesLocked(std::vector<Event>& out);
