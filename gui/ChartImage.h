@@ -1,11 +1,11 @@
-// Draws a chart (master/Chart.h: the charts of `prism speedup` and `prism sweep`) with Qt Charts
-// into a PNG, with no display needed: without one, Qt's offscreen platform is chosen before the
-// application starts. Matches ChartWriter.
+// Draws a chart (master/analysis/Chart.h: the charts of `prism speedup` and `prism sweep`) with Qt
+// Charts into a PNG, with no display needed: without one, Qt's offscreen platform is chosen before
+// the application starts. Matches ChartWriter.
 #pragma once
 
 #include <string>
 
-#include "master/Chart.h"
+#include "master/analysis/Chart.h"
 
 namespace prism {
 

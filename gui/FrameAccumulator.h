@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "image/ImageRgb.h"
-#include "master/LiveRenderer.h"
+#include "master/runtime/LiveRenderer.h"
 
 namespace prism {
 

@@ -12,7 +12,7 @@
 #include "gui/CameraController.h"
 #include "gui/FrameAccumulator.h"
 #include "gui/LightSpaceImage.h"
-#include "master/LiveRenderer.h"
+#include "master/runtime/LiveRenderer.h"
 
 class QSpinBox;
 class QRadioButton;

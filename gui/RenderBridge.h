@@ -6,7 +6,7 @@
 #include <QObject>
 #include <memory>
 
-#include "master/LiveRenderer.h"
+#include "master/runtime/LiveRenderer.h"
 
 Q_DECLARE_METATYPE(prism::PassInfo)
 Q_DECLARE_METATYPE(prism::LiveStats)

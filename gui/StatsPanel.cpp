@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "gui/FrameView.h"
-#include "master/ResourceCheck.h"
+#include "master/runtime/ResourceCheck.h"
 
 using namespace QtCharts;
 

@@ -1,10 +1,10 @@
 // `prism view` on rank 0: the Qt application, the window, and LiveRenderer on its coordinator
-// thread (the one thread that calls MPI). Matches ViewerRunner (master/ViewCommand.h).
+// thread (the one thread that calls MPI). Matches ViewerRunner (master/commands/ViewCommand.h).
 #pragma once
 
 #include <iosfwd>
 
-#include "master/ViewCommand.h"
+#include "master/commands/ViewCommand.h"
 
 namespace prism {
 

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "master/Chart.h"
-#include "master/ViewCommand.h"
+#include "master/analysis/Chart.h"
+#include "master/commands/ViewCommand.h"
 
 namespace prism {
 

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "accel/Simd.h"
-#include "master/Cli.h"
+#include "master/commands/Cli.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiModule.h"
 #include "util/PhysicalMemory.h"

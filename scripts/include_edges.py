@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Lists the include edges between Prism's source folders and the cycles among them.
 
-A folder is a directory of common/ (common/scene, common/render, ...) or one of the top-level
-rank folders (master, slave, gui). master/main.cpp, the composition root that may include every
+A folder is a directory of common/ (common/scene, common/render, ...) or of master/
+(master/runtime, master/analysis, master/commands), or one of the rank folders slave and gui. master/main.cpp, the composition root that may include every
 folder, counts as a node of its own ("main"). An edge A -> B means some file in A includes a file in B.
 The script resolves each quoted include the way the build does: first against the repository
 root (master/..., slave/..., gui/...), then against common/ (the core's include root).
@@ -27,8 +27,8 @@ def folder_of(root: Path, path: Path) -> str:
     rel = path.relative_to(root)
     if rel.as_posix() == "master/main.cpp":
         return "main"
-    if rel.parts[0] == "common":
-        return "common/" + rel.parts[1] if len(rel.parts) > 2 else "common"
+    if rel.parts[0] in ("common", "master"):
+        return rel.parts[0] + "/" + rel.parts[1] if len(rel.parts) > 2 else rel.parts[0]
     return rel.parts[0]
 
 

@@ -250,6 +250,72 @@ TEST(Layering, TheFoldersOfCommonFormNoCycle) {
   EXPECT_EQ(folderCycle(project()), "");
 }
 
+// The layer order docs/architecture.md draws, top first: a folder includes only folders of a
+// lower layer (folders of one layer never include each other). master/main.cpp, the
+// composition root, stands above all and may include anything.
+int layerOf(const std::string& folder) {
+  static const std::map<std::string, int> layers = {
+      {"gui", 15},
+      {"master/commands", 14},
+      {"master/analysis", 13},
+      {"master/runtime", 12},
+      {"slave", 12},
+      {"common/wire", 10},
+      {"common/cluster", 9},
+      {"common/render", 8},
+      {"common/caustics", 7},
+      {"common/shading", 6},
+      {"common/parse", 6},
+      {"common/scene", 5},
+      {"common/geometry", 4},
+      {"common/accel", 3},
+      {"common/image", 3},
+      {"common/transport", 2},
+      {"common/math", 1},
+      {"common/util", 1},
+  };
+  const auto it = layers.find(folder);
+  return it == layers.end() ? -1 : it->second;
+}
+
+std::string layerFolderOf(const std::string& file) {
+  const size_t first = file.find('/');
+  const std::string top = file.substr(0, first);
+  if (top == "common" || top == "master") return file.substr(0, file.find('/', first + 1));
+  return top;
+}
+
+std::string layerViolations(const IncludeGraph& graph) {
+  std::string found;
+  for (const Include& inc : graph.includes()) {
+    if (inc.resolved.empty() || inc.file == "master/main.cpp") continue;
+    const std::string from = layerFolderOf(inc.file);
+    const std::string to = layerFolderOf(inc.resolved);
+    if (from == to) continue;
+    const int fromLayer = layerOf(from);
+    const int toLayer = layerOf(to);
+    if (fromLayer < 0) {
+      found += inc.file + ": in a folder with no layer (add it to layerOf and the drawing)\n";
+    } else if (toLayer < 0 || toLayer >= fromLayer) {
+      found += where(inc) + "  (" + from + " may not include " + to + ")\n";
+    }
+  }
+  return found;
+}
+
+TEST(Layering, EveryFolderIncludesOnlyTheLayersBelowIt) {
+  EXPECT_EQ(layerViolations(project()), "");
+}
+
+TEST(Layering, MasterNeverIncludesGui) {
+  EXPECT_EQ(violations(project(),
+                       [](const Include& inc) {
+                         return startsWith(inc.file, "master/") && inc.file != "master/main.cpp" &&
+                                startsWith(inc.resolved, "gui/");
+                       }),
+            "");
+}
+
 // The checker itself: a planted tree with one of each violation is caught.
 TEST(Layering, APlantedViolationOfEachKindIsFound) {
   const fs::path root = fs::temp_directory_path() / "prism-layering-test";
@@ -282,6 +348,22 @@ TEST(Layering, APlantedViolationOfEachKindIsFound) {
                          return startsWith(i.file, "common/") && startsWith(i.resolved, "master/");
                        }),
             "");
+  fs::remove_all(root);
+
+  // Upward edges: the runtime naming a command, and the scene naming the renderer.
+  write("master/runtime/R.h", "#include \"master/commands/C.h\"\n");
+  write("master/commands/C.h", "#include \"master/runtime/R2.h\"\n");
+  write("master/runtime/R2.h", "");
+  write("common/scene/S.h", "#include \"render/T.h\"\n");
+  write("common/render/T.h", "#include \"scene/S2.h\"\n");
+  write("common/scene/S2.h", "");
+  const IncludeGraph upward(root);
+  EXPECT_EQ(
+      layerViolations(upward),
+      "common/scene/S.h:1: #include \"render/T.h\"  (common/scene may not include "
+      "common/render)\n"
+      "master/runtime/R.h:1: #include \"master/commands/C.h\"  (master/runtime may not include "
+      "master/commands)\n");
   fs::remove_all(root);
 }
 

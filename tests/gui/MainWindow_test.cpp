@@ -24,9 +24,9 @@
 #include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
 #include "image/ToneMap.h"
-#include "master/CausticPasses.h"
-#include "master/FrameRenderer.h"
-#include "master/ResourceCheck.h"
+#include "master/runtime/CausticPasses.h"
+#include "master/runtime/FrameRenderer.h"
+#include "master/runtime/ResourceCheck.h"
 #include "parse/SceneLoader.h"
 
 namespace prism {

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "master/SpeedupReport.h"
+#include "master/analysis/SpeedupReport.h"
 
 namespace prism {
 namespace {

@@ -17,8 +17,8 @@
 
 #include "PrismProcess.h"
 #include "image/ImageIo.h"
-#include "master/PartialFrame.h"
-#include "master/TilePlan.h"
+#include "master/commands/PartialFrame.h"
+#include "master/runtime/TilePlan.h"
 
 extern char** environ;
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "master/FrameRenderer.h"
+#include "master/runtime/FrameRenderer.h"
 #include "shading/Optics.h"
 
 namespace prism {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "../geometry/TestMeshes.h"
-#include "master/FrameRenderer.h"
+#include "master/runtime/FrameRenderer.h"
 #include "math/Random.h"
 #include "parse/SceneLoader.h"
 #include "scene/PrimitiveRef.h"

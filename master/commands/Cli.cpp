@@ -1,0 +1,483 @@
+#include "master/commands/Cli.h"
+
+#include <CLI/CLI.hpp>
+#include <cctype>
+#include <iostream>
+#include <memory>
+
+#include "master/commands/RenderCommand.h"
+#include "master/commands/SpeedupCommand.h"
+#include "master/commands/SweepCommand.h"
+#include "master/runtime/ScheduleNames.h"
+#include "scene/SettingLimits.h"
+#include "scene/SettingNames.h"
+#include "util/MemorySize.h"
+
+namespace prism {
+namespace {
+
+constexpr const char* kVersion = "0.1.0";
+
+// An option whose value is one of a setting's names (scene/SettingNames.h), spelt as in scene
+// files or with '-' for '_', in any case; help and errors list the canonical names.
+template <typename T, typename E>
+CLI::Option* addNamed(CLI::App* command, const std::string& flags, T& target,
+                      const NameTable<E>& names, const std::string& help) {
+  CLI::Validator toValue(
+      [names](std::string& text) {
+        const std::optional<E> value = names.find(text);
+        if (!value) return "unknown value '" + text + "' (expected " + names.list() + ")";
+        text = std::to_string(static_cast<int>(*value));  // CLI11 converts enums from integers
+        return std::string();
+      },
+      "");
+  return command->add_option(flags, target, help)
+      ->transform(toValue)
+      ->option_text(names.list("|", "|"));
+}
+
+// An option bounded like the scene-file key it overrides (scene/SettingLimits.h).
+template <typename T>
+CLI::Option* addLimited(CLI::App* command, const std::string& flags, T& target,
+                        const SettingLimit& limit, const std::string& help) {
+  return command->add_option(flags, target, help)->check(CLI::Range(limit.min, limit.max));
+}
+
+// -W, -H and -s: every command that renders has them.
+void addImageSizeOptions(CLI::App* command, RenderOptions& o, const std::string& sppHelp) {
+  addLimited(command, "-W,--width", o.width, limits::kWidth,
+             "Image width in pixels (overrides the scene)");
+  addLimited(command, "-H,--height", o.height, limits::kHeight,
+             "Image height in pixels (overrides the scene)");
+  addLimited(command, "-s,--spp", o.samples, limits::kSamples, sppHelp);
+}
+
+void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
+  command
+      ->add_option_function<std::string>(
+          "--memory-limit",
+          [&o](const std::string& text) { o.memoryLimit = parseMemorySize(text); },
+          "Memory a run may plan to use, e.g. 512M, 8G, 1.5T (default: physical memory); "
+          "larger requests are refused before anything is allocated, see docs/reliability.md")
+      ->option_text("SIZE");
+}
+
+// The options `render` and `view` share: scene, overrides, threads and distribution.
+void addSceneOptions(CLI::App* render, RenderOptions& o) {
+  render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  render
+      ->add_option("-t,--threads", o.distribution.threads,
+                   "Worker threads (default 0: all available cores)")
+      ->check(CLI::Range(0, 4096));
+  addImageSizeOptions(render, o, "Samples per pixel, stratified (overrides the scene)");
+  addLimited(render, "-d,--max-depth", o.maxDepth, limits::kMaxDepth,
+             "Maximum reflection/refraction depth");
+  render->add_option("--seed", o.seed, "Seed of the per-pixel random streams");
+  render->add_option("--exposure", o.exposure, "Radiance multiplier before PNG tone mapping")
+      ->check(CLI::PositiveNumber);
+  addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
+           "Ray/triangle intersector: moller_trumbore (default), plane_inside or watertight");
+  render
+      ->add_option("--tile-size", o.distribution.tileSize,
+                   "Tile edge in pixels (default 0: automatic)")
+      ->check(CLI::Range(0, 4096));
+  addNamed(render, "--schedule", o.distribution.schedule, kScheduleNames,
+           "MPI tile schedule: dynamic (pull queue, default) or static (interleaved)");
+  render
+      ->add_option("--lease-timeout", o.distribution.leaseSeconds,
+                   "Seconds a slave may hold tiles without delivering one before they are "
+                   "re-issued and it is retired (default 30)")
+      ->check(CLI::Range(0.1, 86400.0));
+  render
+      ->add_option("--heartbeat-timeout", o.distribution.heartbeatTimeoutSeconds,
+                   "Seconds of silence after which a slave is taken for dead and its tiles "
+                   "re-issued; slaves heartbeat twice a second (default 2)")
+      ->check(CLI::Range(0.6, 86400.0));
+  render
+      ->add_option("--prefetch", o.distribution.prefetch,
+                   "Tiles in flight per slave render thread (default 2)")
+      ->check(CLI::Range(1, 64));
+  addMemoryLimitOption(render, o);
+  render->add_flag(
+      "--overwrite", o.overwrite,
+      "Replace an existing image file (a finished frame is never replaced without it)");
+  // Testing only, so not in --help: makes one slave misbehave.
+  render
+      ->add_option_function<std::string>(
+          "--inject-fault",
+          [&o](const std::string& text) { o.distribution.fault = parseFaultInjection(text); }, "")
+      ->group("");
+}
+
+constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics' section)";
+
+// The caustics options `render` and `view` share: the method, the photon budget and the
+// caustic-map parameters.
+void addCausticMethodOptions(CLI::App* command, RenderOptions& o) {
+  const char* caustics = kCausticsGroup;
+  addNamed(command, "--caustics", o.causticMethod, kCausticMethodNames,
+           "Caustics method: none, photon_map or caustic_map (or map; default: the scene's)")
+      ->group(caustics);
+  addLimited(command, "--photons", o.photons, limits::kPhotons,
+             "Photons emitted per pass towards the caustic casters (implies photon_map)")
+      ->group(caustics);
+  addLimited(command, "--map-resolution", o.mapResolution, limits::kMapResolution,
+             "Caustic map: texels per side of each light-space view (default 512)")
+      ->group(caustics);
+  addLimited(command, "--map-steps", o.mapSteps, limits::kMapSteps,
+             "Caustic map: iterations of the receiver-distance estimate (default 10)")
+      ->group(caustics);
+  command
+      ->add_option("--map-blur-sigma", o.mapBlurSigma,
+                   "Caustic map: Gaussian blur sigma in texels (default 1)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(caustics);
+  addLimited(command, "--map-blur-radius", o.mapBlurRadius, limits::kMapBlurRadius,
+             "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
+      ->group(caustics);
+  addNamed(command, "--map-paths", o.mapPaths, kCausticMapPathsNames,
+           "Caustic map: traced (through every caster surface, default) or front_face (one "
+           "interface, as in the thesis)")
+      ->group(caustics);
+}
+
+// The caustics options of `render` only: the viewer always refines progressively, with the
+// scene's gather settings.
+void addCausticOptions(CLI::App* render, RenderOptions& o) {
+  const char* caustics = kCausticsGroup;
+  addCausticMethodOptions(render, o);
+  CLI::Option* gather = addLimited(render, "--gather", o.gather, limits::kGather,
+                                   "Nearest photons per estimate, k (default 100)");
+  gather->group(caustics);
+  render
+      ->add_option("--gather-noise", o.gatherNoise,
+                   "Automatic k (the scene's gather: auto): each photon's own k, up to "
+                   "1/noise^2 where the photon density is smooth, fewer at folds and foci; "
+                   "e.g. 0.05 (k up to 400)")
+      ->check(CLI::Range(limits::kSmallestGatherNoise, 1.0f))
+      ->excludes(gather)
+      ->group(caustics);
+  render
+      ->add_option("--gather-radius", o.gatherRadius,
+                   "Largest gather radius (k-NN), or the first radius (progressive); world units")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_flag_callback(
+          "--progressive", [&o] { o.progressive = true; },
+          "Progressive photon mapping: passes with a shrinking radius (implies photon_map)")
+      ->group(caustics);
+  addLimited(render, "--passes", o.passes, limits::kPasses,
+             "Progressive photon passes (implies photon_map)")
+      ->group(caustics);
+  render
+      ->add_option("--time-budget", o.timeBudget,
+                   "Seconds after which no further progressive pass starts")
+      ->check(CLI::PositiveNumber)
+      ->group(caustics);
+  render
+      ->add_option("--photon-image", o.photonImagePath,
+                   "Debug: also write an image of where the stored photons landed")
+      ->group(caustics);
+  render
+      ->add_option("--caustic-map-debug", o.causticMapDebugPrefix,
+                   "Debug: write the caustic maps as PREFIX-light<i>-<map>.png (receiver "
+                   "positions, caster positions and normals, caustic irradiance)")
+      ->group(caustics);
+}
+
+void addRenderCommand(CLI::App& app, RenderOptions& o) {
+  CLI::App* render = app.add_subcommand(
+      "render",
+      "Render a scene to an image file.\n"
+      "Scenes: Prism YAML (.yaml/.yml, see docs/scene-format.md) or NFF (.nff).\n"
+      "Images: .png (tone-mapped sRGB) or .exr (linear radiance), by extension.");
+  addSceneOptions(render, o);
+  render->add_option("-o,--output", o.outputPath,
+                     "Image to write; the extension picks the format (default: <scene>.png)");
+  render->add_flag("-q,--quiet", o.quiet, "No progress bar and no summary");
+  render->add_option("--status-file", o.statusFile, "")->group("");  // tests: tiles done so far
+  render->add_flag("--save-partial", o.savePartial,
+                   "On Ctrl-C (SIGINT/SIGTERM) write the finished tiles to <output>.partial.<ext>, "
+                   "marked partial; the run exits with status 130 either way");
+  addCausticOptions(render, o);
+}
+
+void addViewCommand(CLI::App& app, ViewOptions& o) {
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Render a scene live in a Qt window (rank 0 only; other ranks render tiles).\n"
+      "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
+      "N normals, n image, R/P/C caustic-map casters/receivers/irradiance, b caustic-map\n"
+      "blur, q quits, h or F1 shows every key. See docs/viewer.md.");
+  addSceneOptions(view, o.render);
+  addCausticMethodOptions(view, o.render);
+  view->add_option("--preview-scale", o.previewScale,
+                   "While the camera moves, frames may drop to 3/4, 2/3, 1/2, 1/3, ... down to "
+                   "1/N of each side to meet --frame-time (default 4; 1: always full resolution)")
+      ->check(CLI::Range(1, 64));
+  view->add_option("--frame-time", o.frameTimeMilliseconds,
+                   "Target time of a frame while the camera moves, in ms (default 33.3: 30 "
+                   "frames/s); the resolution drops only when a frame would miss it. 0: no "
+                   "target, always full resolution")
+      ->check(CLI::Range(0.0, 60000.0));
+  view->add_flag_callback(
+      "--no-pipeline", [&o] { o.pipeline = false; },
+      "Hand out a frame's tiles only once the frame before is complete (to measure what "
+      "pipelining gains)");
+  view->add_option("--max-passes", o.maxPasses,
+                   "Full-resolution passes of --spp samples averaged while the camera is still "
+                   "(default 64)")
+      ->check(CLI::Range(1, 1 << 20));
+  view->add_option("--speedup-csv", o.speedupCsv,
+                   "Speedup table (columns p,seconds,speedup,efficiency) to chart at start")
+      ->check(CLI::ExistingFile);
+  view->add_option("--exit-after-passes", o.exitAfterPasses,
+                   "Quit once this many full passes of the starting view are done (scripts)")
+      ->check(CLI::Range(1, 1 << 20));
+  view->add_option("--save", o.savePath,
+                   "Save the image here (.png or .exr) when the viewer quits");
+  view->add_option("--screenshot", o.screenshotPath,
+                   "Save a picture of the whole window (.png) after --screenshot-after, then quit");
+  view->add_option("--keys", o.keys,
+                   "Type these keys into the window at start, in order, as if pressed (scripts "
+                   "and screenshots), e.g. --keys C for the caustic map or --keys bC")
+      ->check([](const std::string& keys) {
+        for (const char c : keys) {
+          if (!std::isalpha(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '=') {
+            return std::string("only letters and + - = can be typed, not '") + c + "'";
+          }
+        }
+        return std::string();
+      });
+  view->add_option("--screenshot-after", o.screenshotSeconds,
+                   "Seconds after start for --screenshot (default 2)")
+      ->check(CLI::Range(0.0, 3600.0));
+  view->add_option("--benchmark-moves", o.benchmarkMoves,
+                   "Once the first full image is shown, orbit the camera N times, one move every "
+                   "--benchmark-interval ms; print the frame rate and frame times while moving "
+                   "(a 'realtime' line for scripts) and the time to full resolution, then quit")
+      ->check(CLI::Range(1, 100000));
+  view->add_option("--benchmark-interval", o.benchmarkMoveMilliseconds,
+                   "Milliseconds between --benchmark-moves moves (default 10, a mouse drag's "
+                   "event rate)")
+      ->check(CLI::Range(1.0, 10000.0));
+}
+
+void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
+  CLI::App* speedup = app.add_subcommand(
+      "speedup",
+      "Measure strong scaling inside one MPI job (table, CSVs, charts).\n"
+      "The same frame is rendered by 1..N-1 slaves (rank 0 coordinates, the other slaves idle)\n"
+      "and by 1 process on 1 thread (T1, no MPI).\n"
+      "Every point is repeated; set-up (parse, broadcast, scene build, photon pass) is timed\n"
+      "apart. Prints speedup, efficiency, Karp-Flatt serial fraction, per-slave busy time and an\n"
+      "Amdahl fit; writes PREFIX.csv, PREFIX-projection.csv, PREFIX-speedup.png and\n"
+      "PREFIX-projection.png (charts need Qt). The projection simulates the tile queue with\n"
+      "the measured tile costs and link for up to --project-workers workers and images up to\n"
+      "8K, validated on the measured points. Start it as: mpiexec -n N prism speedup SCENE\n"
+      "(--oversubscribe when N exceeds the cores). See docs/scaling.md.");
+  speedup->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  speedup->add_option("-o,--output", o.outputPrefix,
+                      "Prefix of the files written (default: speedup-<scene name>)");
+  addNamed(speedup, "--schedules", o.schedules, kScheduleNames,
+           "Tile schedules to measure, comma-separated (default: dynamic,static)")
+      ->delimiter(',')
+      ->option_text("dynamic,static");
+  speedup
+      ->add_option("--tile-sizes", o.tileSizes,
+                   "Tile edges to sweep, comma-separated (default: the automatic size for N-1 "
+                   "slaves)")
+      ->delimiter(',')
+      ->check(CLI::Range(4, 4096));
+  speedup
+      ->add_option("--threads-per-rank", o.threadsPerRank,
+                   "Render threads of each slave (default 1); p counts slaves x threads")
+      ->check(CLI::Range(1, 4096));
+  speedup
+      ->add_option("-r,--repeats", o.repeats,
+                   "Runs of every point; medians are reported "
+                   "with min and max (default 5)")
+      ->check(CLI::Range(1, 1000));
+  speedup
+      ->add_option("--prefetch", o.render.distribution.prefetch,
+                   "Tiles in flight per slave render thread (default 2)")
+      ->check(CLI::Range(1, 64));
+  speedup
+      ->add_option("--project-workers", o.projectWorkers,
+                   "Largest worker count of the projection (default 1024)")
+      ->check(CLI::Range(1, 1 << 16));
+  addImageSizeOptions(speedup, o.render, "Samples per pixel (overrides the scene)");
+  addCausticMethodOptions(speedup, o.render);
+  addMemoryLimitOption(speedup, o.render);
+  speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
+}
+
+void addSweepCommand(CLI::App& app, SweepOptions& o) {
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "Chart speed against accuracy of the caustic methods (CSV, chart).\n"
+      "Renders the scene with each caustic method over a range of budgets, times every point\n"
+      "(median of --repeats runs, taken in rounds) and scores it\n"
+      "against a reference: RMSE, relative RMSE, MRSE, max error and caustic flux ratio, over\n"
+      "the whole frame and the caustic region. Families (--families):\n"
+      "  photons     photon map: photons per pass     k           photon map: photons gathered\n"
+      "  autok       photon map, automatic k: its largest k (the target noise 1/sqrt(k))\n"
+      "  passes      progressive photon map: passes   resolution  caustic map: texels per side\n"
+      "  steps       caustic map: distance iterations blur        caustic map: blur half-width\n"
+      "  spp         samples per pixel, with the scene's own method\n"
+      "Reference (--reference): analytic for scenes whose casters are flat mirrors in one plane\n"
+      "(scenes/caustic-mirror.yaml), else progressive photon mapping at a high budget, cached\n"
+      "as PREFIX-reference.exr/.csv, or an image file. Writes PREFIX.csv and the chart\n"
+      "PREFIX.png (error against time, log-log, Pareto front, thumbnails; needs Qt).\n"
+      "One process; see docs/accuracy.md.");
+  sweep->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  sweep->add_option("-o,--output", o.outputPrefix,
+                    "Prefix of the files written (default: sweep-<scene name>)");
+  addNamed(sweep, "--families", o.families, kSweepFamilyNames,
+           "Families to sweep, comma-separated (default: photons,k,passes,resolution,steps,blur)")
+      ->delimiter(',')
+      ->option_text(kSweepFamilyNames.list(",", ","));
+  const char* values = "Values swept (comma-separated; each overrides its family's defaults)";
+  const auto list = [&](const char* name, std::vector<uint64_t>& target, const char* help) {
+    sweep->add_option(name, target, help)->delimiter(',')->group(values);
+  };
+  list("--photons-list", o.values.photons,
+       "photons (default 25000,50000,100000,200000,400000,800000,1600000)");
+  list("--k-list", o.values.gather, "k (default 10,25,50,100,200,400)");
+  list("--autok-list", o.values.autoGather,
+       "largest k of the automatic k (default 25,100,400,1600)");
+  list("--passes-list", o.values.passes, "passes (default 1,2,4,8,16,32)");
+  list("--resolution-list", o.values.resolution, "resolution (default 64,128,256,512,1024)");
+  list("--steps-list", o.values.steps, "steps (default 1,2,3,5,10,20)");
+  list("--blur-list", o.values.blur, "blur half-width, sigma = half (default 0,1,2,4,8)");
+  list("--spp-list", o.values.samples, "spp (default 1,2,4,8,16)");
+  sweep->add_option("-r,--repeats", o.repeats, "Timed runs of every point; medians (default 3)")
+      ->check(CLI::Range(1, 1000));
+  addMemoryLimitOption(sweep, o.render);
+  sweep
+      ->add_option("--reference", o.reference.spec,
+                   "auto (default: analytic when the scene allows it, else progressive), "
+                   "analytic, progressive, or an image file (.exr) of the same size")
+      ->option_text("auto|analytic|progressive|FILE");
+  sweep
+      ->add_option("--reference-passes", o.reference.passes,
+                   "Progressive reference: passes (default 64)")
+      ->check(CLI::Range(int64_t{2}, limits::kPasses.max));
+  sweep
+      ->add_option("--reference-photons", o.reference.photons,
+                   "Progressive reference: photons per pass (default 1000000)")
+      ->check(CLI::Range(limits::kPhotons.min, limits::kPhotons.max));
+  sweep
+      ->add_option("--reference-k", o.reference.k,
+                   "Progressive reference: the k of its per-photon k-NN radii (default 5)")
+      ->check(CLI::Range(limits::kGather.min, limits::kGather.max));
+  sweep->add_flag("--refresh-reference", o.reference.refresh,
+                  "Render the progressive reference again even when the cached one matches");
+  sweep
+      ->add_option("--budget-seconds", o.budgetSeconds,
+                   "Start no timed run after this many seconds of sweeping (the reference not "
+                   "counted); the chart says how many points were measured")
+      ->check(CLI::PositiveNumber);
+  sweep
+      ->add_option_function<std::string>(
+          "--time-axis", [&o](const std::string& axis) { o.cpuAxis = axis == "cpu"; },
+          "Time charted: wall (default) or cpu seconds of the process")
+      ->check(CLI::IsMember({"wall", "cpu"}));
+  sweep
+      ->add_option("--thumbnail-height", o.thumbnailHeight,
+                   "Height of the chart's thumbnails in pixels (default 96)")
+      ->check(CLI::Range(16, 1024));
+  sweep
+      ->add_option("-t,--threads", o.render.distribution.threads,
+                   "Render threads (default 0: all available cores)")
+      ->check(CLI::Range(0, 4096));
+  addImageSizeOptions(sweep, o.render, "Samples per pixel (overrides the scene)");
+  addCausticMethodOptions(sweep, o.render);
+  sweep->add_flag("-q,--quiet", o.quiet, "No progress bar and no table");
+}
+
+// `prism` alone: the commands, one line each (the first line of each one's help), and where
+// to read more.
+void printCommandList(const CLI::App& app, std::ostream& out) {
+  out << app.get_description() << "\n\nUsage: prism <command> [options]\n\nCommands:\n";
+  for (const CLI::App* command : app.get_subcommands({})) {
+    const std::string& help = command->get_description();
+    out << "  " << command->get_name() << std::string(10 - command->get_name().size(), ' ')
+        << help.substr(0, help.find('\n')) << "\n";
+  }
+  out << "\nRun 'prism <command> --help' for a command's options, 'prism --version' for the "
+         "version.\nDocumentation: README.md and docs/ (scene format: docs/scene-format.md).\n";
+}
+
+}  // namespace
+
+ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRunner& viewer,
+                               const ChartWriter& chartWriter) {
+  CLI::App app{"Prism: a distributed ray tracer with photon-mapped caustics."};
+  app.set_version_flag("-V,--version", std::string("prism ") + kVersion);
+  app.require_subcommand(1);
+  app.footer("Run 'prism <command> --help' for a command's options.");
+
+  // Kept alive by the command's closure: CLI11 writes into them while parsing.
+  auto renderOptions = std::make_shared<RenderOptions>();
+  auto viewOptions = std::make_shared<ViewOptions>();
+  auto speedupOptions = std::make_shared<SpeedupOptions>();
+  auto sweepOptions = std::make_shared<SweepOptions>();
+  addRenderCommand(app, *renderOptions);
+  addViewCommand(app, *viewOptions);
+  addSpeedupCommand(app, *speedupOptions);
+  addSweepCommand(app, *sweepOptions);
+
+  ParsedCommand parsed;
+  if (argc <= 1) {
+    if (!quiet) printCommandList(app, std::cout);
+    parsed.exitNow = true;
+    return parsed;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    parsed.exitNow = true;
+    parsed.exitCode = quiet ? e.get_exit_code() : app.exit(e);
+    return parsed;
+  } catch (const std::invalid_argument& e) {
+    if (!quiet) std::cerr << "prism: error: " << e.what() << "\n";
+    parsed.exitNow = true;
+    parsed.exitCode = 1;
+    return parsed;
+  }
+
+  if (app.get_subcommand("render")->parsed()) {
+    parsed.distribution = renderOptions->distribution;
+    parsed.memoryLimit = renderOptions->memoryLimit;
+    parsed.runMaster = [renderOptions](Transport* session) {
+      return runRender(*renderOptions, std::cout, std::cerr, session);
+    };
+  } else if (app.get_subcommand("view")->parsed()) {
+    parsed.distribution = viewOptions->render.distribution;
+    parsed.memoryLimit = viewOptions->render.memoryLimit;
+    parsed.runMaster = [viewOptions, viewer](Transport* session) {
+      return runView(*viewOptions, std::cout, std::cerr, session, viewer);
+    };
+  } else if (app.get_subcommand("speedup")->parsed()) {
+    parsed.distribution = speedupOptions->render.distribution;
+    parsed.memoryLimit = speedupOptions->render.memoryLimit;
+    parsed.distribution.threads = speedupOptions->threadsPerRank;  // what p counts
+    parsed.runMaster = [speedupOptions, chartWriter](Transport* session) {
+      return runSpeedup(*speedupOptions, std::cout, std::cerr, session, chartWriter);
+    };
+  } else if (app.get_subcommand("sweep")->parsed()) {
+    parsed.distribution = sweepOptions->render.distribution;
+    parsed.memoryLimit = sweepOptions->render.memoryLimit;
+    parsed.runMaster = [sweepOptions, chartWriter](Transport* session) {
+      return runSweep(*sweepOptions, std::cout, std::cerr, session, chartWriter);
+    };
+  } else {
+    parsed.exitNow = true;
+    parsed.exitCode = 1;
+  }
+  return parsed;
+}
+
+}  // namespace prism

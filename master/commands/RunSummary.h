@@ -1,0 +1,36 @@
+// The closing summary of a render: what was rendered, how long each stage took, rays traced
+// and throughput, and where the image went.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "master/runtime/CausticPasses.h"
+#include "master/runtime/FrameRenderer.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+struct RunSummary {
+  std::string scenePath;
+  std::string outputPath;
+  RenderSettings settings;
+  SceneBuildStats sceneStats;
+  size_t lightCount = 0;
+  const FrameResult* frame = nullptr;
+  const CausticRunStats* caustics = nullptr;
+  Schedule schedule = Schedule::Dynamic;
+  double parseSeconds = 0.0;
+  double broadcastSeconds = 0.0;  // MPI runs only
+  size_t broadcastBytes = 0;
+  double buildSeconds = 0.0;
+  double writeSeconds = 0.0;
+  double totalSeconds = 0.0;
+};
+
+void printRunSummary(const RunSummary& summary, std::ostream& out);
+
+// "12.3 M", "456 k", "789": counts for humans.
+std::string formatCount(double count);
+
+}  // namespace prism

@@ -1,0 +1,331 @@
+#include "master/commands/SpeedupCommand.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <utility>
+
+#include "caustics/CausticMapEstimator.h"
+#include "caustics/GatherRadius.h"
+#include "caustics/PhotonGather.h"
+#include "caustics/PhotonTracer.h"
+#include "master/analysis/LinkProbe.h"
+#include "master/analysis/ScalingProjection.h"
+#include "master/analysis/TileCostMap.h"
+#include "master/commands/ProgressBar.h"
+#include "master/runtime/CausticPasses.h"
+#include "master/runtime/FrameRenderer.h"
+#include "master/runtime/PhotonPass.h"
+#include "master/runtime/SlaveShutdown.h"
+#include "master/runtime/TilePlan.h"
+#include "scene/Scene.h"
+#include "transport/Transport.h"
+#include "util/AtomicFile.h"
+#include "util/Parallel.h"
+#include "util/ProcessStart.h"
+#include "util/Stopwatch.h"
+#include "wire/Messages.h"
+
+namespace prism {
+namespace {
+
+constexpr double kReadyTimeoutSeconds = 600.0;
+
+// The light terms every measured frame renders, prepared once as set-up.
+struct PreparedPass {
+  std::shared_ptr<const RenderPass> pass;  // null: direct light only
+  std::string stage;                       // what the set-up was, for the report
+  double seconds = 0.0;
+  bool progressiveAsOneFrame = false;
+};
+
+// Caustics as `prism render` would do them for one frame: one photon pass traced by every
+// rank and sent to every slave, or rank 0's caustic maps (each slave builds its own during
+// the warm-up frame). A progressive scene is measured as one k-NN photon-map frame.
+PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
+  const CausticSettings& settings = scene.causticSettings();
+  PreparedPass prepared;
+  const auto start = SteadyClock::now();
+  if (settings.method == CausticMethod::CausticMap) {
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, availableCores());
+    prepared.stage = "caustic map (rank 0)";
+    prepared.pass = causticMapPass(0, std::move(maps));
+  } else if (settings.method == CausticMethod::PhotonMap) {
+    const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
+    if (tracer.hasWork()) {
+      PhotonPassStats stats;
+      std::vector<Photon> photons = *tracePhotonPass(tracer, 0, 1, link, stats);
+      const float radius =
+          settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
+      const PhotonGatherSettings gather = classicGather(settings, radius);
+      prepared.stage = "photon pass (" + std::to_string(photons.size()) + " photons)";
+      prepared.pass = std::make_shared<const RenderPass>(RenderPass{
+          0, true,
+          gatherFromPhotons(std::move(photons), 0, gather, availableCores(), link, stats)});
+      prepared.progressiveAsOneFrame = settings.progressive;
+    }
+  }
+  prepared.seconds = secondsSince(start);
+  return prepared;
+}
+
+// Waits for every slave's Ready (its scene is built); the roster then holds their start and
+// build times.
+void waitForSlaves(SlaveLink& link) {
+  const auto start = SteadyClock::now();
+  auto missing = [&] {
+    int count = 0;
+    for (int r = 1; r < link.ranks(); ++r) count += link.ready(r) ? 0 : 1;
+    return count;
+  };
+  while (missing() > 0) {
+    if (secondsSince(start) > kReadyTimeoutSeconds) {
+      throw std::runtime_error("slaves did not report ready within " +
+                               std::to_string(static_cast<int>(kReadyTimeoutSeconds)) + " s");
+    }
+    link.receive(0.1);  // a Ready goes into the roster; nothing else is expected yet
+  }
+}
+
+class Measurement {
+ public:
+  Measurement(const Scene& scene, const SpeedupOptions& options, SlaveLink& link,
+              std::shared_ptr<const RenderPass> pass)
+      : scene_(scene), options_(options), link_(link), pass_(pass) {}
+
+  // The serial baseline: this process, one thread, no slaves.
+  FrameResult serial(int tileSize) {
+    FrameOptions frame;
+    frame.distribution.threads = 1;
+    frame.distribution.tileSize = tileSize;
+    frame.pass = pass_;
+    frame.frameId = nextFrame_++;
+    return renderFrame(scene_, frame);
+  }
+
+  FrameResult parallel(Schedule schedule, int tileSize, int slaves) {
+    FrameOptions frame;
+    frame.distribution = options_.render.distribution;
+    frame.distribution.tileSize = tileSize;
+    frame.distribution.schedule = schedule;
+    frame.pass = pass_;
+    frame.masterRenders = false;
+    frame.activeSlaves = slaves;
+    frame.frameId = nextFrame_++;
+    FrameResult result = renderFrame(scene_, frame, link_);
+    for (int r = 1; r <= slaves; ++r) {
+      if (result.workers[r].retired) {
+        throw std::runtime_error("rank " + std::to_string(r) +
+                                 " stopped answering during a measured frame; its numbers would "
+                                 "be meaningless");
+      }
+    }
+    return result;
+  }
+
+ private:
+  const Scene& scene_;
+  const SpeedupOptions& options_;
+  SlaveLink& link_;
+  std::shared_ptr<const RenderPass> pass_;
+  uint32_t nextFrame_ = 1;
+};
+
+// Per-tile medians over the serial repeats, in plan order.
+std::vector<double> medianTileSeconds(const std::vector<std::vector<double>>& runs) {
+  std::vector<double> medians(runs.front().size());
+  for (size_t tile = 0; tile < medians.size(); ++tile) {
+    std::vector<double> samples;
+    for (const std::vector<double>& run : runs) samples.push_back(run[tile]);
+    medians[tile] = spreadOf(samples).median;
+  }
+  return medians;
+}
+
+void writeOutputs(const SpeedupReport& report, const SpeedupOutputs& files,
+                  const ChartWriter& chartWriter, std::ostream& out, std::ostream& err) {
+  writeFileAtomically(files.csv, [&](std::ostream& f) { writeSpeedupCsv(report, f); });
+  writeFileAtomically(files.projectionCsv, [&](std::ostream& f) { writeProjectionCsv(report, f); });
+  out << "\n  wrote " << files.csv << " and " << files.projectionCsv << "\n";
+  if (!chartWriter) {
+    err << "prism: note: the charts need Qt5 Charts, which this build lacks; the CSVs hold every "
+           "number\n";
+    return;
+  }
+  chartWriter(measuredChart(report), files.chart);
+  chartWriter(projectionChart(report), files.projectionChart);
+  out << "  wrote " << files.chart << " and " << files.projectionChart << "\n";
+}
+
+}  // namespace
+
+SpeedupOutputs speedupOutputs(const std::string& prefix) {
+  return {prefix + ".csv", prefix + "-projection.csv", prefix + "-speedup.png",
+          prefix + "-projection.png"};
+}
+
+int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
+               Transport* session, const ChartWriter& chartWriter) {
+  if (!session || session->size() < 2) {
+    err << "prism: error: prism speedup measures inside one MPI job and needs at least 2 ranks: "
+           "rank 0 coordinates and ranks 1..N-1 render, so the job measures 1..N-1 slaves.\n"
+           "  Start it as: mpiexec -n N prism speedup "
+        << (options.render.scenePath.empty() ? "scene.yaml" : options.render.scenePath)
+        << "\n  (add --oversubscribe when N exceeds the cores; see docs/scaling.md)\n";
+    return 1;
+  }
+  SpeedupReport report;
+  // First, before the command's own work adds to the process's age.
+  report.setup.startSeconds = secondsSinceProcessStart().value_or(-1.0);
+  report.setup.launchSeconds = secondsFromParentStart().value_or(-1.0);
+  report.setup.mpiInitSeconds = session->setUpSeconds();
+  report.scenePath = options.render.scenePath;
+  report.ranks = session->size();
+  report.cores = machineCores();
+  report.threadsPerRank = options.threadsPerRank;
+  report.repeats = options.repeats;
+  report.prefetch = options.render.distribution.prefetch;
+  const SpeedupOutputs files = speedupOutputs(
+      options.outputPrefix.empty()
+          ? "speedup-" + std::filesystem::path(options.render.scenePath).stem().string()
+          : options.outputPrefix);
+  SceneDescription description;
+  try {
+    const auto parseStart = SteadyClock::now();
+    description = loadSceneWithOverrides(options.render);
+    report.setup.parseSeconds = secondsSince(parseStart);
+    const std::filesystem::path folder = std::filesystem::path(files.csv).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+      throw std::runtime_error("output folder " + folder.string() + " does not exist");
+    }
+  } catch (const std::exception& e) {
+    return failBeforeScene(session, e.what(), err);
+  }
+
+  int exitCode = 0;
+  std::vector<bool> silent;
+  try {
+    const auto broadcastStart = SteadyClock::now();
+    std::vector<uint8_t> bytes = wire::encodeScene(description);
+    session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+    report.setup.broadcastSeconds = secondsSince(broadcastStart);
+    report.setup.broadcastBytes = bytes.size();
+    const auto buildStart = SteadyClock::now();
+    // The description's cube-map faces move into the scene: nothing below reads them.
+    const Scene scene(description, std::exchange(description.environment, std::nullopt));
+    report.setup.buildSeconds = secondsSince(buildStart);
+    const RenderSettings& settings = scene.settings();
+    report.width = settings.width;
+    report.height = settings.height;
+    report.samplesPerPixel = settings.samplesPerPixel;
+
+    SlaveLink link(session, options.render.distribution);
+    waitForSlaves(link);
+    for (int r = 1; r < link.ranks(); ++r) {  // the slowest slave's of each
+      const RankStats& slave = link.rank(r);
+      report.setup.slaveBuildSeconds = std::max(report.setup.slaveBuildSeconds, slave.buildSeconds);
+      report.setup.slaveStartSeconds = std::max(report.setup.slaveStartSeconds, slave.startSeconds);
+      report.setup.slaveMpiInitSeconds =
+          std::max(report.setup.slaveMpiInitSeconds, slave.mpiInitSeconds);
+    }
+    const PreparedPass prepared = prepareCaustics(scene, link);
+    report.setup.causticStage = prepared.stage;
+    report.setup.causticSeconds = prepared.seconds;
+    if (prepared.progressiveAsOneFrame) {
+      err << "prism: note: a progressive scene is measured as one k-NN photon-map frame\n";
+    }
+
+    const int slaves = session->size() - 1;
+    std::vector<int> tileSizes = options.tileSizes;
+    if (tileSizes.empty()) {
+      tileSizes = {
+          automaticTileSize(settings.width, settings.height, slaves * options.threadsPerRank)};
+    }
+    // Bandwidth from messages the size of the largest tile result, and at least 256 kB so
+    // that their transfer time stands out of the latency's noise.
+    const int largestTile = *std::max_element(tileSizes.begin(), tileSizes.end());
+    const size_t probeBytes = std::max<size_t>(
+        size_t{256} << 10, static_cast<size_t>(tileResultBytes(largestTile * largestTile)));
+    report.link = measureLink(link, probeBytes, options.linkRoundTrips);
+
+    for (int tileSize : tileSizes) report.serial.push_back({tileSize, {}, {}});
+    for (Schedule schedule : options.schedules) {
+      for (int tileSize : tileSizes) {
+        for (int p = 1; p <= slaves; ++p) {
+          ScalingPoint point;
+          point.schedule = schedule;
+          point.tileSize = tileSize;
+          point.slaves = p;
+          point.threadsPerRank = options.threadsPerRank;
+          point.busyFractions.resize(static_cast<size_t>(p));
+          // Rank 0 keeps a process running (it coordinates) beside the render threads.
+          point.oversubscribed = p * options.threadsPerRank + 1 > report.cores;
+          report.points.push_back(point);
+        }
+      }
+    }
+
+    Measurement measure(scene, options, link, prepared.pass);
+    const size_t frames =
+        1 + static_cast<size_t>(options.repeats) * (report.serial.size() + report.points.size());
+    ProgressBar progress("measuring", frames, "frames", !options.quiet && stderrIsTerminal());
+    size_t done = 0;
+    // Warm-up, not counted: every slave renders once (caches, lazily built caustic maps).
+    measure.parallel(Schedule::Dynamic, tileSizes.front(), slaves);
+    progress.update(++done);
+    std::map<int, std::vector<std::vector<double>>> serialTiles;  // tile size -> runs
+    std::vector<TileRect> costPlan;
+    // Repeats are rounds over every point, so slow drift in the machine's load spreads over
+    // all points instead of biasing the ones measured last.
+    for (int round = 0; round < options.repeats; ++round) {
+      for (SerialPoint& s : report.serial) {
+        const FrameResult f = measure.serial(s.tileSize);
+        s.samples.push_back(f.seconds);
+        serialTiles[s.tileSize].push_back(f.tileSeconds);
+        progress.update(++done);
+      }
+      for (ScalingPoint& p : report.points) {
+        const FrameResult f = measure.parallel(p.schedule, p.tileSize, p.slaves);
+        p.samples.push_back(f.seconds);
+        for (int r = 1; r <= p.slaves; ++r) {
+          const RankStats& w = f.workers[r];
+          p.busyFractions[r - 1].push_back(w.busySeconds / (std::max(w.threads, 1) * f.seconds));
+        }
+        progress.update(++done);
+      }
+    }
+    progress.finish();
+
+    deriveStatistics(report);
+    std::map<int, std::vector<double>> costsBySize;
+    for (const auto& [tileSize, runs] : serialTiles)
+      costsBySize[tileSize] = medianTileSeconds(runs);
+    predictMeasuredPoints(report, costsBySize);
+    const TileCostMap costs(report.width, report.height,
+                            planTiles(report.width, report.height, report.serialTileSize),
+                            costsBySize[report.serialTileSize]);
+    ProjectionPlan plan;
+    plan.sizes = {{report.width, report.height}, {1920, 1080}, {3840, 2160}, {7680, 4320}};
+    plan.tileSize = report.serialTileSize;
+    plan.maxWorkers = options.projectWorkers;
+    plan.schedules = options.schedules;
+    report.projection = projectScaling(costs, plan, report);
+    ProjectionPlan realtime = plan;
+    realtime.sizes = {{report.width, report.height}, {1280, 720}, {1920, 1080}};
+    report.frameRates = projectFrameRates(costs, realtime, report);
+
+    printSpeedupTable(report, out);
+    writeOutputs(report, files, chartWriter, out, err);
+    silent = link.retiredRanks();
+  } catch (const std::exception& e) {
+    err << "prism: error: " << e.what() << "\n";
+    exitCode = 1;
+  }
+  out.flush();
+  return shutDownSlaves(session, exitCode, silent, err);
+}
+
+}  // namespace prism

@@ -1,0 +1,147 @@
+// The one tile dispatcher: hands the tiles of a frame to rank 0's render threads and to the
+// slaves, and takes in what comes back. `prism render`, `speedup` and `sweep` run one frame on
+// it at a time (master/runtime/FrameRenderer.h); the viewer a stream of frames
+// (master/runtime/LiveRenderer.h).
+//
+// It owns the frame's TileScheduler (dynamic or static, leases), keeps every live slave
+// supplied with `prefetch` tiles per render thread (a View message first when the frame has a view
+// of its own), routes the slaves' messages (through SlaveLink, so status means the same
+// everywhere): a TileResult is checked against the plan and accepted once; a late or duplicate one,
+// or one of a frame already ended, is counted stale and dropped; a heartbeat naming the frame
+// re-issues the tiles its slave lost; a late PhotonShare or Echo (of a phase completed without it)
+// is ignored. Silent slaves (SlaveLink::retireSilent) and slaves past their lease are retired and
+// their tiles re-issued at once.
+//
+// Threads: service() is called by one coordinating thread, the only one that talks to the
+// slaves, and calls beginFrame too; rank 0's render threads take tiles concurrently; endFrame,
+// stop and stats may be called from any thread.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "cluster/DistributionOptions.h"
+#include "cluster/TileWorkerPool.h"
+#include "master/runtime/SlaveLink.h"
+#include "master/runtime/TileScheduler.h"
+#include "render/RenderPass.h"
+#include "render/RenderView.h"
+#include "render/Tile.h"
+#include "scene/Scene.h"
+
+namespace prism {
+
+// What one frame renders and who may render it.
+struct FramePlan {
+  // Tags the frame's messages; every frame of a run needs its own, so that a late tile or
+  // heartbeat of an earlier frame is recognised.
+  uint32_t frame = 0;
+  std::vector<TileRect> tiles;
+  // Null: the scene's own camera and settings (`prism render`); else the viewer's view, sent to
+  // each slave before its first tile of the frame.
+  std::shared_ptr<const RenderView> view;
+  std::shared_ptr<const RenderPass> light;  // the light terms; null: direct light only
+  // `prism speedup` measures with part of the cluster: rank 0's threads may render nothing, and
+  // only slaves 1..activeSlaves get tiles (-1: every slave).
+  bool masterRenders = true;
+  int activeSlaves = -1;
+};
+
+// Told about the current frame's tiles. Called with the dispatcher's lock held, from the
+// coordinating thread or a render thread: keep it short, never call back into the dispatcher.
+class FrameListener {
+ public:
+  virtual ~FrameListener() = default;
+  virtual void tileAssigned(uint32_t /*frame*/, uint32_t /*tile*/, int /*rank*/) {}
+  // Whether the frame's tiles are still wanted: the viewer drops a pass a moment before it ends
+  // its frame here, and a tile arriving in between is stale like one of an ended frame.
+  virtual bool wantsTiles(uint32_t /*frame*/) { return true; }
+  // A tile of the frame, accepted: the first copy, matching the plan. The coordinating thread
+  // is woken for the frame's last tile only; a listener that wants it sooner wakes it.
+  virtual void tileFinished(uint32_t frame, TileResult&& tile, int rank) = 0;
+};
+
+class TileDispatcher {
+ public:
+  TileDispatcher(const Scene& scene, SlaveLink& link, const DistributionOptions& options);
+  ~TileDispatcher();  // stops and joins the render threads
+  TileDispatcher(const TileDispatcher&) = delete;
+  TileDispatcher& operator=(const TileDispatcher&) = delete;
+
+  int localThreads() const { return pool_.threadCount(); }
+  // Live ranks' render threads (a slave's from its Ready, else rank 0's count in its place).
+  int liveThreads();
+
+  // Starts rank 0's render threads; they take tiles of whatever frame is current.
+  void startLocalWorkers();
+  // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
+  // late results are stale). Called by the coordinating thread: it sends the slaves their first
+  // jobs before rank 0's render threads take any tile.
+  void beginFrame(FramePlan plan, FrameListener* listener);
+  // Pipelining (the viewer's frame stream): adds plan as the current frame behind the frames
+  // still running, which are not ended. A render thread or slave takes the oldest frame's tiles
+  // first and the next frame's once the older ones have none left for it, so nobody waits for
+  // a round trip between frames. An older frame leaves once complete (or ended).
+  void queueFrame(FramePlan plan, FrameListener* listener);
+  // Ends `frame` now if it is still running: no more of its tiles are handed out. Frames begun
+  // since are left alone, so a caller on another thread cannot end a newer frame by mistake.
+  void endFrame(uint32_t frame);
+  // Whether the current (newest) frame has all its tiles (false with no frame).
+  bool frameComplete();
+  size_t tilesDone();
+
+  // One step of the coordinating thread: feeds the slaves, waits up to waitSeconds for a
+  // message or a change here (a frame finished on this rank, stop(), wake()), routes every
+  // message that has arrived, and retires silent slaves and expired leases. Throws
+  // std::runtime_error when a slave reports an error or sends what it must not.
+  void service(double waitSeconds);
+  // Ends a service() wait in progress, or the next one (another thread has news for the
+  // coordinating one); safe from any thread.
+  void wake();
+
+  // Render threads stop after their current tile; cancel() abandons that tile too (no result).
+  void stop();
+  void cancel();
+  // Waits for the render threads; rethrows the first exception one hit.
+  void join();
+  bool localFailed() { return pool_.failed(); }
+
+  // Per rank, since the dispatcher started: the roster's facts plus the tiles each delivered.
+  std::vector<RankStats> stats();
+  size_t reissuedTiles();
+
+ private:
+  struct Frame;
+
+  Frame* findLocked(uint32_t frame);
+  void addFrame(FramePlan plan, FrameListener* listener, bool endEarlier);
+  std::optional<TileJob> nextLocalJob();
+  void accept(uint32_t frame, TileResult&& tile, int rank);
+  void feedSlaves();
+  // Up to its prefetch, the next jobs for a slave (oldest frame first), encoded (mutex_ held).
+  std::vector<std::vector<uint8_t>> jobsForLocked(int rank);
+  // Sends them; a refused send retires the slave.
+  void sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs);
+  void route(const SlaveMessage& message);
+  void retireRank(int rank);
+  double now() const { return secondsSince(start_); }
+
+  const Scene& scene_;
+  SlaveLink& link_;
+  DistributionOptions options_;
+  TileWorkerPool pool_;
+  SteadyClock::time_point start_;
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<std::unique_ptr<Frame>> frames_;  // running, oldest first; the last is current
+  std::vector<RankStats> delivered_;            // tiles, rays, busy and stale counts per rank
+  size_t reissuedBefore_ = 0;                   // by frames already ended
+  bool stopped_ = false;
+};
+
+}  // namespace prism
