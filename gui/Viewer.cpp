@@ -22,6 +22,7 @@
 #include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
 #include "image/ImageIo.h"
+#include "master/commands/MasterSession.h"
 #include "util/Percentile.h"
 #include "util/PhysicalMemory.h"
 #include "util/Stopwatch.h"
@@ -194,8 +195,9 @@ void printSummary(const LiveStats& s, std::ostream& out) {
 
 }  // namespace
 
-int runViewer(const Scene& scene, const SceneDescription& description, const ViewOptions& options,
-              Transport* session, std::ostream& out, std::ostream& err) {
+int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& out,
+              std::ostream& err) {
+  const SceneDescription& description = session.description();
   if (!haveDisplay()) {
     err << "prism: error: no display: set DISPLAY (or run under xvfb-run), or set "
            "QT_QPA_PLATFORM=offscreen to render without a window\n";
@@ -213,7 +215,7 @@ int runViewer(const Scene& scene, const SceneDescription& description, const Vie
   live.frameTimeSeconds = options.frameTimeMilliseconds / 1000.0;
   live.pipeline = options.pipeline;
   live.memoryLimit = memoryLimitOrPhysical(options.render.memoryLimit);
-  LiveRenderer renderer(scene, live, session);
+  LiveRenderer renderer(session.dispatcher(), live);
   RenderBridge bridge;
   MainWindow window(
       description, QFileInfo(QString::fromStdString(options.render.scenePath)).fileName(),

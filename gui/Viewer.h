@@ -8,7 +8,7 @@
 
 namespace prism {
 
-int runViewer(const Scene& scene, const SceneDescription& description, const ViewOptions& options,
-              Transport* session, std::ostream& out, std::ostream& err);
+int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& out,
+              std::ostream& err);
 
 }  // namespace prism

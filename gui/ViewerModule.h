@@ -14,12 +14,11 @@
 namespace prism {
 
 // What the module exports. kViewerModuleVersion guards against a module of another build.
-inline constexpr int kViewerModuleVersion = 1;
+inline constexpr int kViewerModuleVersion = 2;  // 2: runViewer takes the MasterSession
 
 struct ViewerModuleApi {
   int version;
-  int (*runViewer)(const Scene& scene, const SceneDescription& description,
-                   const ViewOptions& options, Transport* session, std::ostream& out,
+  int (*runViewer)(MasterSession& session, const ViewOptions& options, std::ostream& out,
                    std::ostream& err);
   void (*writeChartImage)(const Chart& chart, const std::string& pngPath);
 };

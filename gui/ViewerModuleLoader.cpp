@@ -32,10 +32,8 @@ const ViewerModuleApi& viewerModule() {
 }  // namespace
 
 ViewerRunner lazyViewerRunner() {
-  return [](const Scene& scene, const SceneDescription& description, const ViewOptions& options,
-            Transport* session, std::ostream& out, std::ostream& err) {
-    return viewerModule().runViewer(scene, description, options, session, out, err);
-  };
+  return [](MasterSession& session, const ViewOptions& options, std::ostream& out,
+            std::ostream& err) { return viewerModule().runViewer(session, options, out, err); };
 }
 
 ChartWriter lazyChartWriter() {

@@ -165,42 +165,41 @@ class PhotonWork {
 
   // The render pass a tile job names; throws when it needs a photon map this rank lacks.
   // `blur`: the current view's caustic-map blur switch.
-  std::shared_ptr<const RenderPass> pass(uint32_t index, uint8_t terms, bool blur) {
-    const bool direct = (terms & wire::kTermDirect) != 0;
-    if (terms & wire::kTermCausticMap) {
-      // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
-      if (mapsRefusal_) throw ResourceLimitError(*mapsRefusal_);
-      std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
-      if (!maps) {
-        // One set of maps at a time, as the memory check counts: the other blur setting's go
-        // (tiles still rendering with them hold their own reference).
-        causticMaps_.erase(!blur);
-        std::erase_if(mapPasses_, [blur](const auto& entry) { return entry.first.second != blur; });
-        if (eagerMaps_.valid()) {
-          std::shared_ptr<const CausticMapEstimator> eager = eagerMaps_.get();  // the scene's blur
-          if (blur) maps = std::move(eager);
-        }
-      }
-      if (!maps) {
-        maps = std::make_shared<const CausticMapEstimator>(
-            scene_, causticMapSettings(scene_.causticSettings(), blur), threads_);
-      }
-      std::shared_ptr<const RenderPass>& cached = mapPasses_[{terms, blur}];
-      if (!cached || cached->index != index) {
-        cached = std::make_shared<const RenderPass>(RenderPass{index, direct, maps, true});
-      }
-      return cached;
-    }
-    const bool caustics = terms & wire::kTermCaustics;
-    if (caustics && (!caustics_ || mapPass_ != index)) {
-      throw std::runtime_error("tile of pass " + std::to_string(index) +
+  std::shared_ptr<const RenderPass> pass(const PassTerms& terms, bool blur) {
+    if (terms.source == CausticSource::CausticMap) return causticMapPass(terms.index, blur);
+    const bool caustics = terms.source == CausticSource::PhotonMap;
+    if (caustics && (!caustics_ || mapPass_ != terms.index)) {
+      throw std::runtime_error("tile of pass " + std::to_string(terms.index) +
                                " needs a photon map this rank has not received");
     }
-    std::shared_ptr<const RenderPass>& cached = passes_[terms];
-    if (!cached || cached->index != index) {
-      cached = std::make_shared<const RenderPass>(
-          RenderPass{index, direct, caustics ? caustics_ : nullptr});
+    std::shared_ptr<const RenderPass>& cached = passes_[{terms.direct, caustics}];
+    if (!cached || cached->index != terms.index) {
+      cached = caustics ? RenderPass::withPhotons(terms.index, terms.direct, caustics_)
+                        : RenderPass::directOnly(terms.index);
     }
+    return cached;
+  }
+
+  // Caustic mapping: built here from the scene, the same maps as rank 0's; no message.
+  std::shared_ptr<const RenderPass> causticMapPass(uint32_t index, bool blur) {
+    if (mapsRefusal_) throw ResourceLimitError(*mapsRefusal_);
+    std::shared_ptr<const CausticMapEstimator>& maps = causticMaps_[blur];
+    if (!maps) {
+      // One set of maps at a time, as the memory check counts: the other blur setting's go
+      // (tiles still rendering with them hold their own reference).
+      causticMaps_.erase(!blur);
+      std::erase_if(mapPasses_, [blur](const auto& entry) { return entry.first != blur; });
+      if (eagerMaps_.valid()) {
+        std::shared_ptr<const CausticMapEstimator> eager = eagerMaps_.get();  // the scene's blur
+        if (blur) maps = std::move(eager);
+      }
+    }
+    if (!maps) {
+      maps = std::make_shared<const CausticMapEstimator>(
+          scene_, causticMapSettings(scene_.causticSettings(), blur), threads_);
+    }
+    std::shared_ptr<const RenderPass>& cached = mapPasses_[blur];
+    if (!cached || cached->index != index) cached = RenderPass::withCausticMaps(index, maps);
     return cached;
   }
 
@@ -268,13 +267,13 @@ class PhotonWork {
   // held this rank's tiles up after every pause of the camera.
   std::shared_ptr<const CausticEstimator> kept_;
   uint32_t keptPass_ = 0;
-  std::map<uint8_t, std::shared_ptr<const RenderPass>> passes_;
+  std::map<std::pair<bool, bool>, std::shared_ptr<const RenderPass>> passes_;  // (direct, caustics)
   std::optional<std::string> mapsRefusal_;  // why caustic maps cannot be built here, if so
   // Caustic maps by blur switch, built on first use and kept until the other setting's are
   // built: they depend on the scene alone.
   std::map<bool, std::shared_ptr<const CausticMapEstimator>> causticMaps_;
   std::future<std::shared_ptr<const CausticMapEstimator>> eagerMaps_;  // with the scene's blur
-  std::map<std::pair<uint8_t, bool>, std::shared_ptr<const RenderPass>> mapPasses_;
+  std::map<bool, std::shared_ptr<const RenderPass>> mapPasses_;        // by blur switch
 };
 
 // After a failure the slave still waits (bounded) for the master's shutdown, so the job ends
@@ -522,9 +521,8 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       if (hang || (drop && frame.received % 2 == 0)) continue;
       frame.held.insert(job.tileIndex);  // with the count: no heartbeat sees it received, not held
       // The first tile of a caustic-map pass may build the maps.
-      std::shared_ptr<const RenderPass> pass = unlocked([&] {
-        return photons.pass(job.pass, job.terms, !frame.view || frame.view->causticMapBlur);
-      });
+      std::shared_ptr<const RenderPass> pass = unlocked(
+          [&] { return photons.pass(passTerms(job), !frame.view || frame.view->causticMapBlur); });
       TileJob tile = tileJobFromMessage(job, frame.view, std::move(pass));
       tile.frameEnded = frame.ended;
       jobs.push(std::move(tile));

@@ -19,7 +19,16 @@ void TileWorkerPool::start(JobSource source, ResultHandler onResult) {
         [onResult](const TileJob&, TileResult&& tile) { onResult(std::move(tile)); });
 }
 
+namespace {
+std::atomic<uint64_t> poolsStarted{0};
+}  // namespace
+
+uint64_t TileWorkerPool::startedInProcess() {
+  return poolsStarted.load();
+}
+
 void TileWorkerPool::start(JobSource source, JobResultHandler onResult) {
+  ++poolsStarted;
   threads_.reserve(static_cast<size_t>(threadCount_));
   for (int t = 0; t < threadCount_; ++t) {
     threads_.emplace_back([this, source, onResult] {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -35,6 +36,10 @@ class TileWorkerPool {
   // Starts the threads. The source and handler are called concurrently from them.
   void start(JobSource source, ResultHandler onResult);
   void start(JobSource source, JobResultHandler onResult);
+  bool started() const { return !threads_.empty(); }
+  // Pools whose threads this process has started, ever: a run that means to keep one pool for
+  // all its frames is tested with it.
+  static uint64_t startedInProcess();
   // Waits for every thread to finish (each stops when the source returns nothing), then
   // rethrows the first exception a thread hit, if any.
   void join();

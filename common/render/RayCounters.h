@@ -23,6 +23,14 @@ struct RayCounters {
     nonFinite += o.nonFinite;
     return *this;
   }
+  // What was counted since `o`, an earlier reading of the same counters.
+  RayCounters& operator-=(const RayCounters& o) {
+    primary -= o.primary;
+    shadow -= o.shadow;
+    secondary -= o.secondary;
+    nonFinite -= o.nonFinite;
+    return *this;
+  }
 };
 
 }  // namespace prism

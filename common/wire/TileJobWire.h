@@ -12,6 +12,16 @@ namespace prism {
 
 wire::TileJobMessage tileJobMessage(const TileJob& job);
 
+// A pass's light terms as the wire carries them (wire::kTerm* bits), and back: what the tile
+// of a received job adds up, for the slave to make the same RenderPass with its factories.
+uint8_t wireTerms(const RenderPass& pass);
+struct PassTerms {
+  uint32_t index = 0;
+  bool direct = true;
+  CausticSource source = CausticSource::None;
+};
+PassTerms passTerms(const wire::TileJobMessage& message);
+
 // The job a received message names; view null: the scene's own camera (`prism render`).
 TileJob tileJobFromMessage(const wire::TileJobMessage& message,
                            std::shared_ptr<const RenderView> view,

@@ -147,7 +147,7 @@ SweepReference makeSweepReference(const SceneDescription& d, const ReferenceRequ
     try {
       auto estimator = std::make_shared<const MirrorCausticEstimator>(d, scene);
       FrameOptions o = frameOptions(r.threads, progress, "analytic reference");
-      o.pass = std::make_shared<const RenderPass>(RenderPass{0, true, estimator});
+      o.pass = RenderPass::withPhotons(0, true, estimator);
       ref.image = renderFrame(scene, o).image;
       ref.kind = "analytic";
       ref.description = "analytic (mirror images of the lights, " +

@@ -62,9 +62,14 @@ void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
       ->option_text("SIZE");
 }
 
+// The scene file: every command's one positional argument.
+void addSceneArgument(CLI::App* command, RenderOptions& o) {
+  command->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+}
+
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o) {
-  render->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  addSceneArgument(render, o);
   render
       ->add_option("-t,--threads", o.distribution.threads,
                    "Worker threads (default 0: all available cores)")
@@ -277,7 +282,7 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
       "the measured tile costs and link for up to --project-workers workers and images up to\n"
       "8K, validated on the measured points. Start it as: mpiexec -n N prism speedup SCENE\n"
       "(--oversubscribe when N exceeds the cores). See docs/scaling.md.");
-  speedup->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  addSceneArgument(speedup, o.render);
   speedup->add_option("-o,--output", o.outputPrefix,
                       "Prefix of the files written (default: speedup-<scene name>)");
   addNamed(speedup, "--schedules", o.schedules, kScheduleNames,
@@ -331,7 +336,7 @@ void addSweepCommand(CLI::App& app, SweepOptions& o) {
       "as PREFIX-reference.exr/.csv, or an image file. Writes PREFIX.csv and the chart\n"
       "PREFIX.png (error against time, log-log, Pareto front, thumbnails; needs Qt).\n"
       "One process; see docs/accuracy.md.");
-  sweep->add_option("scene", o.render.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  addSceneArgument(sweep, o.render);
   sweep->add_option("-o,--output", o.outputPrefix,
                     "Prefix of the files written (default: sweep-<scene name>)");
   addNamed(sweep, "--families", o.families, kSweepFamilyNames,

@@ -72,4 +72,15 @@ void ProgressBar::finish() {
   finished_ = true;
 }
 
+void StageProgress::operator()(const std::string& stage, size_t done, size_t total) {
+  if (!enabled_) return;
+  if (!bar_ || stage != stage_) {
+    if (bar_) bar_->finish();
+    bar_ = std::make_unique<ProgressBar>(stage, total, "tiles", true);
+    stage_ = stage;
+  }
+  bar_->setTotal(total);
+  bar_->update(done);
+}
+
 }  // namespace prism

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "util/Stopwatch.h"
@@ -31,6 +32,23 @@ class ProgressBar {
   bool enabled_;
   bool finished_ = false;
   SteadyClock::time_point start_;
+};
+
+// A bar per stage of a run ("trace photons", "render", "pass 2/8", ...): a stage's first
+// report ends the bar before it and starts its own. As PassProgress (master/runtime/
+// CausticPasses.h) wants it.
+class StageProgress {
+ public:
+  explicit StageProgress(bool enabled) : enabled_(enabled) {}
+  void operator()(const std::string& stage, size_t done, size_t total);
+  void finish() {
+    if (bar_) bar_->finish();
+  }
+
+ private:
+  bool enabled_;
+  std::string stage_;
+  std::unique_ptr<ProgressBar> bar_;
 };
 
 // Whether stderr is an interactive terminal.

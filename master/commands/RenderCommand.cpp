@@ -2,94 +2,20 @@
 
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <ostream>
-#include <utility>
 
 #include "caustics/CausticMapImages.h"
-#include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonImage.h"
 #include "image/ImageIo.h"
+#include "master/commands/MasterSession.h"
 #include "master/commands/PartialFrame.h"
 #include "master/commands/ProgressBar.h"
 #include "master/commands/RunSummary.h"
 #include "master/runtime/CausticPasses.h"
-#include "master/runtime/FrameRenderer.h"
-#include "master/runtime/ResourceCheck.h"
-#include "master/runtime/SlaveShutdown.h"
-#include "parse/SceneLoader.h"
-#include "scene/Scene.h"
-#include "scene/SceneValidation.h"
-#include "transport/Transport.h"
 #include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
-#include "wire/Messages.h"
 
 namespace prism {
-void applyOverrides(const RenderOptions& o, RenderSettings& s) {
-  if (o.width) s.width = *o.width;
-  if (o.height) s.height = *o.height;
-  if (o.samples) s.samplesPerPixel = *o.samples;
-  if (o.maxDepth) s.maxDepth = *o.maxDepth;
-  if (o.seed) s.seed = *o.seed;
-  if (o.exposure) s.exposure = *o.exposure;
-  if (o.triangleTest) s.triangleTest = *o.triangleTest;
-}
-
-void applyOverrides(const RenderOptions& o, CausticSettings& c) {
-  if (o.causticMethod) c.method = *o.causticMethod;
-  if (o.photons) c.photons = *o.photons;
-  if (o.gather) {
-    c.gather = *o.gather;
-    c.automaticGather = false;
-  }
-  if (o.gatherNoise) {
-    c.gatherNoise = *o.gatherNoise;
-    c.automaticGather = true;
-  }
-  if (o.passes) c.passes = *o.passes;
-  if (o.progressive) c.progressive = *o.progressive;
-  if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;
-  if (o.timeBudget) c.timeBudgetSeconds = *o.timeBudget;
-  if (o.mapResolution) c.mapResolution = *o.mapResolution;
-  if (o.mapSteps) c.mapSteps = *o.mapSteps;
-  if (o.mapBlurSigma) c.mapBlurSigma = *o.mapBlurSigma;
-  if (o.mapBlurRadius) c.mapBlurRadius = *o.mapBlurRadius;
-  if (o.mapPaths) c.mapPaths = *o.mapPaths;
-  // Caustic-map parameters alone ask for caustic mapping.
-  if ((o.mapResolution || o.mapSteps || o.mapBlurSigma || o.mapBlurRadius || o.mapPaths) &&
-      !o.causticMethod && c.method == CausticMethod::None) {
-    c.method = CausticMethod::CausticMap;
-  }
-  // Asking for passes, a budget or a photon image means asking for photon mapping.
-  if ((o.progressive || o.passes || o.timeBudget || o.photons) && !o.causticMethod &&
-      c.method == CausticMethod::None) {
-    c.method = CausticMethod::PhotonMap;
-  }
-}
-
-SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
-  const MemoryLimit limit = memoryLimitOrPhysical(options.memoryLimit);
-  SceneDescription description = loadScene(options.scenePath, limit);
-  applyOverrides(options, description.render);
-  applyOverrides(options, description.caustics);
-  validate(description);
-  checkRenderFits(description.render, limit);
-  checkTilesFit(description.render, options.distribution.tileSize, limit);
-  checkCausticsFit(description.caustics, description.lights.size(), limit);
-  checkSceneFits(description, options.distribution.tileSize, limit);
-  return description;
-}
-
-int failBeforeScene(Transport* session, const std::string& what, std::ostream& err) {
-  if (session) {
-    std::vector<uint8_t> bytes = wire::encodeError({what});
-    session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
-  }
-  err << "prism: error: " << what << "\n";
-  return 1;
-}
-
 namespace {
 
 // Ctrl-C (or mpiexec's SIGTERM): writes the finished tiles first when asked, because under
@@ -117,6 +43,97 @@ int finishInterruptedRender(const CausticFrame& result, const RenderOptions& opt
   return kInterruptedExitCode;
 }
 
+// The debug images the options ask for beside the frame: where the photons landed, and the
+// caustic maps in light space.
+void writeDebugImages(const CausticFrame& result, const RenderOptions& options,
+                      const MasterSession& session, std::ostream& err) {
+  if (!options.photonImagePath.empty()) {
+    if (result.lastMap) {
+      const RenderSettings& r = session.description().render;
+      writeImage(photonImage(*result.lastMap, session.scene().camera(), r.width, r.height),
+                 options.photonImagePath, 1.0f);
+    } else {
+      err << "prism: warning: no photons were traced, so " << options.photonImagePath
+          << " was not written\n";
+    }
+  }
+  if (options.causticMapDebugPrefix.empty()) return;
+  if (!result.causticMaps || result.causticMaps->empty()) {
+    err << "prism: warning: no caustic map was built, so no --caustic-map-debug images\n";
+    return;
+  }
+  const auto& maps = result.causticMaps->maps();
+  for (size_t i = 0; i < maps.size(); ++i) {
+    for (const NamedImage& image : causticMapImages(*maps[i])) {
+      writeImage(
+          image.image,
+          options.causticMapDebugPrefix + "-light" + std::to_string(i) + "-" + image.name + ".png",
+          1.0f);
+    }
+  }
+}
+
+// The command's own checks, before the scene is read: where the images go.
+void checkOutputs(const RenderOptions& options, const std::string& output) {
+  std::string why;
+  if (!isWritableImagePath(output, &why)) throw std::runtime_error(why);
+  checkMayWriteFrame(output, options.overwrite);
+  if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
+    throw std::runtime_error("--photon-image: " + why);
+  }
+}
+
+// Renders the session's scene and writes what the options ask for; returns the exit code.
+int renderAndWrite(MasterSession& session, const std::string& output, SteadyClock::time_point start,
+                   std::ostream& out, std::ostream& err) {
+  const RenderOptions& options = session.options();
+  session.start();
+  FrameOptions frameOptions;
+  frameOptions.distribution = options.distribution;
+  frameOptions.stopRequested = interruptRequested;
+  StageProgress bar(!options.quiet);
+  const auto onProgress = [&](const std::string& stage, size_t done, size_t total) {
+    if (!options.statusFile.empty()) {
+      std::ofstream(options.statusFile) << stage << ' ' << done << ' ' << total << '\n';
+    }
+    bar(stage, done, total);
+  };
+  const CausticFrame result = renderWithCaustics(session.dispatcher(), frameOptions, onProgress);
+  bar.finish();
+  const float exposure = session.description().render.exposure;
+  if (result.frames.interrupted) {
+    return finishInterruptedRender(result, options, output, exposure, err);
+  }
+  if (result.caustics.noCasters && !options.quiet) {
+    err << "prism: warning: caustics asked for, but no light reaches a caustic caster "
+           "(a reflective or transparent object): rendered without photons\n";
+  }
+  const auto writeStart = SteadyClock::now();
+  writeImage(result.image, output, exposure);
+  const double writeSeconds = secondsSince(writeStart);
+  writeDebugImages(result, options, session, err);
+  if (!options.quiet) {
+    RunSummary summary;
+    const SessionSetUp& setUp = session.setUp();
+    summary.parseSeconds = setUp.parseSeconds;
+    summary.broadcastSeconds = setUp.broadcastSeconds;
+    summary.broadcastBytes = setUp.broadcastBytes;
+    summary.buildSeconds = setUp.buildSeconds;
+    summary.writeSeconds = writeSeconds;
+    summary.scenePath = options.scenePath;
+    summary.outputPath = output;
+    summary.settings = session.description().render;
+    summary.sceneStats = session.scene().buildStats();
+    summary.lightCount = session.description().lights.size();
+    summary.schedule = options.distribution.schedule;
+    summary.frame = &result.frames;
+    summary.caustics = &result.caustics;
+    summary.totalSeconds = secondsSince(start);
+    printRunSummary(summary, out);
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::string defaultOutputPath(const std::string& scenePath) {
@@ -130,123 +147,17 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
   const auto start = SteadyClock::now();
   const std::string output =
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
-  RunSummary summary;
-  SceneDescription description;
-  try {
-    std::string why;
-    if (!isWritableImagePath(output, &why)) throw std::runtime_error(why);
-    checkMayWriteFrame(output, options.overwrite);
-    if (!options.photonImagePath.empty() && !isWritableImagePath(options.photonImagePath, &why)) {
-      throw std::runtime_error("--photon-image: " + why);
-    }
-    const auto parseStart = SteadyClock::now();
-    description = loadSceneWithOverrides(options);
-    summary.parseSeconds = secondsSince(parseStart);
-  } catch (const std::exception& e) {
-    return failBeforeScene(session, e.what(), err);
-  }
-
+  MasterSession run(session, options, err);
+  if (!run.load([&] { checkOutputs(options, output); })) return 1;
   int exitCode = 0;
-  std::vector<bool> silentRanks;
   try {
-    if (session) {
-      const auto broadcastStart = SteadyClock::now();
-      std::vector<uint8_t> bytes = wire::encodeScene(description);
-      session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
-      summary.broadcastSeconds = secondsSince(broadcastStart);
-      summary.broadcastBytes = bytes.size();
-    }
-    const auto buildStart = SteadyClock::now();
-    // The description's cube-map faces move into the scene: nothing below reads them.
-    const Scene scene(description, std::exchange(description.environment, std::nullopt));
-    summary.buildSeconds = secondsSince(buildStart);
-    checkCausticMapsFit(scene, memoryLimitOrPhysical(options.memoryLimit));
-
-    FrameOptions frameOptions;
-    frameOptions.distribution = options.distribution;
-    frameOptions.stopRequested = interruptRequested;
-    std::unique_ptr<ProgressBar> progress;
-    std::string stage;
-    const auto onProgress = [&](const std::string& label, size_t done, size_t total) {
-      if (!options.statusFile.empty()) {
-        std::ofstream(options.statusFile) << label << ' ' << done << ' ' << total << '\n';
-      }
-      if (options.quiet) return;
-      if (!progress || label != stage) {
-        if (progress) progress->finish();
-        progress = std::make_unique<ProgressBar>(label, total, "tiles", true);
-        stage = label;
-      }
-      progress->setTotal(total);
-      progress->update(done);
-    };
-    SlaveLink link(session, options.distribution);
-    const CausticFrame result = renderWithCaustics(scene, frameOptions, link, onProgress);
-    if (progress) progress->finish();
-    const FrameResult& frame = result.frames;
-    silentRanks = link.retiredRanks();
-    if (frame.interrupted) {
-      exitCode = finishInterruptedRender(result, options, output, description.render.exposure, err);
-      out.flush();
-      err.flush();
-      if (session && interruptSignalName() == std::string("SIGTERM")) {
-        leaveEndingJob(*session, exitCode);
-      }
-      return shutDownSlaves(session, exitCode, silentRanks, err);
-    }
-    if (result.caustics.noCasters && !options.quiet) {
-      err << "prism: warning: caustics asked for, but no light reaches a caustic caster "
-             "(a reflective or transparent object): rendered without photons\n";
-    }
-
-    const auto writeStart = SteadyClock::now();
-    writeImage(result.image, output, description.render.exposure);
-    summary.writeSeconds = secondsSince(writeStart);
-    if (!options.photonImagePath.empty()) {
-      if (result.lastMap) {
-        const RenderSettings& r = description.render;
-        writeImage(photonImage(*result.lastMap, scene.camera(), r.width, r.height),
-                   options.photonImagePath, 1.0f);
-      } else {
-        err << "prism: warning: no photons were traced, so " << options.photonImagePath
-            << " was not written\n";
-      }
-    }
-
-    if (!options.causticMapDebugPrefix.empty()) {
-      if (result.causticMaps && !result.causticMaps->empty()) {
-        const auto& maps = result.causticMaps->maps();
-        for (size_t i = 0; i < maps.size(); ++i) {
-          for (const NamedImage& image : causticMapImages(*maps[i])) {
-            writeImage(image.image,
-                       options.causticMapDebugPrefix + "-light" + std::to_string(i) + "-" +
-                           image.name + ".png",
-                       1.0f);
-          }
-        }
-      } else {
-        err << "prism: warning: no caustic map was built, so no --caustic-map-debug images\n";
-      }
-    }
-
-    if (!options.quiet) {
-      summary.scenePath = options.scenePath;
-      summary.outputPath = output;
-      summary.settings = description.render;
-      summary.sceneStats = scene.buildStats();
-      summary.lightCount = description.lights.size();
-      summary.schedule = options.distribution.schedule;
-      summary.frame = &frame;
-      summary.caustics = &result.caustics;
-      summary.totalSeconds = secondsSince(start);
-      printRunSummary(summary, out);
-    }
+    exitCode = renderAndWrite(run, output, start, out, err);
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";
     exitCode = 1;
   }
   out.flush();
-  return shutDownSlaves(session, exitCode, silentRanks, err);
+  return run.finish(exitCode);
 }
 
 }  // namespace prism

@@ -15,11 +15,11 @@
 #include "master/analysis/LinkProbe.h"
 #include "master/analysis/ScalingProjection.h"
 #include "master/analysis/TileCostMap.h"
+#include "master/commands/MasterSession.h"
 #include "master/commands/ProgressBar.h"
 #include "master/runtime/CausticPasses.h"
 #include "master/runtime/FrameRenderer.h"
 #include "master/runtime/PhotonPass.h"
-#include "master/runtime/SlaveShutdown.h"
 #include "master/runtime/TilePlan.h"
 #include "scene/Scene.h"
 #include "transport/Transport.h"
@@ -52,7 +52,7 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
   if (settings.method == CausticMethod::CausticMap) {
     auto maps = std::make_shared<const CausticMapEstimator>(scene, availableCores());
     prepared.stage = "caustic map (rank 0)";
-    prepared.pass = causticMapPass(0, std::move(maps));
+    prepared.pass = RenderPass::withCausticMaps(0, std::move(maps));
   } else if (settings.method == CausticMethod::PhotonMap) {
     const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
     if (tracer.hasWork()) {
@@ -62,9 +62,8 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather = classicGather(settings, radius);
       prepared.stage = "photon pass (" + std::to_string(photons.size()) + " photons)";
-      prepared.pass = std::make_shared<const RenderPass>(RenderPass{
-          0, true,
-          gatherFromPhotons(std::move(photons), 0, gather, availableCores(), link, stats)});
+      prepared.pass = RenderPass::withPhotons(
+          0, true, gatherFromPhotons(std::move(photons), 0, gather, availableCores(), link, stats));
       prepared.progressiveAsOneFrame = settings.progressive;
     }
   }
@@ -92,18 +91,22 @@ void waitForSlaves(SlaveLink& link) {
 
 class Measurement {
  public:
-  Measurement(const Scene& scene, const SpeedupOptions& options, SlaveLink& link,
+  Measurement(TileDispatcher& dispatcher, const SpeedupOptions& options,
               std::shared_ptr<const RenderPass> pass)
-      : scene_(scene), options_(options), link_(link), pass_(pass) {}
+      : dispatcher_(dispatcher),
+        serial_(dispatcher.scene(), nullptr, serialOptions()),
+        options_(options),
+        pass_(std::move(pass)) {}
 
-  // The serial baseline: this process, one thread, no slaves.
+  // The serial baseline: this process, one thread, no slaves (a dispatcher of its own, kept for
+  // every serial frame).
   FrameResult serial(int tileSize) {
     FrameOptions frame;
-    frame.distribution.threads = 1;
+    frame.distribution = serialOptions();
     frame.distribution.tileSize = tileSize;
     frame.pass = pass_;
     frame.frameId = nextFrame_++;
-    return renderFrame(scene_, frame);
+    return renderFrame(serial_, frame);
   }
 
   FrameResult parallel(Schedule schedule, int tileSize, int slaves) {
@@ -115,7 +118,7 @@ class Measurement {
     frame.masterRenders = false;
     frame.activeSlaves = slaves;
     frame.frameId = nextFrame_++;
-    FrameResult result = renderFrame(scene_, frame, link_);
+    FrameResult result = renderFrame(dispatcher_, frame);
     for (int r = 1; r <= slaves; ++r) {
       if (result.workers[r].retired) {
         throw std::runtime_error("rank " + std::to_string(r) +
@@ -127,9 +130,15 @@ class Measurement {
   }
 
  private:
-  const Scene& scene_;
+  static DistributionOptions serialOptions() {
+    DistributionOptions o;
+    o.threads = 1;
+    return o;
+  }
+
+  TileDispatcher& dispatcher_;
+  TileDispatcher serial_;
   const SpeedupOptions& options_;
-  SlaveLink& link_;
   std::shared_ptr<const RenderPass> pass_;
   uint32_t nextFrame_ = 1;
 };
@@ -167,6 +176,141 @@ SpeedupOutputs speedupOutputs(const std::string& prefix) {
           prefix + "-projection.png"};
 }
 
+namespace {
+
+// The set-up figures the report prints: rank 0's from the session, the slowest slave's from
+// the roster (once every slave said Ready).
+void recordSetUp(MasterSession& session, SpeedupReport& report) {
+  const SessionSetUp& setUp = session.setUp();
+  report.setup.parseSeconds = setUp.parseSeconds;
+  report.setup.broadcastSeconds = setUp.broadcastSeconds;
+  report.setup.broadcastBytes = setUp.broadcastBytes;
+  report.setup.buildSeconds = setUp.buildSeconds;
+  const RenderSettings& settings = session.scene().settings();
+  report.width = settings.width;
+  report.height = settings.height;
+  report.samplesPerPixel = settings.samplesPerPixel;
+  for (const RankStats& slave : session.link().roster()) {
+    if (slave.rank == 0) continue;
+    report.setup.slaveBuildSeconds = std::max(report.setup.slaveBuildSeconds, slave.buildSeconds);
+    report.setup.slaveStartSeconds = std::max(report.setup.slaveStartSeconds, slave.startSeconds);
+    report.setup.slaveMpiInitSeconds =
+        std::max(report.setup.slaveMpiInitSeconds, slave.mpiInitSeconds);
+  }
+}
+
+// The measured points: every schedule, tile size and slave count.
+void planPoints(const SpeedupOptions& options, const std::vector<int>& tileSizes, int slaves,
+                SpeedupReport& report) {
+  for (int tileSize : tileSizes) report.serial.push_back({tileSize, {}, {}});
+  for (Schedule schedule : options.schedules) {
+    for (int tileSize : tileSizes) {
+      for (int p = 1; p <= slaves; ++p) {
+        ScalingPoint point;
+        point.schedule = schedule;
+        point.tileSize = tileSize;
+        point.slaves = p;
+        point.threadsPerRank = options.threadsPerRank;
+        point.busyFractions.resize(static_cast<size_t>(p));
+        // Rank 0 keeps a process running (it coordinates) beside the render threads.
+        point.oversubscribed = p * options.threadsPerRank + 1 > report.cores;
+        report.points.push_back(point);
+      }
+    }
+  }
+}
+
+// Renders every point options.repeats times; returns each tile size's serial tile times.
+std::map<int, std::vector<std::vector<double>>> measurePoints(Measurement& measure,
+                                                              const SpeedupOptions& options,
+                                                              int warmUpTileSize, int slaves,
+                                                              SpeedupReport& report) {
+  const size_t frames =
+      1 + static_cast<size_t>(options.repeats) * (report.serial.size() + report.points.size());
+  ProgressBar progress("measuring", frames, "frames", !options.quiet && stderrIsTerminal());
+  size_t done = 0;
+  // Warm-up, not counted: every slave renders once (caches, lazily built caustic maps).
+  measure.parallel(Schedule::Dynamic, warmUpTileSize, slaves);
+  progress.update(++done);
+  std::map<int, std::vector<std::vector<double>>> serialTiles;  // tile size -> runs
+  // Repeats are rounds over every point, so slow drift in the machine's load spreads over
+  // all points instead of biasing the ones measured last.
+  for (int round = 0; round < options.repeats; ++round) {
+    for (SerialPoint& s : report.serial) {
+      const FrameResult f = measure.serial(s.tileSize);
+      s.samples.push_back(f.seconds);
+      serialTiles[s.tileSize].push_back(f.tileSeconds);
+      progress.update(++done);
+    }
+    for (ScalingPoint& p : report.points) {
+      const FrameResult f = measure.parallel(p.schedule, p.tileSize, p.slaves);
+      p.samples.push_back(f.seconds);
+      for (int r = 1; r <= p.slaves; ++r) {
+        const RankStats& w = f.workers[r];
+        p.busyFractions[r - 1].push_back(w.busySeconds / (std::max(w.threads, 1) * f.seconds));
+      }
+      progress.update(++done);
+    }
+  }
+  progress.finish();
+  return serialTiles;
+}
+
+// The statistics, the model fitted to them and the projections to larger images and clusters.
+void analyse(const SpeedupOptions& options,
+             const std::map<int, std::vector<std::vector<double>>>& serialTiles,
+             SpeedupReport& report) {
+  deriveStatistics(report);
+  std::map<int, std::vector<double>> costsBySize;
+  for (const auto& [tileSize, runs] : serialTiles) costsBySize[tileSize] = medianTileSeconds(runs);
+  predictMeasuredPoints(report, costsBySize);
+  const TileCostMap costs(report.width, report.height,
+                          planTiles(report.width, report.height, report.serialTileSize),
+                          costsBySize[report.serialTileSize]);
+  ProjectionPlan plan;
+  plan.sizes = {{report.width, report.height}, {1920, 1080}, {3840, 2160}, {7680, 4320}};
+  plan.tileSize = report.serialTileSize;
+  plan.maxWorkers = options.projectWorkers;
+  plan.schedules = options.schedules;
+  report.projection = projectScaling(costs, plan, report);
+  ProjectionPlan realtime = plan;
+  realtime.sizes = {{report.width, report.height}, {1280, 720}, {1920, 1080}};
+  report.frameRates = projectFrameRates(costs, realtime, report);
+}
+
+// The whole measurement on a started session.
+void measureSpeedup(MasterSession& session, const SpeedupOptions& options,
+                    const SpeedupOutputs& files, const ChartWriter& chartWriter,
+                    SpeedupReport& report, std::ostream& out, std::ostream& err) {
+  session.start();
+  waitForSlaves(session.link());
+  recordSetUp(session, report);
+  const PreparedPass prepared = prepareCaustics(session.scene(), session.link());
+  report.setup.causticStage = prepared.stage;
+  report.setup.causticSeconds = prepared.seconds;
+  if (prepared.progressiveAsOneFrame) {
+    err << "prism: note: a progressive scene is measured as one k-NN photon-map frame\n";
+  }
+  const int slaves = session.link().ranks() - 1;
+  std::vector<int> tileSizes = options.tileSizes;
+  if (tileSizes.empty()) {
+    tileSizes = {automaticTileSize(report.width, report.height, slaves * options.threadsPerRank)};
+  }
+  // Bandwidth from messages the size of the largest tile result, and at least 256 kB so
+  // that their transfer time stands out of the latency's noise.
+  const int largestTile = *std::max_element(tileSizes.begin(), tileSizes.end());
+  const size_t probeBytes = std::max<size_t>(
+      size_t{256} << 10, static_cast<size_t>(tileResultBytes(largestTile * largestTile)));
+  report.link = measureLink(session.link(), probeBytes, options.linkRoundTrips);
+  planPoints(options, tileSizes, slaves, report);
+  Measurement measure(session.dispatcher(), options, prepared.pass);
+  analyse(options, measurePoints(measure, options, tileSizes.front(), slaves, report), report);
+  printSpeedupTable(report, out);
+  writeOutputs(report, files, chartWriter, out, err);
+}
+
+}  // namespace
+
 int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& err,
                Transport* session, const ChartWriter& chartWriter) {
   if (!session || session->size() < 2) {
@@ -192,140 +336,23 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
       options.outputPrefix.empty()
           ? "speedup-" + std::filesystem::path(options.render.scenePath).stem().string()
           : options.outputPrefix);
-  SceneDescription description;
-  try {
-    const auto parseStart = SteadyClock::now();
-    description = loadSceneWithOverrides(options.render);
-    report.setup.parseSeconds = secondsSince(parseStart);
+  MasterSession run(session, options.render, err);
+  const auto checkFolder = [&] {
     const std::filesystem::path folder = std::filesystem::path(files.csv).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder)) {
       throw std::runtime_error("output folder " + folder.string() + " does not exist");
     }
-  } catch (const std::exception& e) {
-    return failBeforeScene(session, e.what(), err);
-  }
-
+  };
+  if (!run.load(checkFolder)) return 1;
   int exitCode = 0;
-  std::vector<bool> silent;
   try {
-    const auto broadcastStart = SteadyClock::now();
-    std::vector<uint8_t> bytes = wire::encodeScene(description);
-    session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
-    report.setup.broadcastSeconds = secondsSince(broadcastStart);
-    report.setup.broadcastBytes = bytes.size();
-    const auto buildStart = SteadyClock::now();
-    // The description's cube-map faces move into the scene: nothing below reads them.
-    const Scene scene(description, std::exchange(description.environment, std::nullopt));
-    report.setup.buildSeconds = secondsSince(buildStart);
-    const RenderSettings& settings = scene.settings();
-    report.width = settings.width;
-    report.height = settings.height;
-    report.samplesPerPixel = settings.samplesPerPixel;
-
-    SlaveLink link(session, options.render.distribution);
-    waitForSlaves(link);
-    for (int r = 1; r < link.ranks(); ++r) {  // the slowest slave's of each
-      const RankStats& slave = link.rank(r);
-      report.setup.slaveBuildSeconds = std::max(report.setup.slaveBuildSeconds, slave.buildSeconds);
-      report.setup.slaveStartSeconds = std::max(report.setup.slaveStartSeconds, slave.startSeconds);
-      report.setup.slaveMpiInitSeconds =
-          std::max(report.setup.slaveMpiInitSeconds, slave.mpiInitSeconds);
-    }
-    const PreparedPass prepared = prepareCaustics(scene, link);
-    report.setup.causticStage = prepared.stage;
-    report.setup.causticSeconds = prepared.seconds;
-    if (prepared.progressiveAsOneFrame) {
-      err << "prism: note: a progressive scene is measured as one k-NN photon-map frame\n";
-    }
-
-    const int slaves = session->size() - 1;
-    std::vector<int> tileSizes = options.tileSizes;
-    if (tileSizes.empty()) {
-      tileSizes = {
-          automaticTileSize(settings.width, settings.height, slaves * options.threadsPerRank)};
-    }
-    // Bandwidth from messages the size of the largest tile result, and at least 256 kB so
-    // that their transfer time stands out of the latency's noise.
-    const int largestTile = *std::max_element(tileSizes.begin(), tileSizes.end());
-    const size_t probeBytes = std::max<size_t>(
-        size_t{256} << 10, static_cast<size_t>(tileResultBytes(largestTile * largestTile)));
-    report.link = measureLink(link, probeBytes, options.linkRoundTrips);
-
-    for (int tileSize : tileSizes) report.serial.push_back({tileSize, {}, {}});
-    for (Schedule schedule : options.schedules) {
-      for (int tileSize : tileSizes) {
-        for (int p = 1; p <= slaves; ++p) {
-          ScalingPoint point;
-          point.schedule = schedule;
-          point.tileSize = tileSize;
-          point.slaves = p;
-          point.threadsPerRank = options.threadsPerRank;
-          point.busyFractions.resize(static_cast<size_t>(p));
-          // Rank 0 keeps a process running (it coordinates) beside the render threads.
-          point.oversubscribed = p * options.threadsPerRank + 1 > report.cores;
-          report.points.push_back(point);
-        }
-      }
-    }
-
-    Measurement measure(scene, options, link, prepared.pass);
-    const size_t frames =
-        1 + static_cast<size_t>(options.repeats) * (report.serial.size() + report.points.size());
-    ProgressBar progress("measuring", frames, "frames", !options.quiet && stderrIsTerminal());
-    size_t done = 0;
-    // Warm-up, not counted: every slave renders once (caches, lazily built caustic maps).
-    measure.parallel(Schedule::Dynamic, tileSizes.front(), slaves);
-    progress.update(++done);
-    std::map<int, std::vector<std::vector<double>>> serialTiles;  // tile size -> runs
-    std::vector<TileRect> costPlan;
-    // Repeats are rounds over every point, so slow drift in the machine's load spreads over
-    // all points instead of biasing the ones measured last.
-    for (int round = 0; round < options.repeats; ++round) {
-      for (SerialPoint& s : report.serial) {
-        const FrameResult f = measure.serial(s.tileSize);
-        s.samples.push_back(f.seconds);
-        serialTiles[s.tileSize].push_back(f.tileSeconds);
-        progress.update(++done);
-      }
-      for (ScalingPoint& p : report.points) {
-        const FrameResult f = measure.parallel(p.schedule, p.tileSize, p.slaves);
-        p.samples.push_back(f.seconds);
-        for (int r = 1; r <= p.slaves; ++r) {
-          const RankStats& w = f.workers[r];
-          p.busyFractions[r - 1].push_back(w.busySeconds / (std::max(w.threads, 1) * f.seconds));
-        }
-        progress.update(++done);
-      }
-    }
-    progress.finish();
-
-    deriveStatistics(report);
-    std::map<int, std::vector<double>> costsBySize;
-    for (const auto& [tileSize, runs] : serialTiles)
-      costsBySize[tileSize] = medianTileSeconds(runs);
-    predictMeasuredPoints(report, costsBySize);
-    const TileCostMap costs(report.width, report.height,
-                            planTiles(report.width, report.height, report.serialTileSize),
-                            costsBySize[report.serialTileSize]);
-    ProjectionPlan plan;
-    plan.sizes = {{report.width, report.height}, {1920, 1080}, {3840, 2160}, {7680, 4320}};
-    plan.tileSize = report.serialTileSize;
-    plan.maxWorkers = options.projectWorkers;
-    plan.schedules = options.schedules;
-    report.projection = projectScaling(costs, plan, report);
-    ProjectionPlan realtime = plan;
-    realtime.sizes = {{report.width, report.height}, {1280, 720}, {1920, 1080}};
-    report.frameRates = projectFrameRates(costs, realtime, report);
-
-    printSpeedupTable(report, out);
-    writeOutputs(report, files, chartWriter, out, err);
-    silent = link.retiredRanks();
+    measureSpeedup(run, options, files, chartWriter, report, out, err);
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";
     exitCode = 1;
   }
   out.flush();
-  return shutDownSlaves(session, exitCode, silent, err);
+  return run.finish(exitCode);
 }
 
 }  // namespace prism

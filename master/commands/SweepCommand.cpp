@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
 
 #include "image/Thumbnail.h"
 #include "master/analysis/SweepReport.h"
+#include "master/commands/MasterSession.h"
 #include "master/commands/ProgressBar.h"
 #include "master/runtime/CausticPasses.h"
 #include "transport/Transport.h"
@@ -125,10 +127,10 @@ SweepOutputs sweepOutputs(const std::string& prefix) {
 int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, Transport* session,
              const ChartWriter& chartWriter) {
   if (session && session->size() > 1) {
-    return failBeforeScene(session,
-                           "prism sweep runs in one process on this machine's cores; start it "
-                           "without mpiexec (it times methods, not the cluster: see prism speedup)",
-                           err);
+    return MasterSession(session, options.render, err)
+        .refuse(
+            "prism sweep runs in one process on this machine's cores; start it without mpiexec "
+            "(it times methods, not the cluster: see prism speedup)");
   }
   try {
     const std::string prefix = options.outputPrefix.empty()
@@ -144,24 +146,12 @@ int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, 
     if (points.empty()) throw std::runtime_error("nothing to sweep: no family has a value");
 
     // One bar per stage before the sweep (reference passes), then one over every run.
-    std::unique_ptr<ProgressBar> bar;
-    std::string stage;
-    const auto onProgress = [&](const std::string& label, size_t done, size_t total) {
-      if (options.quiet) return;
-      if (!bar || label != stage) {
-        if (bar) bar->finish();
-        bar = std::make_unique<ProgressBar>(label, total, "tiles", true);
-        stage = label;
-      }
-      bar->setTotal(total);
-      bar->update(done);
-    };
+    StageProgress bar(!options.quiet);
     ReferenceRequest request = options.reference;
     if (request.cacheStem.empty()) request.cacheStem = files.referenceStem;
     request.threads = options.render.distribution.threads;
-    const SweepReference ref = makeSweepReference(scene, request, onProgress);
-    if (bar) bar->finish();
-    bar.reset();
+    const SweepReference ref = makeSweepReference(scene, request, std::ref(bar));
+    bar.finish();
 
     SweepReport report;
     report.scenePath = options.render.scenePath;

@@ -2,21 +2,16 @@
 
 #include <ostream>
 
-#include "caustics/CausticMapMemory.h"
 #include "image/ImageIo.h"
+#include "master/commands/MasterSession.h"
 #include "master/commands/PartialFrame.h"
-#include "master/runtime/ResourceCheck.h"
-#include "master/runtime/SlaveShutdown.h"
-#include "parse/SceneLoader.h"
-#include "transport/Transport.h"
-#include "wire/Messages.h"
 
 namespace prism {
 
 int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Transport* session,
             const ViewerRunner& viewer) {
-  SceneDescription description;
-  try {
+  MasterSession run(session, options.render, err);
+  const auto checkArguments = [&] {
     if (!viewer) {
       throw std::runtime_error(
           "this prism was built without the viewer (Qt5 Widgets and Charts were not found); "
@@ -27,26 +22,18 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Tr
       if (!isWritableImagePath(options.savePath, &why)) throw std::runtime_error(why);
       checkMayWriteFrame(options.savePath, options.render.overwrite);
     }
-    description = loadSceneWithOverrides(options.render);  // --caustics, --photons too
-  } catch (const std::exception& e) {
-    return failBeforeScene(session, e.what(), err);
-  }
-
+  };
+  if (!run.load(checkArguments)) return 1;  // --caustics, --photons too
   int exitCode = 0;
   try {
-    if (session) {
-      std::vector<uint8_t> bytes = wire::encodeScene(description);
-      session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
-    }
-    const Scene scene(description);
-    checkCausticMapsFit(scene, memoryLimitOrPhysical(options.render.memoryLimit));
-    exitCode = viewer(scene, description, options, session, out, err);
+    run.start(true);  // the window shows the scene's sky
+    exitCode = viewer(run, options, out, err);
   } catch (const std::exception& e) {
     err << "prism: error: " << e.what() << "\n";
     exitCode = 1;
   }
   out.flush();
-  return shutDownSlaves(session, exitCode, {}, err);
+  return run.finish(exitCode);
 }
 
 }  // namespace prism

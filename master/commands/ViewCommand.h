@@ -1,6 +1,7 @@
-// `prism view`: load a scene, broadcast it, and hand rank 0 to the Qt viewer (gui/), which
-// renders it live through LiveRenderer. Qt-free: the viewer is passed in as a function, so
-// prism_app and its tests build and run without Qt, and a build without Qt says so clearly.
+// `prism view`: the run's session loads the scene and broadcasts it, and rank 0 goes to the Qt
+// viewer (gui/), which renders it live through LiveRenderer on the session's dispatcher. Qt-free:
+// the viewer is passed in as a function, so prism_app and its tests build and run without Qt, and a
+// build without Qt says so clearly.
 #pragma once
 
 #include <functional>
@@ -30,10 +31,11 @@ struct ViewOptions {
 };
 
 class Transport;
+class MasterSession;
 
-// Runs the viewer on rank 0; returns the process exit code.
-using ViewerRunner = std::function<int(const Scene& scene, const SceneDescription& description,
-                                       const ViewOptions& options, Transport* session,
+// Runs the viewer on rank 0 over the run's session (its scene, and the dispatcher it renders
+// with); returns the process exit code.
+using ViewerRunner = std::function<int(MasterSession& session, const ViewOptions& options,
                                        std::ostream& out, std::ostream& err)>;
 
 // Rank 0 loads and broadcasts the scene and runs `viewer`; other ranks are slaves exactly as

@@ -64,147 +64,172 @@ ImageRgb progressiveImage(const ImageRgb& direct, const ImageRgb& causticSum, in
 
 }  // namespace
 
-std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
-                                                 std::shared_ptr<const CausticMapEstimator> maps) {
-  if (!maps || maps->empty())
-    return std::make_shared<const RenderPass>(RenderPass{index, true, nullptr});
-  return std::make_shared<const RenderPass>(RenderPass{index, true, std::move(maps), true});
+namespace {
+
+// One run's passes on one dispatcher: the frames, the photon passes between them, and the
+// totals of both.
+class CausticRun {
+ public:
+  CausticRun(TileDispatcher& dispatcher, FrameOptions options, const PassProgress& progress)
+      : dispatcher_(dispatcher),
+        scene_(dispatcher.scene()),
+        settings_(scene_.causticSettings()),
+        options_(std::move(options)),
+        progress_(progress),
+        frameId_(options_.frameId) {
+    CausticRunStats& stats = out_.caustics;
+    stats.method = settings_.method;
+    stats.progressive = settings_.progressive;
+    stats.k = classicGather(settings_, 0.0f).k;  // with gather: auto, its largest k
+    stats.settings = settings_;
+  }
+
+  CausticFrame causticMaps();
+  CausticFrame photonMap(const ProgressiveSnapshot& snapshot);
+
+ private:
+  FrameResult frame(std::shared_ptr<const RenderPass> pass, const std::string& label) {
+    options_.pass = std::move(pass);
+    options_.frameId = frameId_++;
+    options_.progress = [this, label](size_t done, size_t total) {
+      if (progress_) progress_(label, done, total);
+    };
+    return renderFrame(dispatcher_, options_);
+  }
+  // A single frame is the run's image and its totals.
+  CausticFrame single(std::shared_ptr<const RenderPass> pass, bool gathers) {
+    FrameResult f = frame(std::move(pass), "render");
+    if (gathers) out_.caustics.gatherRenderSeconds += f.seconds;
+    out_.image = std::move(f.image);  // out_.frames keeps the counts, not a second copy
+    addFrame(out_.frames, f, true);
+    return std::move(out_);
+  }
+  // Traces pass `pass` across the ranks and returns rank 0's gather from its photons (the
+  // ranks find the radii together).
+  std::shared_ptr<const PhotonGather> photonPass(uint32_t pass, const std::string& label,
+                                                 const PhotonGatherSettings& gather);
+  CausticFrame progressive(const ProgressiveSnapshot& snapshot);
+
+  TileDispatcher& dispatcher_;
+  const Scene& scene_;
+  const CausticSettings& settings_;
+  FrameOptions options_;
+  const PassProgress& progress_;
+  uint32_t frameId_;
+  CausticFrame out_;
+  std::unique_ptr<PhotonTracer> tracer_;
+  float maxRadius_ = 0.0f;
+};
+
+CausticFrame CausticRun::causticMaps() {
+  // Built here on rank 0 and by each slave for itself (slave/): the maps depend on the scene
+  // alone, so every rank's copy is bit-identical and nothing is sent.
+  if (progress_) progress_("caustic map", 0, 1);
+  const auto start = SteadyClock::now();
+  auto maps = std::make_shared<const CausticMapEstimator>(scene_, options_.distribution.threads);
+  CausticRunStats& stats = out_.caustics;
+  stats.mapBuildSeconds = secondsSince(start);
+  stats.map = maps->stats();
+  stats.noCasters = maps->empty();
+  out_.causticMaps = maps;
+  return single(RenderPass::withCausticMaps(0, maps), true);
 }
 
-CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveLink& link,
-                                const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
-  const CausticSettings& settings = scene.causticSettings();
-  CausticFrame out;
-  CausticRunStats& stats = out.caustics;
-  stats.method = settings.method;
-  stats.progressive = settings.progressive;
-  stats.k = classicGather(settings, 0.0f).k;  // with gather: auto, its largest k
-  stats.settings = settings;
-  uint32_t frameId = options.frameId;
-
-  const auto frame = [&](std::shared_ptr<const RenderPass> pass, const std::string& label) {
-    options.pass = std::move(pass);
-    options.frameId = frameId++;
-    options.progress = [&](size_t done, size_t total) {
-      if (progress) progress(label, done, total);
-    };
-    return renderFrame(scene, options, link);
-  };
-
-  if (settings.method == CausticMethod::CausticMap) {
-    // Built here on rank 0 and by each slave for itself (slave/SlaveLoop.cpp): the maps depend
-    // on the scene alone, so every rank's copy is bit-identical and nothing is sent.
-    if (progress) progress("caustic map", 0, 1);
-    const auto start = SteadyClock::now();
-    auto maps = std::make_shared<const CausticMapEstimator>(scene, options.distribution.threads);
-    stats.mapBuildSeconds = secondsSince(start);
-    stats.map = maps->stats();
-    stats.noCasters = maps->empty();
-    out.causticMaps = maps;
-    auto pass = causticMapPass(0, maps);
-    FrameResult f = frame(pass, "render");
-    stats.gatherRenderSeconds += f.seconds;
-    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
-    addFrame(out.frames, f, true);
-    return out;
-  }
-
-  std::unique_ptr<PhotonTracer> tracer;
-  if (settings.method == CausticMethod::PhotonMap) {
-    tracer = std::make_unique<PhotonTracer>(scene, settings.photons, settings.maxBounces);
-    stats.noCasters = !tracer->hasWork();
-    stats.photonsPerPass = tracer->photonsPerPass();
-  }
-  if (!tracer || !tracer->hasWork()) {  // nothing to trace: a plain frame, no photon cost
-    FrameResult f = frame(nullptr, "render");
-    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
-    addFrame(out.frames, f, true);
-    return out;
-  }
-
+std::shared_ptr<const PhotonGather> CausticRun::photonPass(uint32_t pass, const std::string& label,
+                                                           const PhotonGatherSettings& gather) {
   // Resolved here: the photon shares are sized by thread counts.
   const int threads =
-      options.distribution.threads > 0 ? options.distribution.threads : availableCores();
-  const float maxRadius =
-      settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
-  // Traces pass `pass` across the ranks and returns rank 0's gather from its photons (the ranks
-  // find the radii together).
-  const auto photonPass = [&](uint32_t pass, const std::string& label,
-                              const PhotonGatherSettings& gather) {
-    if (progress) progress(label + " photons", 0, 1);
-    PhotonPassStats p;
-    std::vector<Photon> photons = *tracePhotonPass(*tracer, pass, threads, link, p);
-    auto estimator = gatherFromPhotons(std::move(photons), pass, gather, threads, link, p);
-    addPhotonStats(stats, p);
-    ++stats.passes;
-    return estimator;
-  };
+      options_.distribution.threads > 0 ? options_.distribution.threads : availableCores();
+  if (progress_) progress_(label + " photons", 0, 1);
+  PhotonPassStats p;
+  std::vector<Photon> photons = *tracePhotonPass(*tracer_, pass, threads, dispatcher_.link(), p);
+  auto estimator =
+      gatherFromPhotons(std::move(photons), pass, gather, threads, dispatcher_.link(), p);
+  addPhotonStats(out_.caustics, p);
+  ++out_.caustics.passes;
+  return estimator;
+}
 
-  if (!settings.progressive) {
-    auto estimator = photonPass(0, "trace", classicGather(settings, maxRadius));
-    const std::shared_ptr<const PhotonMap> map = estimator->sharedMap();
-    stats.firstRadius = stats.lastRadius = maxRadius;
-    auto pass = std::make_shared<const RenderPass>(RenderPass{0, true, std::move(estimator)});
-    FrameResult f = frame(pass, "render");
-    stats.gatherRenderSeconds += f.seconds;
-    out.image = std::move(f.image);  // out.frames keeps the counts, not a second copy
-    addFrame(out.frames, f, true);
-    out.lastMap = map;
-    return out;
+CausticFrame CausticRun::photonMap(const ProgressiveSnapshot& snapshot) {
+  CausticRunStats& stats = out_.caustics;
+  if (settings_.method == CausticMethod::PhotonMap) {
+    tracer_ = std::make_unique<PhotonTracer>(scene_, settings_.photons, settings_.maxBounces);
+    stats.noCasters = !tracer_->hasWork();
+    stats.photonsPerPass = tracer_->photonsPerPass();
   }
+  // Nothing to trace: a plain frame, no photon cost.
+  if (!tracer_ || !tracer_->hasWork()) return single(RenderPass::directOnly(0), false);
+  maxRadius_ = settings_.maxRadius > 0.0f ? settings_.maxRadius : automaticMaxRadius(scene_);
+  if (settings_.progressive) return progressive(snapshot);
+  auto estimator = photonPass(0, "trace", classicGather(settings_, maxRadius_));
+  out_.lastMap = estimator->sharedMap();
+  stats.firstRadius = stats.lastRadius = maxRadius_;
+  return single(RenderPass::withPhotons(0, true, std::move(estimator)), true);
+}
 
-  // Progressive: the direct frame, then caustic-only passes 1, 2, ...
-  FrameResult direct =
-      frame(std::make_shared<const RenderPass>(RenderPass{0, true, nullptr}), "direct light");
-  addFrame(out.frames, direct, true);
+// The direct frame, then caustic-only passes 1, 2, ...
+CausticFrame CausticRun::progressive(const ProgressiveSnapshot& snapshot) {
+  CausticRunStats& stats = out_.caustics;
+  FrameResult direct = frame(RenderPass::directOnly(0), "direct light");
+  addFrame(out_.frames, direct, true);
   if (direct.interrupted) {
-    out.image = direct.image;
-    return out;
+    out_.image = direct.image;
+    return std::move(out_);
   }
   ImageRgb causticSum(direct.image.width, direct.image.height);
   const auto causticStart = SteadyClock::now();
   PhotonGatherSettings gather;
   int done = 0;
-  for (int i = 1; i <= settings.passes; ++i) {
-    if (i > 1 && settings.timeBudgetSeconds > 0.0 &&
-        secondsSince(causticStart) >= settings.timeBudgetSeconds) {
+  for (int i = 1; i <= settings_.passes; ++i) {
+    if (i > 1 && settings_.timeBudgetSeconds > 0.0 &&
+        secondsSince(causticStart) >= settings_.timeBudgetSeconds) {
       break;
     }
     // Interrupted between passes: the image of the passes done is whole, so nothing is missing.
-    if (options.stopRequested && options.stopRequested()) {
-      out.frames.interrupted = true;
+    if (options_.stopRequested && options_.stopRequested()) {
+      out_.frames.interrupted = true;
       break;
     }
-    const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings.passes);
-    gather = progressiveGather(settings, maxRadius, i, gather);
+    const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings_.passes);
+    gather = progressiveGather(settings_, maxRadius_, i, gather);
     // Per-photon radii: the cap, scaled as the radii are.
     if (i == 1) stats.firstRadius = gather.radius * gather.radiusScale;
     stats.lastRadius = gather.radius * gather.radiusScale;
     auto estimator = photonPass(static_cast<uint32_t>(i), label, gather);
     const std::shared_ptr<const PhotonMap> map = estimator->sharedMap();
-    auto pass = std::make_shared<const RenderPass>(
-        RenderPass{static_cast<uint32_t>(i), false, std::move(estimator)});
-    FrameResult f = frame(pass, label);
+    FrameResult f = frame(
+        RenderPass::withPhotons(static_cast<uint32_t>(i), false, std::move(estimator)), label);
     if (f.interrupted) {  // a pass with missing tiles would darken them: keep the passes done
-      out.frames.interrupted = true;
+      out_.frames.interrupted = true;
       break;
     }
     stats.gatherRenderSeconds += f.seconds;
     for (size_t px = 0; px < causticSum.pixels.size(); ++px)
       causticSum.pixels[px] += f.image.pixels[px];
-    addFrame(out.frames, f, false);
-    out.lastMap = map;
+    addFrame(out_.frames, f, false);
+    out_.lastMap = map;
     ++done;
     if (snapshot) snapshot(done, progressiveImage(direct.image, causticSum, done));
   }
-  out.image = progressiveImage(direct.image, causticSum, done);
-  return out;
+  out_.image = progressiveImage(direct.image, causticSum, done);
+  return std::move(out_);
+}
+
+}  // namespace
+
+CausticFrame renderWithCaustics(TileDispatcher& dispatcher, const FrameOptions& options,
+                                const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
+  CausticRun run(dispatcher, options, progress);
+  if (dispatcher.scene().causticSettings().method == CausticMethod::CausticMap) {
+    return run.causticMaps();
+  }
+  return run.photonMap(snapshot);
 }
 
 CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
                                 const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
-  SlaveLink alone(nullptr, options.distribution);
-  return renderWithCaustics(scene, options, alone, progress, snapshot);
+  TileDispatcher alone(scene, nullptr, options.distribution);
+  return renderWithCaustics(alone, options, progress, snapshot);
 }
 
 }  // namespace prism

@@ -66,18 +66,13 @@ using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 // progressive estimate pass by pass with it.
 using ProgressiveSnapshot = std::function<void(int passes, const ImageRgb& image)>;
 
-// The link carries what is known of the slaves through the run's photon passes and frames.
-CausticFrame renderWithCaustics(const Scene& scene, FrameOptions options, SlaveLink& link,
+// Every frame and photon pass of the run on the run's one dispatcher (and its link).
+CausticFrame renderWithCaustics(TileDispatcher& dispatcher, const FrameOptions& options,
                                 const PassProgress& progress = {},
                                 const ProgressiveSnapshot& snapshot = {});
-// On this process alone.
+// On this process alone, with a dispatcher of its own.
 CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
                                 const PassProgress& progress = {},
                                 const ProgressiveSnapshot& snapshot = {});
-
-// A pass of direct light and the caustics of `maps` (direct light alone when they are empty),
-// whose tiles tell the slaves to use the caustic maps they build themselves.
-std::shared_ptr<const RenderPass> causticMapPass(uint32_t index,
-                                                 std::shared_ptr<const CausticMapEstimator> maps);
 
 }  // namespace prism

@@ -45,69 +45,98 @@ bool stopFollows(const FrameOptions& options) {
   return true;
 }
 
+// What each rank did between two snapshots of the roster: its counts' difference, its facts
+// as they are now.
+std::vector<RankStats> rosterSince(std::vector<RankStats> now,
+                                   const std::vector<RankStats>& before) {
+  for (size_t r = 0; r < now.size() && r < before.size(); ++r) {
+    RankStats& n = now[r];
+    const RankStats& b = before[r];
+    n.tiles -= b.tiles;
+    n.rays -= b.rays;
+    n.busySeconds -= b.busySeconds;
+    n.staleTiles -= b.staleTiles;
+    n.lostTiles -= b.lostTiles;
+  }
+  return now;
+}
+
+// Runs the frame's coordinating loop until it completes, is stopped, or fails.
+void coordinateFrame(TileDispatcher& dispatcher, const FrameOptions& options, size_t tileCount,
+                     FrameResult& result) {
+  auto lastProgress = SteadyClock::now();
+  while (!dispatcher.frameComplete()) {
+    if (dispatcher.localFailed()) {
+      dispatcher.stop();
+      dispatcher.join();  // rethrows the render thread's exception
+    }
+    if (options.stopRequested && options.stopRequested()) {
+      result.interrupted = true;
+      dispatcher.cancel();
+      return;
+    }
+    // Every tile that finishes, here or on a slave, wakes this wait; the bound is for the
+    // progress bar, a stop request and the slaves' silence.
+    try {
+      dispatcher.service(0.1);
+    } catch (const std::runtime_error&) {
+      // mpiexec signals every rank at once: a slave's "stopped by SIGTERM" may arrive before
+      // this rank's own signal is seen. Then it is part of the stop, not a failure.
+      if (!stopFollows(options)) throw;
+      result.interrupted = true;
+      dispatcher.cancel();
+      return;
+    }
+    if (options.progress && secondsSince(lastProgress) > 0.1) {
+      options.progress(dispatcher.tilesDone(), tileCount);
+      lastProgress = SteadyClock::now();
+    }
+  }
+}
+
 }  // namespace
 
-FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLink& link) {
+FrameResult renderFrame(TileDispatcher& dispatcher, const FrameOptions& options) {
   const auto start = SteadyClock::now();
-  const RenderSettings& settings = scene.settings();
-  TileDispatcher dispatcher(scene, link, options.distribution);
+  const RenderSettings& settings = dispatcher.scene().settings();
+  const std::vector<RankStats> rosterBefore = dispatcher.stats();
+  const size_t reissuedBefore = dispatcher.reissuedTiles();
 
   FrameResult result;
   result.threads = options.masterRenders ? dispatcher.localThreads() : 0;
   result.tileSize = options.distribution.tileSize > 0
                         ? options.distribution.tileSize
                         : automaticTileSize(settings.width, settings.height,
-                                            dispatcher.localThreads() * link.ranks());
+                                            dispatcher.localThreads() * dispatcher.link().ranks());
   const std::vector<TileRect> rects = planTiles(settings.width, settings.height, result.tileSize);
   result.tileCount = rects.size();
 
   FrameAssembly assembly(settings.width, settings.height, rects.size());
-  dispatcher.beginFrame(
-      {options.frameId, rects, nullptr, options.pass, options.masterRenders, options.activeSlaves},
-      &assembly);
+  FramePlan plan{options.frameId,
+                 rects,
+                 nullptr,
+                 options.pass,
+                 options.masterRenders,
+                 options.activeSlaves,
+                 options.distribution.schedule};
+  dispatcher.beginFrame(std::move(plan), &assembly);
   if (options.masterRenders) dispatcher.startLocalWorkers();
-
   try {
-    auto lastProgress = SteadyClock::now();
-    while (!dispatcher.frameComplete()) {
-      if (dispatcher.localFailed()) break;  // join() below rethrows the thread's exception
-      if (options.stopRequested && options.stopRequested()) {
-        result.interrupted = true;
-        dispatcher.cancel();
-        break;
-      }
-      // Every tile that finishes, here or on a slave, wakes this wait; the bound is for the
-      // progress bar, a stop request and the slaves' silence.
-      try {
-        dispatcher.service(0.1);
-      } catch (const std::runtime_error&) {
-        // mpiexec signals every rank at once: a slave's "stopped by SIGTERM" may arrive before
-        // this rank's own signal is seen. Then it is part of the stop, not a failure.
-        if (!stopFollows(options)) throw;
-        result.interrupted = true;
-        dispatcher.cancel();
-        break;
-      }
-      if (options.progress && secondsSince(lastProgress) > 0.1) {
-        options.progress(dispatcher.tilesDone(), rects.size());
-        lastProgress = SteadyClock::now();
-      }
-    }
+    coordinateFrame(dispatcher, options, rects.size(), result);
   } catch (...) {
-    dispatcher.stop();
-    dispatcher.join();
+    dispatcher.endFrame(options.frameId);  // the assembly goes: nothing may report to it
     throw;
   }
-  dispatcher.stop();
-  dispatcher.join();
+  // Complete, or stopped: no tile of it is handed out or accepted any more.
+  dispatcher.endFrame(options.frameId);
   if (options.progress && !result.interrupted) options.progress(rects.size(), rects.size());
 
   result.tileDone = assembly.framebuffer().received();
   result.image = assembly.framebuffer().takeImage();
-  result.workers = dispatcher.stats();
+  result.workers = rosterSince(dispatcher.stats(), rosterBefore);
   result.tiles = rects;
   result.tileSeconds = assembly.tileSeconds();
-  result.reissuedTiles = dispatcher.reissuedTiles();
+  result.reissuedTiles = dispatcher.reissuedTiles() - reissuedBefore;
   for (const RankStats& w : result.workers) {
     result.rays += w.rays;
     result.busyThreadSeconds += w.busySeconds;
@@ -117,8 +146,8 @@ FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLi
 }
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
-  SlaveLink alone(nullptr, options.distribution);
-  return renderFrame(scene, options, alone);
+  TileDispatcher alone(scene, nullptr, options.distribution);
+  return renderFrame(alone, options);
 }
 
 size_t FrameResult::tilesDone() const {

@@ -11,6 +11,7 @@
 #include "cluster/DistributionOptions.h"
 #include "image/ImageRgb.h"
 #include "master/runtime/SlaveLink.h"
+#include "master/runtime/TileDispatcher.h"
 #include "render/RayCounters.h"
 #include "render/RenderPass.h"
 #include "render/Tile.h"
@@ -54,10 +55,11 @@ struct FrameResult {
   size_t tilesDone() const;
 };
 
-// Throws std::runtime_error when a slave reports an error (the message names the rank). The
-// link carries what is known of the slaves from one frame or photon pass of a run to the next.
-FrameResult renderFrame(const Scene& scene, const FrameOptions& options, SlaveLink& link);
-// On this process alone.
+// On the run's dispatcher (and its rank 0 threads, started on the first frame that renders on
+// rank 0). Throws std::runtime_error when a slave reports an error (the message names the
+// rank). FrameResult::workers holds what each rank did for this frame.
+FrameResult renderFrame(TileDispatcher& dispatcher, const FrameOptions& options);
+// On this process alone, with a dispatcher of its own.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options);
 
 }  // namespace prism

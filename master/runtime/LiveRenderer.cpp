@@ -75,16 +75,25 @@ uint64_t LiveRenderer::passSeed(uint64_t sceneSeed, int pass) {
 }
 
 LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster)
-    : scene_(scene),
+    : LiveRenderer(std::make_unique<TileDispatcher>(scene, cluster, options.distribution), nullptr,
+                   options) {}
+
+LiveRenderer::LiveRenderer(TileDispatcher& dispatcher, const LiveOptions& options)
+    : LiveRenderer(nullptr, &dispatcher, options) {}
+
+LiveRenderer::LiveRenderer(std::unique_ptr<TileDispatcher> own, TileDispatcher* dispatcher,
+                           const LiveOptions& options)
+    : ownDispatcher_(std::move(own)),
+      dispatcher_(dispatcher ? *dispatcher : *ownDispatcher_),
+      link_(dispatcher_.link()),
+      scene_(dispatcher_.scene()),
       options_(options),
-      link_(cluster, options.distribution),
-      dispatcher_(scene, link_, options.distribution),
       start_(SteadyClock::now()),
       governor_(options.frameTimeSeconds, options.previewScale),
       lastStats_(start_),
-      maxRadius_(scene.causticSettings().maxRadius > 0.0f ? scene.causticSettings().maxRadius
-                                                          : automaticMaxRadius(scene)),
-      mapsRefusal_(prism::causticMapsRefusal(scene, options.memoryLimit)) {}
+      maxRadius_(scene_.causticSettings().maxRadius > 0.0f ? scene_.causticSettings().maxRadius
+                                                           : automaticMaxRadius(scene_)),
+      mapsRefusal_(prism::causticMapsRefusal(scene_, options.memoryLimit)) {}
 
 LiveRenderer::~LiveRenderer() {
   stop();
@@ -184,7 +193,7 @@ bool LiveRenderer::mayStartLocked() const {
   // traces photons first (the coordinator would trace while this frame's end waits).
   if (!options_.pipeline || open != 1 || !newest->allAssigned()) return false;
   const RenderPass* light = newest->info.light.get();
-  if (light && light->caustics && !light->causticMap) return false;
+  if (light && light->source == CausticSource::PhotonMap) return false;
   return pendingView_ || !tracesPhotons(view_);
 }
 
@@ -226,7 +235,7 @@ void LiveRenderer::frameFinishedLocked(const Pass& pass, double end) {
   // A photon-mapped pass costs its gathers, which frames while moving never make: its time
   // would predict them too slow, and the resolution would drop at the next move.
   const RenderPass* light = pass.info.light.get();
-  if (!(light && light->caustics && !light->causticMap)) {
+  if (!(light && light->source == CausticSource::PhotonMap)) {
     governor_.frameFinished(static_cast<uint64_t>(v.width) * static_cast<uint64_t>(v.height) *
                                 static_cast<uint64_t>(v.samplesPerPixel),
                             seconds);
@@ -274,7 +283,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::causticMapLight(const PassPlan& 
     s.mapBuildSeconds = buildSeconds;
   }
   if (maps->empty()) return nullptr;
-  return causticMapPass(plan.frame, maps);
+  return RenderPass::withCausticMaps(plan.frame, maps);
 }
 
 std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) {
@@ -334,7 +343,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     s.radius = gather.radius * gather.radiusScale;  // per-photon radii: their cap
     s.reused = reused;
   }
-  return std::make_shared<const RenderPass>(RenderPass{plan.frame, true, std::move(estimator)});
+  return RenderPass::withPhotons(plan.frame, true, std::move(estimator));
 }
 
 LiveRenderer::Pass* LiveRenderer::findLocked(uint32_t frame) {
@@ -535,6 +544,7 @@ void LiveRenderer::run(LiveListener& listener) {
           frame.tiles = started->tiles;
           frame.view = started->view;
           frame.light = started->light;
+          frame.schedule = options_.distribution.schedule;
           // Queued behind the frame still running, which the listener hears of first.
           dispatcher_.queueFrame(frame, this);
         }

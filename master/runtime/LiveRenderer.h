@@ -183,8 +183,15 @@ class LiveListener {
 
 class LiveRenderer final : private FrameListener {
  public:
+  // On the run's dispatcher (master/commands/MasterSession.h), whose scene it renders; it stops
+  // the dispatcher when it stops.
+  LiveRenderer(TileDispatcher& dispatcher, const LiveOptions& options);
+  // On a dispatcher of its own over cluster (null: this process alone), for a renderer that is
+  // the whole run (tests).
   LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster = nullptr);
   ~LiveRenderer() override;
+  LiveRenderer(const LiveRenderer&) = delete;
+  LiveRenderer& operator=(const LiveRenderer&) = delete;
 
   // Ends the current frame and starts rendering this view from pass 0.
   void setView(const ViewSettings& view);
@@ -209,6 +216,8 @@ class LiveRenderer final : private FrameListener {
   static uint64_t passSeed(uint64_t sceneSeed, int pass);
 
  private:
+  LiveRenderer(std::unique_ptr<TileDispatcher> own, TileDispatcher* dispatcher,
+               const LiveOptions& options);
   struct Event;
   struct Pass;
   struct PassPlan;
@@ -246,10 +255,11 @@ class LiveRenderer final : private FrameListener {
   LiveStats statsLocked(double elapsedSeconds, std::vector<RankStats> ranks);
   double now() const { return secondsSince(start_); }
 
+  std::unique_ptr<TileDispatcher> ownDispatcher_;  // when it was made without one
+  TileDispatcher& dispatcher_;
+  SlaveLink& link_;  // the dispatcher's: the photon passes use it too
   const Scene& scene_;
   LiveOptions options_;
-  SlaveLink link_;  // the coordinator's: the dispatcher and the photon passes share it
-  TileDispatcher dispatcher_;
   SteadyClock::time_point start_;
 
   // Guards what follows. Order: the dispatcher's lock, then this one; never the other way.

@@ -9,7 +9,8 @@ namespace prism {
 SlaveLink::SlaveLink(Transport* cluster, const DistributionOptions& options)
     : cluster_(cluster && cluster->size() > 1 ? cluster : nullptr),
       options_(options),
-      ranks_(static_cast<size_t>(cluster_ ? cluster_->size() : 1)),
+      rankCount_(cluster_ ? cluster_->size() : 1),
+      ranks_(static_cast<size_t>(rankCount_)),
       ready_(ranks_.size(), false),
       lastHeard_(ranks_.size(), SteadyClock::now()),
       lastListened_(SteadyClock::now()) {
@@ -17,14 +18,59 @@ SlaveLink::SlaveLink(Transport* cluster, const DistributionOptions& options)
   ready_[0] = true;
 }
 
+RankStats SlaveLink::rank(int r) const {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  return ranks_[static_cast<size_t>(r)];
+}
+
+std::vector<RankStats> SlaveLink::roster() const {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  return ranks_;
+}
+
+bool SlaveLink::retired(int r) const {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  return ranks_[static_cast<size_t>(r)].retired;
+}
+
+bool SlaveLink::ready(int r) const {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  return ready_[static_cast<size_t>(r)];
+}
+
 std::vector<bool> SlaveLink::retiredRanks() const {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
   std::vector<bool> retired;
   for (const RankStats& r : ranks_) retired.push_back(r.retired);
   return retired;
 }
 
 void SlaveLink::retire(int r) {
-  if (r > 0 && r < ranks()) ranks_[static_cast<size_t>(r)].retired = true;
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  if (r > 0 && r < ranks()) recordLocked(r).retired = true;
+}
+
+void SlaveLink::setLocalThreads(int threads) {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  recordLocked(0).threads = threads;
+}
+
+void SlaveLink::countDelivered(int r, const TileResult& tile) {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  RankStats& s = recordLocked(r);
+  ++s.tiles;
+  s.rays += tile.rays;
+  s.busySeconds += tile.seconds;
+}
+
+void SlaveLink::countStale(int r) {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  ++recordLocked(r).staleTiles;
+}
+
+void SlaveLink::countLost(int r, size_t tiles) {
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
+  recordLocked(r).lostTiles += tiles;
 }
 
 bool SlaveLink::send(int r, std::vector<uint8_t> bytes) {
@@ -58,7 +104,8 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
   switch (message.type) {
     case wire::MessageType::Ready: {
       const wire::ReadyMessage ready = wire::decodeReady(message);
-      RankStats& r = ranks_[static_cast<size_t>(source)];
+      const std::lock_guard<std::mutex> lock(rosterMutex_);
+      RankStats& r = recordLocked(source);
       r.threads = ready.threads;
       r.buildSeconds = ready.buildSeconds;
       r.startSeconds = ready.startSeconds;
@@ -79,12 +126,14 @@ std::vector<int> SlaveLink::retireSilent() {
   if (!cluster_) return silent;
   const auto now = SteadyClock::now();
   noteListening(now);
+  const std::lock_guard<std::mutex> lock(rosterMutex_);
   for (int r = 1; r < ranks(); ++r) {
-    if (retired(r) || !ready(r)) continue;
+    RankStats& record = recordLocked(r);
+    if (record.retired || !ready_[static_cast<size_t>(r)]) continue;
     const double quiet =
         std::chrono::duration<double>(now - lastHeard_[static_cast<size_t>(r)]).count();
     if (quiet > options_.heartbeatTimeoutSeconds) {
-      retire(r);
+      record.retired = true;
       silent.push_back(r);
     }
   }

@@ -1,6 +1,7 @@
-// Rank 0's line to its slaves, for the whole run: what it knows of every rank (the roster) and
-// the one place that reads their messages. Every phase that listens to the slaves (tile
-// frames, photon passes, the link probe, the wait for Ready) receives through it, so status
+// Rank 0's line to its slaves, for the whole run: what it knows of every rank (the roster, the
+// run's one record of each rank: its facts from Ready, whether it is retired, and what it
+// delivered) and the one place that reads their messages. Every phase that listens to the slaves
+// (tile frames, photon passes, the link probe, the wait for Ready) receives through it, so status
 // messages mean the same everywhere: a Ready goes into the roster, an Error ends the run as
 // std::runtime_error("rank k: text"), and any message at all shows its rank is alive.
 //
@@ -9,14 +10,18 @@
 // or frozen slave costs seconds, not a lease. Silence is counted only while rank 0 listens: after
 // rank 0 has been busy elsewhere (building caustic maps, say), its slaves get a heartbeat's time
 // to be heard before any is judged. A slave still building its scene is bounded by the lease
-// (master/runtime/TileScheduler.h) instead. Coordinating thread only.
+// (master/runtime/TileScheduler.h) instead. Sending and receiving: the coordinating thread only;
+// the roster may be read and counted into from any thread (rank 0's render threads count the
+// tiles they deliver).
 #pragma once
 
+#include <mutex>
 #include <optional>
 #include <vector>
 
 #include "cluster/DistributionOptions.h"
 #include "render/RayCounters.h"
+#include "render/Tile.h"
 #include "transport/Transport.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
@@ -52,16 +57,25 @@ class SlaveLink {
   SlaveLink(Transport* cluster, const DistributionOptions& options);
 
   Transport* transport() const { return cluster_; }
-  int ranks() const { return static_cast<int>(ranks_.size()); }
+  int ranks() const { return rankCount_; }
   bool hasSlaves() const { return ranks() > 1; }
   const DistributionOptions& options() const { return options_; }
 
-  const RankStats& rank(int r) const { return ranks_[static_cast<size_t>(r)]; }
-  bool retired(int r) const { return rank(r).retired; }
-  bool ready(int r) const { return ready_[static_cast<size_t>(r)]; }
+  // The roster: one rank's record, or every rank's, as they are now.
+  RankStats rank(int r) const;
+  std::vector<RankStats> roster() const;
+  bool retired(int r) const;
+  bool ready(int r) const;
   // Per rank: retired (master/runtime/SlaveShutdown.h waits less for those).
   std::vector<bool> retiredRanks() const;
   void retire(int r);
+  // Rank 0's render threads, once they run.
+  void setLocalThreads(int threads);
+  // What a rank delivered: a tile accepted (the first copy), a result dropped (late, duplicate,
+  // or of an ended frame), tiles it lost (named by its heartbeat, re-issued).
+  void countDelivered(int r, const TileResult& tile);
+  void countStale(int r);
+  void countLost(int r, size_t tiles);
 
   // Sends to a live slave; a send the transport refuses retires it. False then, or when the
   // rank was retired already.
@@ -82,11 +96,15 @@ class SlaveLink {
 
  private:
   void noteListening(SteadyClock::time_point now);
+  RankStats& recordLocked(int r) { return ranks_[static_cast<size_t>(r)]; }
 
   Transport* cluster_;
   DistributionOptions options_;
+  int rankCount_ = 1;
+  mutable std::mutex rosterMutex_;  // guards ranks_ and ready_
   std::vector<RankStats> ranks_;
   std::vector<bool> ready_;
+  // The coordinating thread's alone:
   std::vector<SteadyClock::time_point> lastHeard_;
   SteadyClock::time_point lastListened_;
 };

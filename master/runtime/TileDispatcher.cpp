@@ -38,7 +38,8 @@ struct TileDispatcher::Frame {
   Frame(FramePlan p, FrameListener* l, int ranks, const DistributionOptions& o)
       : plan(std::move(p)),
         listener(l),
-        scheduler(plan.tiles.size(), ranks, o.schedule, o.leaseSeconds, activeRanks(ranks, plan)),
+        scheduler(plan.tiles.size(), ranks, plan.schedule, o.leaseSeconds,
+                  activeRanks(ranks, plan)),
         viewSent(static_cast<size_t>(ranks), false) {
     scheduler.exemptFromLeases(kLocalRank);
     viewSent[kLocalRank] = true;
@@ -49,22 +50,13 @@ struct TileDispatcher::Frame {
   bool complete() const { return done == plan.tiles.size(); }
 };
 
-TileDispatcher::TileDispatcher(const Scene& scene, SlaveLink& link,
+TileDispatcher::TileDispatcher(const Scene& scene, Transport* cluster,
                                const DistributionOptions& options)
     : scene_(scene),
-      link_(link),
       options_(options),
+      link_(cluster, options),
       pool_(scene, options.threads),
-      start_(SteadyClock::now()) {
-  for (int r = 0; r < link_.ranks(); ++r) {
-    RankStats s;  // what the roster knows; the counts are this dispatcher's own
-    s.rank = r;
-    s.threads = link_.rank(r).threads;
-    s.buildSeconds = link_.rank(r).buildSeconds;
-    s.retired = link_.rank(r).retired;
-    delivered_.push_back(s);
-  }
-}
+      start_(SteadyClock::now()) {}
 
 TileDispatcher::~TileDispatcher() {
   stop();
@@ -75,19 +67,16 @@ TileDispatcher::~TileDispatcher() {
 }
 
 int TileDispatcher::liveThreads() {
-  const std::lock_guard<std::mutex> lock(mutex_);
   int threads = 0;
-  for (const RankStats& r : delivered_) {
+  for (const RankStats& r : link_.roster()) {
     if (!r.retired) threads += r.threads > 0 ? r.threads : pool_.threadCount();
   }
   return threads;
 }
 
 void TileDispatcher::startLocalWorkers() {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    delivered_[kLocalRank].threads = pool_.threadCount();
-  }
+  if (pool_.started()) return;
+  link_.setLocalThreads(pool_.threadCount());
   pool_.start([this] { return nextLocalJob(); },
               [this](const TileJob& job, TileResult&& tile) {
                 accept(job.frame, std::move(tile), kLocalRank);
@@ -125,11 +114,7 @@ void TileDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endE
     frames_.push_back(std::make_unique<Frame>(std::move(plan), listener, link_.ranks(), options_));
     Frame& frame = *frames_.back();
     for (int r = 1; r < link_.ranks(); ++r) {
-      // What photon passes and earlier frames learnt of the slaves.
-      RankStats& s = delivered_[static_cast<size_t>(r)];
-      s.retired = s.retired || link_.retired(r);
-      if (link_.rank(r).threads > 0) s.threads = link_.rank(r).threads;
-      if (s.retired) frame.scheduler.retire(r);
+      if (link_.retired(r)) frame.scheduler.retire(r);  // found gone by photon passes, or earlier
     }
     // The slaves' first jobs are taken before rank 0's render threads can see the frame: their
     // round trip overlaps rank 0's first tiles, and even a frame rank 0 could finish alone
@@ -185,18 +170,15 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
   bool frameDone = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    RankStats& s = delivered_[static_cast<size_t>(rank)];
     Frame* frame = findLocked(frameId);
     const bool planned = frame && tile.tileIndex < frame->plan.tiles.size() &&
                          sameRect(tile.rect, frame->plan.tiles[tile.tileIndex]) &&
                          (!frame->listener || frame->listener->wantsTiles(frameId));
     if (!planned || !frame->scheduler.complete(tile.tileIndex, rank, now())) {
-      ++s.staleTiles;
+      link_.countStale(rank);
       return;
     }
-    ++s.tiles;
-    s.rays += tile.rays;
-    s.busySeconds += tile.seconds;
+    link_.countDelivered(rank, tile);
     ++frame->done;
     if (frame->listener) frame->listener->tileFinished(frameId, std::move(tile), rank);
     frameDone = frame->complete();
@@ -273,7 +255,6 @@ void TileDispatcher::retireRank(int rank) {
   link_.retire(rank);
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    delivered_[static_cast<size_t>(rank)].retired = true;
     for (const std::unique_ptr<Frame>& frame : frames_) frame->scheduler.retire(rank);
   }
   changed_.notify_all();
@@ -294,8 +275,8 @@ void TileDispatcher::route(const SlaveMessage& incoming) {
         const std::lock_guard<std::mutex> lock(mutex_);
         Frame* frame = findLocked(progress.frame);
         if (!frame) return;  // counts of a frame that is over
-        delivered_[static_cast<size_t>(rank)].lostTiles +=
-            frame->scheduler.reconcile(rank, progress.jobsReceived, progress.heldTiles);
+        link_.countLost(
+            rank, frame->scheduler.reconcile(rank, progress.jobsReceived, progress.heldTiles));
       }
       changed_.notify_all();
       return;
@@ -342,11 +323,6 @@ void TileDispatcher::service(double waitSeconds) {
         }
       }
     }
-    for (int r = 0; r < link_.ranks(); ++r) {  // what Ready messages said meanwhile
-      RankStats& s = delivered_[static_cast<size_t>(r)];
-      if (r > 0) s.threads = link_.rank(r).threads;
-      s.buildSeconds = link_.rank(r).buildSeconds;
-    }
   }
   for (int rank : expired) retireRank(rank);
 }
@@ -366,11 +342,6 @@ void TileDispatcher::cancel() {
 
 void TileDispatcher::join() {
   pool_.join();
-}
-
-std::vector<RankStats> TileDispatcher::stats() {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return delivered_;
 }
 
 size_t TileDispatcher::reissuedTiles() {

@@ -49,6 +49,7 @@ struct FramePlan {
   // only slaves 1..activeSlaves get tiles (-1: every slave).
   bool masterRenders = true;
   int activeSlaves = -1;
+  Schedule schedule = Schedule::Dynamic;
 };
 
 // Told about the current frame's tiles. Called with the dispatcher's lock held, from the
@@ -67,16 +68,21 @@ class FrameListener {
 
 class TileDispatcher {
  public:
-  TileDispatcher(const Scene& scene, SlaveLink& link, const DistributionOptions& options);
+  // cluster null (or of one rank): rank 0's threads alone.
+  TileDispatcher(const Scene& scene, Transport* cluster, const DistributionOptions& options);
   ~TileDispatcher();  // stops and joins the render threads
   TileDispatcher(const TileDispatcher&) = delete;
   TileDispatcher& operator=(const TileDispatcher&) = delete;
 
+  const Scene& scene() const { return scene_; }
+  SlaveLink& link() { return link_; }
+  const DistributionOptions& options() const { return options_; }
   int localThreads() const { return pool_.threadCount(); }
   // Live ranks' render threads (a slave's from its Ready, else rank 0's count in its place).
   int liveThreads();
 
-  // Starts rank 0's render threads; they take tiles of whatever frame is current.
+  // Starts rank 0's render threads, once a run (later calls do nothing); they take tiles of
+  // whatever frame is current.
   void startLocalWorkers();
   // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
   // late results are stale). Called by the coordinating thread: it sends the slaves their first
@@ -110,8 +116,8 @@ class TileDispatcher {
   void join();
   bool localFailed() { return pool_.failed(); }
 
-  // Per rank, since the dispatcher started: the roster's facts plus the tiles each delivered.
-  std::vector<RankStats> stats();
+  // Per rank, since the run began: the roster (SlaveLink::roster).
+  std::vector<RankStats> stats() { return link_.roster(); }
   size_t reissuedTiles();
 
  private:
@@ -131,15 +137,14 @@ class TileDispatcher {
   double now() const { return secondsSince(start_); }
 
   const Scene& scene_;
-  SlaveLink& link_;
   DistributionOptions options_;
+  SlaveLink link_;
   TileWorkerPool pool_;
   SteadyClock::time_point start_;
 
   std::mutex mutex_;
   std::condition_variable changed_;
   std::vector<std::unique_ptr<Frame>> frames_;  // running, oldest first; the last is current
-  std::vector<RankStats> delivered_;            // tiles, rays, busy and stale counts per rank
   size_t reissuedBefore_ = 0;                   // by frames already ended
   bool stopped_ = false;
 };

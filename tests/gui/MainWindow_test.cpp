@@ -422,7 +422,7 @@ TEST(MainWindow, CausticMapSwitchBlurKeyAndLightSpaceViews) {
   ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 1; }));
   ASSERT_TRUE(live.waitForFullPasses(1));
   ASSERT_NE(w.frame().pass().light, nullptr);
-  EXPECT_TRUE(w.frame().pass().light->causticMap);
+  EXPECT_EQ(w.frame().pass().light->source, CausticSource::CausticMap);
   ASSERT_TRUE(waitUntil([&] {
     return w.statsPanel()->summaryText().contains("caustic map  512x512 x 1 view(s), blur on");
   })) << w.statsPanel()->summaryText().toStdString();

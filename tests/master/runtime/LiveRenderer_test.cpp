@@ -396,9 +396,8 @@ ImageRgb passOneWithPhotonsOf(const SceneDescription& d, uint32_t photonFrame) {
       std::make_shared<const PhotonMap>(*tracePhotonPass(tracer, photonFrame, 2, alone, stats));
   const PhotonGatherSettings settings =
       progressiveGather(d.caustics, automaticMaxRadius(scene), 1, {});
-  return renderPassFrame(d, 1,
-                         std::make_shared<const RenderPass>(RenderPass{
-                             0, true, std::make_shared<const PhotonGather>(map, settings)}));
+  return renderPassFrame(
+      d, 1, RenderPass::withPhotons(0, true, std::make_shared<const PhotonGather>(map, settings)));
 }
 
 double imageSum(const ImageRgb& image) {
@@ -453,12 +452,11 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
     EXPECT_FLOAT_EQ(gather.settings().radiusScale, settings.radiusScale) << "pass " << i;
 
     // Its image: direct light with pass i's seed plus pass i's estimate from map i.
-    const ImageRgb expected =
-        renderPassFrame(d, i,
-                        std::make_shared<const RenderPass>(
-                            RenderPass{pass.frame, true,
-                                       std::make_shared<const PhotonGather>(
-                                           std::make_shared<const PhotonMap>(photons), settings)}));
+    const ImageRgb expected = renderPassFrame(
+        d, i,
+        RenderPass::withPhotons(pass.frame, true,
+                                std::make_shared<const PhotonGather>(
+                                    std::make_shared<const PhotonMap>(photons), settings)));
     const ImageRgb got = recorder.image(pass.frame);
     ASSERT_EQ(got.pixels.size(), expected.pixels.size());
     for (size_t px = 0; px < got.pixels.size(); ++px) {

@@ -110,8 +110,8 @@ TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExa
       }
     }
   });
-  SlaveLink link(&job.master(), options(false, 2.0, 30.0).distribution);
-  const FrameResult f = renderFrame(scene, options(false, 2.0, 30.0), link);
+  TileDispatcher dispatcher(scene, &job.master(), options(false, 2.0, 30.0).distribution);
+  const FrameResult f = renderFrame(dispatcher, options(false, 2.0, 30.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_EQ(f.workers[1].tiles, f.tileCount);  // only the slave rendered
@@ -141,8 +141,8 @@ TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
     }
   });
   // Lease and silence far away: only the heartbeat can bring the tile back in time.
-  SlaveLink link(&job.master(), options(false, 60.0, 60.0).distribution);
-  const FrameResult f = renderFrame(scene, options(false, 60.0, 60.0), link);
+  TileDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
+  const FrameResult f = renderFrame(dispatcher, options(false, 60.0, 60.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_EQ(f.workers[1].lostTiles, 1u);
@@ -161,12 +161,12 @@ TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
     s.nextJob();
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  SlaveLink link(&job.master(), options(true, 0.6, 120.0).distribution);
-  const FrameResult f = renderFrame(scene, options(true, 0.6, 120.0), link);
+  TileDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 120.0).distribution);
+  const FrameResult f = renderFrame(dispatcher, options(true, 0.6, 120.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_TRUE(f.workers[1].retired);
-  EXPECT_TRUE(link.retired(1));
+  EXPECT_TRUE(dispatcher.link().retired(1));
   EXPECT_EQ(f.reissuedTiles, 2u);
   EXPECT_LT(f.seconds, 20.0);  // the lease is 120 s
 }
@@ -183,8 +183,8 @@ TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
   });
-  SlaveLink link(&job.master(), options(true, 0.6, 1.0).distribution);
-  const FrameResult f = renderFrame(scene, options(true, 0.6, 1.0), link);
+  TileDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 1.0).distribution);
+  const FrameResult f = renderFrame(dispatcher, options(true, 0.6, 1.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_TRUE(f.workers[1].retired);
@@ -197,8 +197,8 @@ TEST(TileDispatcher, ASlaveTheTransportKnowsIsGoneIsRetiredAtTheFirstSend) {
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.network().disconnect(1);
-  SlaveLink link(&job.master(), options(true, 60.0, 60.0).distribution);
-  const FrameResult f = renderFrame(scene, options(true, 60.0, 60.0), link);
+  TileDispatcher dispatcher(scene, &job.master(), options(true, 60.0, 60.0).distribution);
+  const FrameResult f = renderFrame(dispatcher, options(true, 60.0, 60.0));
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_TRUE(f.workers[1].retired);
   EXPECT_EQ(f.workers[0].tiles, f.tileCount);
@@ -211,9 +211,9 @@ TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
   job.start([](ScriptedSlave& s, std::atomic<bool>&) {
     s.send(wire::encodePhotonJob({1, 0, 10, 10}));  // a master's message, from a slave
   });
-  SlaveLink link(&job.master(), options(false, 60.0, 60.0).distribution);
+  TileDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
   try {
-    renderFrame(scene, options(false, 60.0, 60.0), link);
+    renderFrame(dispatcher, options(false, 60.0, 60.0));
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("rank 1 sent an unexpected"), std::string::npos)
@@ -241,11 +241,11 @@ TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
     }
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  SlaveLink link(&job.master(), o.distribution);
-  const CausticFrame f = renderWithCaustics(scene, o, link);
+  TileDispatcher dispatcher(scene, &job.master(), o.distribution);
+  const CausticFrame f = renderWithCaustics(dispatcher, o);
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
-  EXPECT_TRUE(link.retired(1));
+  EXPECT_TRUE(dispatcher.link().retired(1));
 }
 
 // Real slaves (runSlave on threads) over the loopback: photon shares, the map broadcast and
@@ -266,10 +266,11 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   network.endpoint(0).broadcast(bytes, 10.0);
   // Rank 0 renders no tiles here, so the slaves' share cannot depend on how fast they start.
   const FrameOptions distributed = options(false, 2.0, 60.0);
-  SlaveLink link(&network.endpoint(0), distributed.distribution);
-  const CausticFrame f = renderWithCaustics(scene, distributed, link);
+  TileDispatcher dispatcher(scene, &network.endpoint(0), distributed.distribution);
+  const CausticFrame f = renderWithCaustics(dispatcher, distributed);
   std::ostringstream err;
-  EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, link.retiredRanks(), err), 0) << err.str();
+  EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, dispatcher.link().retiredRanks(), err), 0)
+      << err.str();
   for (std::thread& t : slaves) t.join();
   EXPECT_EQ(exitCodes[1], 0);
   EXPECT_EQ(exitCodes[2], 0);
@@ -406,8 +407,7 @@ TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 1;
-  SlaveLink link(nullptr, o);
-  TileDispatcher dispatcher(scene, link, o);
+  TileDispatcher dispatcher(scene, nullptr, o);
   CountingListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.beginFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
@@ -461,8 +461,7 @@ TEST(TileDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 2;
-  SlaveLink link(nullptr, o);
-  TileDispatcher dispatcher(scene, link, o);
+  TileDispatcher dispatcher(scene, nullptr, o);
   OrderListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
@@ -482,8 +481,7 @@ TEST(TileDispatcher, BeginningAFrameEndsAQueuedOne) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 1;
-  SlaveLink link(nullptr, o);
-  TileDispatcher dispatcher(scene, link, o);
+  TileDispatcher dispatcher(scene, nullptr, o);
   OrderListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);

@@ -1,0 +1,104 @@
+#include "master/commands/MasterSession.h"
+
+#include <ostream>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "caustics/CausticMapMemory.h"
+#include "master/runtime/ResourceCheck.h"
+#include "master/runtime/SlaveShutdown.h"
+#include "parse/SceneLoader.h"
+#include "scene/SceneValidation.h"
+#include "transport/Transport.h"
+#include "util/InterruptSignal.h"
+#include "util/Stopwatch.h"
+#include "wire/Messages.h"
+
+namespace prism {
+
+SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
+  const MemoryLimit limit = memoryLimitOrPhysical(options.memoryLimit);
+  SceneDescription description = loadScene(options.scenePath, limit);
+  applyOverrides(options, description.render);
+  applyOverrides(options, description.caustics);
+  validate(description);
+  checkRenderFits(description.render, limit);
+  checkTilesFit(description.render, options.distribution.tileSize, limit);
+  checkCausticsFit(description.caustics, description.lights.size(), limit);
+  checkSceneFits(description, options.distribution.tileSize, limit);
+  return description;
+}
+
+MasterSession::MasterSession(Transport* transport, RenderOptions options, std::ostream& err)
+    : transport_(transport), options_(std::move(options)), err_(err) {}
+
+MasterSession::~MasterSession() {
+  // A command that threw past finish(): its threads stop; the slaves are left to their
+  // master-timeout (the process is ending with an error anyway).
+  if (dispatcher_) dispatcher_->cancel();
+}
+
+bool MasterSession::load(const std::function<void()>& check) {
+  try {
+    if (check) check();
+    const auto start = SteadyClock::now();
+    description_ = loadSceneWithOverrides(options_);
+    setUp_.parseSeconds = secondsSince(start);
+    return true;
+  } catch (const std::exception& e) {
+    refuse(e.what());
+    return false;
+  }
+}
+
+int MasterSession::refuse(const std::string& why) {
+  if (transport_) {
+    std::vector<uint8_t> bytes = wire::encodeError({why});
+    transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+  }
+  err_ << "prism: error: " << why << "\n";
+  finished_ = true;  // the slaves stop on the error: there is nobody to shut down
+  return 1;
+}
+
+void MasterSession::start(bool keepEnvironment) {
+  if (transport_) {
+    const auto start = SteadyClock::now();
+    std::vector<uint8_t> bytes = wire::encodeScene(description_);
+    transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+    setUp_.broadcastSeconds = secondsSince(start);
+    setUp_.broadcastBytes = bytes.size();
+  }
+  const auto buildStart = SteadyClock::now();
+  scene_ = keepEnvironment
+               ? std::make_unique<Scene>(description_)
+               : std::make_unique<Scene>(description_,
+                                         std::exchange(description_.environment, std::nullopt));
+  setUp_.buildSeconds = secondsSince(buildStart);
+  checkCausticMapsFit(*scene_, memoryLimitOrPhysical(options_.memoryLimit));
+  dispatcher_ = std::make_unique<TileDispatcher>(*scene_, transport_, options_.distribution);
+}
+
+int MasterSession::finish(int exitCode) {
+  if (finished_) return exitCode;
+  finished_ = true;
+  std::vector<bool> silent;
+  if (dispatcher_) {
+    silent = link().retiredRanks();
+    dispatcher_->stop();
+    try {
+      dispatcher_->join();
+    } catch (const std::exception& e) {  // a render thread's failure the command did not see
+      err_ << "prism: error: " << e.what() << "\n";
+      exitCode = exitCode != 0 ? exitCode : 1;
+    }
+  }
+  err_.flush();
+  if (transport_ && interruptRequested() && interruptSignalName() == std::string("SIGTERM")) {
+    leaveEndingJob(*transport_, exitCode);
+  }
+  return shutDownSlaves(transport_, exitCode, silent, err_);
+}
+
+}  // namespace prism

@@ -1,0 +1,91 @@
+// Rank 0's side of a run, the same for every command: it loads the scene (with the command
+// line's overrides, and every check that refuses a request before anything is allocated),
+// broadcasts it to the slaves (or, when there is none to send, the reason, so they stop too),
+// builds rank 0's Scene, opens the run's one dispatcher (its link to the slaves, whose roster is
+// the one record of every rank, and rank 0's render threads) and, at the end, shuts the slaves
+// down. `prism render`, `view` and `speedup` run on one; `sweep`, which times methods in one
+// process, uses only its loading and its refusal to run under MPI.
+//
+//   MasterSession session(transport, options.render, err);
+//   if (!session.load(checkOutputs)) return 1;   // reported, and the slaves told
+//   try { session.start(); ... session.dispatcher() ... } catch (...) { exitCode = 1; }
+//   return session.finish(exitCode);
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+#include "master/commands/RenderOptions.h"
+#include "master/runtime/TileDispatcher.h"
+#include "scene/Scene.h"
+#include "scene/SceneDescription.h"
+
+namespace prism {
+
+class Transport;
+
+// How long rank 0's scene broadcast may wait for the slaves (they may still be starting).
+inline constexpr double kSceneBroadcastTimeoutSeconds = 600.0;
+
+// Loads the scene the options name (refusing meshes past the memory limit before reading
+// them), applies their overrides, and refuses settings, an image, tiles, a photon map or
+// geometry that cannot fit (master/runtime/ResourceCheck.h), all before the scene is broadcast
+// or built, so no rank allocates for a refused request. Throws on any of these.
+SceneDescription loadSceneWithOverrides(const RenderOptions& options);
+
+// What setting the run up cost on rank 0.
+struct SessionSetUp {
+  double parseSeconds = 0.0;
+  double broadcastSeconds = 0.0;
+  size_t broadcastBytes = 0;
+  double buildSeconds = 0.0;
+};
+
+class MasterSession {
+ public:
+  // transport null: one process, no slaves. Errors are reported to err.
+  MasterSession(Transport* transport, RenderOptions options, std::ostream& err);
+  ~MasterSession();
+  MasterSession(const MasterSession&) = delete;
+  MasterSession& operator=(const MasterSession&) = delete;
+
+  // Runs the command's own checks of its arguments (output paths: `check` throws to refuse),
+  // then loads the scene. On failure the error is printed ("prism: error: ..."), the slaves
+  // get it instead of a scene and stop, and false is returned: the command exits with 1.
+  bool load(const std::function<void()>& check = {});
+  // Refuses the run before any scene is loaded, as load() does on failure. Returns 1.
+  int refuse(const std::string& why);
+  // Broadcasts the scene, builds rank 0's Scene and opens the run's dispatcher. The scene
+  // takes the description's cube-map faces unless keepEnvironment (the viewer shows them).
+  // Throws on failure; finish() still ends the slaves.
+  void start(bool keepEnvironment = false);
+
+  Transport* transport() const { return transport_; }
+  const RenderOptions& options() const { return options_; }
+  const SceneDescription& description() const { return description_; }
+  const Scene& scene() const { return *scene_; }
+  TileDispatcher& dispatcher() { return *dispatcher_; }
+  SlaveLink& link() { return dispatcher_->link(); }
+  const SessionSetUp& setUp() const { return setUp_; }
+
+  // The end of the run: the dispatcher's threads stop, then every slave is told to shut down
+  // and waited for (the job is aborted when one is lost or does not answer: MPI_Finalize
+  // would wait for it forever). Rank 0 interrupted by mpiexec's SIGTERM leaves at once
+  // instead, before the SIGKILL that follows. Returns exitCode.
+  int finish(int exitCode);
+
+ private:
+  Transport* transport_;
+  RenderOptions options_;
+  std::ostream& err_;
+  SceneDescription description_;
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<TileDispatcher> dispatcher_;
+  SessionSetUp setUp_;
+  bool finished_ = false;
+};
+
+}  // namespace prism
