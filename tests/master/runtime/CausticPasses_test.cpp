@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "cluster/TileWorkerPool.h"
 #include "parse/SceneLoader.h"
 #include "tests/common/caustics/BallOverFloorScene.h"
 
@@ -308,6 +309,19 @@ TEST(CausticPasses, CausticMapIsSeenInAMirrorLikeDirectly) {
   // light, outside the map's light-space view, which only photons carry (about a tenth here).
   // 3 % for the photons' side of it, as above (measured 1.020).
   EXPECT_NEAR((mapMirror / photonMirror) / (mapDirect / photonDirect), 1.0, 0.03);
+}
+
+// A progressive render is one run: its direct frame and its 32 caustic passes all render on one
+// dispatcher, whose rank-0 threads start once (a pool per frame would start 33).
+TEST(CausticPasses, AThirtyTwoPassProgressiveRenderStartsOnePool) {
+  SceneDescription d = indexOneView(8);
+  d.caustics.photons = 2000;
+  d.caustics.progressive = true;
+  d.caustics.passes = 32;
+  const uint64_t poolsBefore = TileWorkerPool::startedInProcess();
+  const CausticFrame f = render(d);
+  EXPECT_EQ(f.caustics.passes, 32);
+  EXPECT_EQ(TileWorkerPool::startedInProcess() - poolsBefore, 1u);
 }
 
 }  // namespace
