@@ -45,7 +45,8 @@ struct PreparedPass {
 // Caustics as `prism render` would do them for one frame: one photon pass traced by every
 // rank and sent to every slave, or rank 0's caustic maps (each slave builds its own during
 // the warm-up frame). A progressive scene is measured as one k-NN photon-map frame.
-PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
+PreparedPass prepareCaustics(TileDispatcher& dispatcher) {
+  const Scene& scene = dispatcher.scene();
   const CausticSettings& settings = scene.causticSettings();
   PreparedPass prepared;
   const auto start = SteadyClock::now();
@@ -57,13 +58,14 @@ PreparedPass prepareCaustics(const Scene& scene, SlaveLink& link) {
     const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
     if (tracer.hasWork()) {
       PhotonPassStats stats;
-      std::vector<Photon> photons = *tracePhotonPass(tracer, 0, 1, link, stats);
+      std::vector<Photon> photons = *tracePhotonPass(tracer, 0, 1, dispatcher, stats);
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather = classicGather(settings, radius);
       prepared.stage = "photon pass (" + std::to_string(photons.size()) + " photons)";
       prepared.pass = RenderPass::withPhotons(
-          0, true, gatherFromPhotons(std::move(photons), 0, gather, availableCores(), link, stats));
+          0, true,
+          gatherFromPhotons(std::move(photons), 0, gather, availableCores(), dispatcher, stats));
       prepared.progressiveAsOneFrame = settings.progressive;
     }
   }
@@ -285,7 +287,7 @@ void measureSpeedup(MasterSession& session, const SpeedupOptions& options,
   session.start();
   waitForSlaves(session.link());
   recordSetUp(session, report);
-  const PreparedPass prepared = prepareCaustics(session.scene(), session.link());
+  const PreparedPass prepared = prepareCaustics(session.dispatcher());
   report.setup.causticStage = prepared.stage;
   report.setup.causticSeconds = prepared.seconds;
   if (prepared.progressiveAsOneFrame) {

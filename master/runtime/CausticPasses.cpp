@@ -142,9 +142,8 @@ std::shared_ptr<const PhotonGather> CausticRun::photonPass(uint32_t pass, const 
       options_.distribution.threads > 0 ? options_.distribution.threads : availableCores();
   if (progress_) progress_(label + " photons", 0, 1);
   PhotonPassStats p;
-  std::vector<Photon> photons = *tracePhotonPass(*tracer_, pass, threads, dispatcher_.link(), p);
-  auto estimator =
-      gatherFromPhotons(std::move(photons), pass, gather, threads, dispatcher_.link(), p);
+  std::vector<Photon> photons = *tracePhotonPass(*tracer_, pass, threads, dispatcher_, p);
+  auto estimator = gatherFromPhotons(std::move(photons), pass, gather, threads, dispatcher_, p);
   addPhotonStats(out_.caustics, p);
   ++out_.caustics.passes;
   return estimator;

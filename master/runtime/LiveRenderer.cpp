@@ -316,12 +316,12 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);  // the slaves kept it too
   } else {
     std::optional<std::vector<Photon>> photons = tracePhotonPass(
-        *tracer_, plan.frame, dispatcher_.localThreads(), link_, p, &cancelPhotons_);
+        *tracer_, plan.frame, dispatcher_.localThreads(), dispatcher_, p, &cancelPhotons_);
     if (!photons) return nullptr;  // the camera moved: the pass is dropped before it starts
     gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
     estimator =
         gatherFromPhotons(std::move(*photons), plan.frame, gather, dispatcher_.localThreads(),
-                          link_, p, plan.index == 1, &cancelPhotons_);
+                          dispatcher_, p, plan.index == 1, &cancelPhotons_);
     if (!estimator) return nullptr;  // the camera moved while the radii were found
     map = estimator->sharedMap();
     if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, plan.frame, map, estimator, p};

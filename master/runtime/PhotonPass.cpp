@@ -1,7 +1,7 @@
 #include "master/runtime/PhotonPass.h"
 
 #include <algorithm>
-#include <future>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -13,35 +13,25 @@
 namespace prism {
 namespace {
 
-// One rank's part of a pass's work: photon indices to trace, or positions of the map's spatial
-// order whose radii to find.
-struct Share {
-  int rank = 0;
-  uint64_t first = 0, count = 0;
-  bool done = false;
-  int doneBy = 0;  // the rank that did it: its own, or 0 for a slave's share done there
-};
-
-// Contiguous index ranges in rank order, sized by each live rank's threads (rank 0's own count
-// stands in for slaves whose Ready has not arrived yet).
-std::vector<Share> planShares(uint64_t total, int localThreads, const SlaveLink& link) {
+// Contiguous index ranges in rank order, one per live rank, sized by its threads (rank 0's own
+// count stands in for slaves whose Ready has not arrived yet).
+std::vector<ShareRange> planShares(uint64_t total, int localThreads, const SlaveLink& link) {
   std::vector<int> weights;
   std::vector<int> members;
-  for (int r = 0; r < link.ranks(); ++r) {
-    if (r > 0 && link.retired(r)) continue;
-    members.push_back(r);
-    const int threads = link.rank(r).threads;
-    weights.push_back(r == 0 || threads <= 0 ? localThreads : threads);
+  for (const RankStats& r : link.roster()) {
+    if (r.rank > 0 && r.retired) continue;
+    members.push_back(r.rank);
+    weights.push_back(r.rank == 0 || r.threads <= 0 ? localThreads : r.threads);
   }
   uint64_t weightSum = 0;
   for (int w : weights) weightSum += static_cast<uint64_t>(w);
-  std::vector<Share> shares;
+  std::vector<ShareRange> shares;
   uint64_t first = 0;
   for (size_t i = 0; i < members.size(); ++i) {
     const uint64_t end = i + 1 == members.size()
                              ? total
                              : first + total * static_cast<uint64_t>(weights[i]) / weightSum;
-    shares.push_back({members[i], first, end - first, false, 0});
+    shares.push_back({members[i], first, end - first});
     first = end;
   }
   return shares;
@@ -56,128 +46,134 @@ size_t sendToEverySlave(SlaveLink& link, const std::vector<uint8_t>& bytes) {
   return sent;
 }
 
-// The share a slave's message answers: its own, not yet done.
-std::optional<size_t> awaitedShare(const std::vector<Share>& shares, int rank) {
-  for (size_t s = 0; s < shares.size(); ++s) {
-    if (shares[s].rank == rank && !shares[s].done) return s;
-  }
-  return std::nullopt;
-}
+// Tracing a pass's photons: a share is a range of photon indices.
+class TraceWork final : public ShareWork {
+ public:
+  TraceWork(const PhotonTracer& tracer, size_t shares, int threads, const std::atomic<bool>* cancel)
+      : tracer_(tracer), threads_(threads), cancel_(cancel), photons(shares), stats(shares) {}
 
-// Waits until every share is done: rank 0's own (shares[0]) by `local`, already running on other
-// threads (it wakes the link when done); a live slave's by its message, which accept(message)
-// takes (marking the share done, by its rank); and one of a slave that went silent, or is still
-// building its scene after the lease, by doHere(share index) on this thread once rank 0's own is
-// done. Empty shares need nothing. Once *cancel is set, the slaves still working on pass `pass`
-// are told to stop (PhotonCancel: their threads are wanted for the next frame's tiles, and they
-// send nothing for it); then this waits for rank 0's own work (it watches cancel too) and returns
-// false.
-template <typename Accept, typename DoHere>
-bool collectShares(std::vector<Share>& shares, uint32_t pass, SlaveLink& link,
-                   std::future<void>& local, const std::atomic<bool>* cancel, Accept accept,
-                   DoHere doHere) {
-  const auto start = SteadyClock::now();
-  const double leaseSeconds = link.options().leaseSeconds;
-  for (Share& s : shares) s.done = s.rank != 0 && s.count == 0;
-  for (;;) {
-    if (cancel && cancel->load()) {
-      for (const Share& s : shares) {
-        if (s.rank != 0 && !s.done) link.send(s.rank, wire::encodePhotonCancel({pass}));
-      }
-      local.wait();
-      return false;
-    }
-    if (!shares[0].done && local.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
-      local.get();  // rethrows what went wrong there
-      shares[0].done = true;
-    }
-    bool waiting = false;
-    for (size_t s = 1; s < shares.size(); ++s) {
-      Share& share = shares[s];
-      if (share.done) continue;
-      waiting = true;
-      const bool lost = link.retired(share.rank) ||
-                        (!link.ready(share.rank) && secondsSince(start) > leaseSeconds);
-      if (!lost || !shares[0].done) continue;
-      link.retire(share.rank);
-      doHere(s);
-      share.done = true;
-      share.doneBy = 0;
-    }
-    if (!shares[0].done) waiting = true;
-    if (!waiting) return true;
-    if (!link.hasSlaves()) {
-      local.wait();
-      continue;
-    }
-    const std::optional<SlaveMessage> incoming = link.receive(0.1);
-    link.retireSilent();
-    // Heartbeats, late tiles of a frame already finished and late shares are passed over.
-    if (incoming) accept(*incoming);
+  wire::MessageType answerType() const override { return wire::MessageType::PhotonShare; }
+  std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
+    return wire::encodePhotonJob({pass, share.first, share.count, tracer_.photonsPerPass()});
   }
+  bool readAnswer(uint32_t pass, const ShareRange& share, const wire::Message& answer) override {
+    answer_ = wire::decodePhotonShare(answer);
+    return answer_.pass == pass && answer_.first == share.first && answer_.count == share.count;
+  }
+  void acceptAnswer(size_t s, int rank) override {
+    photons[s] = std::move(answer_.photons);
+    stats[s] = answer_.stats;
+    doneBy[s] = rank;
+  }
+  void doHere(size_t, const ShareRange& share) override {
+    local_ = {};
+    localPhotons_ =
+        tracePhotons(tracer_, passIndex, share.first, share.count, threads_, &local_, cancel_);
+  }
+  void acceptLocal(size_t s) override {
+    photons[s] = std::move(localPhotons_);
+    stats[s] = local_;
+    doneBy[s] = 0;
+  }
+
+  uint32_t passIndex = 0;
+  std::vector<std::vector<Photon>> photons;  // by share
+  std::vector<PhotonTraceStats> stats;       // by share
+  std::map<size_t, int> doneBy;              // share -> the rank whose work was accepted
+
+ private:
+  const PhotonTracer& tracer_;
+  int threads_;
+  const std::atomic<bool>* cancel_;
+  wire::PhotonShareMessage answer_;
+  std::vector<Photon> localPhotons_;
+  PhotonTraceStats local_;
+};
+
+// Finding a photon map's radii: a share is a range of positions of the map's spatial order, in
+// whole chunks (each chunk is placed on its own, so every radius is the one a single rank would
+// find).
+class RadiiWork final : public ShareWork {
+ public:
+  RadiiWork(const PhotonMap& map, const PhotonGatherSettings& gather, int threads,
+            const std::atomic<bool>* cancel)
+      : map_(map), gather_(gather), threads_(threads), cancel_(cancel), radii(map.size(), 0.0f) {}
+
+  wire::MessageType answerType() const override { return wire::MessageType::PhotonRadiiShare; }
+  std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
+    return wire::encodePhotonRadiiJob({pass, share.first, share.count});
+  }
+  bool readAnswer(uint32_t pass, const ShareRange& share, const wire::Message& answer) override {
+    answer_ = wire::decodePhotonRadiiShare(answer);
+    return answer_.pass == pass && answer_.first == share.first &&
+           answer_.radii.size() == share.count;
+  }
+  void acceptAnswer(size_t s, int rank) override {
+    placePhotonRadii(map_, answer_.first, answer_.radii, radii);
+    doneBy[s] = rank;
+  }
+  void doHere(size_t, const ShareRange& share) override {
+    localFirst_ = share.first;
+    local_ = photonRadiiShare(map_, gather_.k, gather_.radius, gather_.automaticK, share.first,
+                              share.count, threads_, cancel_);
+  }
+  void acceptLocal(size_t s) override {
+    placePhotonRadii(map_, localFirst_, local_, radii);
+    doneBy[s] = 0;
+  }
+
+  std::vector<float> radii;      // by photon index
+  std::map<size_t, int> doneBy;  // share -> the rank whose work was accepted
+
+ private:
+  const PhotonMap& map_;
+  PhotonGatherSettings gather_;
+  int threads_;
+  const std::atomic<bool>* cancel_;
+  wire::PhotonRadiiShareMessage answer_;
+  size_t localFirst_ = 0;
+  std::vector<float> local_;
+};
+
+// Per rank, the indices of the shares each rank's work was accepted for.
+std::vector<uint64_t> countByRank(const std::vector<ShareRange>& shares,
+                                  const std::map<size_t, int>& doneBy, int ranks) {
+  std::vector<uint64_t> byRank(static_cast<size_t>(ranks), 0);
+  for (const auto& [s, rank] : doneBy) byRank[static_cast<size_t>(rank)] += shares[s].count;
+  return byRank;
 }
 
 }  // namespace
 
 std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
-                                                   int threads, SlaveLink& link,
+                                                   int threads, TileDispatcher& dispatcher,
                                                    PhotonPassStats& stats,
                                                    const std::atomic<bool>* cancel) {
   const auto start = SteadyClock::now();
-  std::vector<Share> shares = planShares(tracer.photonsPerPass(), threads, link);
-  stats.photonsByRank.assign(static_cast<size_t>(link.ranks()), 0);
-  for (const Share& share : shares) {
-    if (share.rank == 0 || share.count == 0) continue;
-    // A refused send retires the rank: its share is traced here.
-    link.send(share.rank,
-              wire::encodePhotonJob({pass, share.first, share.count, tracer.photonsPerPass()}));
-  }
-  std::vector<std::vector<Photon>> photons(shares.size());
-  std::vector<PhotonTraceStats> traced(shares.size());
-  const auto traceHere = [&](size_t s) {
-    photons[s] =
-        tracePhotons(tracer, pass, shares[s].first, shares[s].count, threads, &traced[s], cancel);
-  };
-  // Rank 0 traces its share on worker threads; this thread keeps talking to the slaves.
-  std::future<void> local = std::async(std::launch::async, [&] {
-    traceHere(0);
-    link.wake();  // ends the wait for the slaves' shares
-  });
-  const auto accept = [&](const SlaveMessage& incoming) {
-    if (incoming.message.type != wire::MessageType::PhotonShare) return;
-    wire::PhotonShareMessage share = wire::decodePhotonShare(incoming.message);
-    const std::optional<size_t> s = awaitedShare(shares, incoming.source);
-    if (share.pass != pass || !s || share.first != shares[*s].first ||
-        share.count != shares[*s].count) {
-      return;  // late, from a pass or share already done without it
-    }
-    photons[*s] = std::move(share.photons);
-    traced[*s] = share.stats;
-    shares[*s].done = true;
-    shares[*s].doneBy = incoming.source;
-  };
-  if (!collectShares(shares, pass, link, local, cancel, accept, traceHere)) return std::nullopt;
+  SlaveLink& link = dispatcher.link();
+  const std::vector<ShareRange> shares = planShares(tracer.photonsPerPass(), threads, link);
+  TraceWork work(tracer, shares.size(), threads, cancel);
+  work.passIndex = pass;
+  if (!dispatcher.runShares(pass, shares, work, cancel)) return std::nullopt;
   stats.traceSeconds = secondsSince(start);
-  for (size_t s = 0; s < shares.size(); ++s) {
-    stats.trace += traced[s];
-    stats.photonsByRank[static_cast<size_t>(shares[s].doneBy)] += shares[s].count;
-  }
-
+  for (const PhotonTraceStats& s : work.stats) stats.trace += s;
+  stats.photonsByRank = countByRank(shares, work.doneBy, link.ranks());
   size_t total = 0;
-  for (const std::vector<Photon>& p : photons) total += p.size();
+  for (const std::vector<Photon>& p : work.photons) total += p.size();
   std::vector<Photon> all;
   all.reserve(total);
-  for (const std::vector<Photon>& p : photons) all.insert(all.end(), p.begin(), p.end());
+  for (const std::vector<Photon>& p : work.photons) all.insert(all.end(), p.begin(), p.end());
   return all;
 }
 
 std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photonList, uint32_t pass,
                                                       const PhotonGatherSettings& gather,
-                                                      int threads, SlaveLink& link,
+                                                      int threads, TileDispatcher& dispatcher,
                                                       PhotonPassStats& stats, bool keep,
                                                       const std::atomic<bool>* cancel) {
   const auto cancelled = [cancel] { return cancel && cancel->load(); };
   if (cancelled()) return nullptr;  // before anything is sent: the slaves keep what they had
+  SlaveLink& link = dispatcher.link();
   // Sent before rank 0 builds its kd-tree: the slaves build theirs meanwhile.
   if (link.hasSlaves()) {
     const auto sendStart = SteadyClock::now();
@@ -194,48 +190,22 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   if (!PhotonGather::needsRadii(gather, map->size())) {
     return std::make_shared<const PhotonGather>(std::move(map), gather);
   }
-  // Shares of the spatial order, in whole chunks (each chunk is placed on its own, so every
-  // radius is the one a single rank would find).
+  // Shares of the spatial order in whole chunks.
   const uint64_t photons = map->size();
-  std::vector<Share> shares =
+  std::vector<ShareRange> shares =
       planShares((photons + kPhotonRadiiChunk - 1) / kPhotonRadiiChunk, threads, link);
-  for (Share& s : shares) {
+  for (ShareRange& s : shares) {
     const uint64_t end = std::min(photons, (s.first + s.count) * kPhotonRadiiChunk);
     s.first *= kPhotonRadiiChunk;
     s.count = s.first < end ? end - s.first : 0;
-    if (s.rank != 0 && s.count > 0)
-      link.send(s.rank, wire::encodePhotonRadiiJob({pass, s.first, s.count}));
   }
-  std::vector<float> radii(map->size(), 0.0f);
-  const auto findHere = [&](size_t s) {
-    placePhotonRadii(*map, shares[s].first,
-                     photonRadiiShare(*map, gather.k, gather.radius, gather.automaticK,
-                                      shares[s].first, shares[s].count, threads, cancel),
-                     radii);
-  };
-  std::future<void> local = std::async(std::launch::async, [&] {
-    findHere(0);
-    link.wake();
-  });
-  const auto accept = [&](const SlaveMessage& incoming) {
-    if (incoming.message.type != wire::MessageType::PhotonRadiiShare) return;
-    const wire::PhotonRadiiShareMessage share = wire::decodePhotonRadiiShare(incoming.message);
-    const std::optional<size_t> s = awaitedShare(shares, incoming.source);
-    if (share.pass != pass || !s || share.first != shares[*s].first ||
-        share.radii.size() != shares[*s].count) {
-      return;  // late, from a pass or share already done without it
-    }
-    placePhotonRadii(*map, share.first, share.radii, radii);
-    shares[*s].done = true;
-    shares[*s].doneBy = incoming.source;
-  };
-  if (!collectShares(shares, pass, link, local, cancel, accept, findHere)) return nullptr;
+  RadiiWork work(*map, gather, threads, cancel);
+  if (!dispatcher.runShares(pass, shares, work, cancel)) return nullptr;
   if (cancelled()) return nullptr;  // moved while the last share came: no disc tree to build
-  stats.radiiByRank.assign(static_cast<size_t>(link.ranks()), 0);
-  for (const Share& s : shares) stats.radiiByRank[static_cast<size_t>(s.doneBy)] += s.count;
-  if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, radii}));
+  stats.radiiByRank = countByRank(shares, work.doneBy, link.ranks());
+  if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, work.radii}));
   auto made =
-      std::make_shared<const PhotonGather>(std::move(map), gather, std::move(radii), threads);
+      std::make_shared<const PhotonGather>(std::move(map), gather, std::move(work.radii), threads);
   stats.radiiSeconds = secondsSince(start);
   return made;
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "master/runtime/ShareBatch.h"
 #include "wire/TileJobWire.h"
 
 namespace prism {
@@ -256,6 +257,7 @@ void TileDispatcher::retireRank(int rank) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (const std::unique_ptr<Frame>& frame : frames_) frame->scheduler.retire(rank);
+    if (shares_) shares_->scheduler.retire(rank);  // its share goes back, for rank 0
   }
   changed_.notify_all();
 }
@@ -281,8 +283,11 @@ void TileDispatcher::route(const SlaveMessage& incoming) {
       changed_.notify_all();
       return;
     }
-    case wire::MessageType::PhotonShare:  // of a photon pass completed without it
-    case wire::MessageType::Echo:         // of a link probe that gave up on it
+    case wire::MessageType::PhotonShare:
+    case wire::MessageType::PhotonRadiiShare:
+      routeShare(incoming);  // a share's answer, or a late one of a pass done without it
+      return;
+    case wire::MessageType::Echo:  // of a link probe that gave up on it
       return;
     default:
       throw std::runtime_error("rank " + std::to_string(rank) + " sent an unexpected " +
@@ -316,8 +321,11 @@ void TileDispatcher::service(double waitSeconds) {
   std::vector<int> expired;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    for (const std::unique_ptr<Frame>& frame : frames_) {
-      for (int rank : frame->scheduler.reclaimExpired(now())) {
+    std::vector<TileScheduler*> schedulers;
+    for (const std::unique_ptr<Frame>& frame : frames_) schedulers.push_back(&frame->scheduler);
+    if (shares_) schedulers.push_back(&shares_->scheduler);  // a slave still building its scene
+    for (TileScheduler* scheduler : schedulers) {
+      for (int rank : scheduler->reclaimExpired(now())) {
         if (std::find(expired.begin(), expired.end(), rank) == expired.end()) {
           expired.push_back(rank);
         }

@@ -17,6 +17,7 @@
 // stop and stats may be called from any thread.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -26,6 +27,7 @@
 
 #include "cluster/DistributionOptions.h"
 #include "cluster/TileWorkerPool.h"
+#include "master/runtime/ShareWork.h"
 #include "master/runtime/SlaveLink.h"
 #include "master/runtime/TileScheduler.h"
 #include "render/RenderPass.h"
@@ -109,6 +111,15 @@ class TileDispatcher {
   // coordinating one); safe from any thread.
   void wake();
 
+  // The shares of pass `pass` (master/runtime/ShareWork.h), on the coordinating thread, which
+  // serves the slaves meanwhile as service() does (tiles of running frames included): each
+  // slave is sent its share, rank 0 does its own (then any re-issued to it) with work.doHere,
+  // and true is returned once every share is accepted. Once *cancel is set, the slaves still
+  // holding a share are told to stop (PhotonCancel, they send nothing for it), rank 0's work
+  // in progress is waited for (it watches cancel too), and false is returned.
+  bool runShares(uint32_t pass, const std::vector<ShareRange>& shares, ShareWork& work,
+                 const std::atomic<bool>* cancel = nullptr);
+
   // Render threads stop after their current tile; cancel() abandons that tile too (no result).
   void stop();
   void cancel();
@@ -122,6 +133,7 @@ class TileDispatcher {
 
  private:
   struct Frame;
+  struct ShareBatch;
 
   Frame* findLocked(uint32_t frame);
   void addFrame(FramePlan plan, FrameListener* listener, bool endEarlier);
@@ -133,6 +145,9 @@ class TileDispatcher {
   // Sends them; a refused send retires the slave.
   void sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs);
   void route(const SlaveMessage& message);
+  void routeShare(const SlaveMessage& message);
+  void sendShares(ShareBatch& batch);
+  void cancelShares(ShareBatch& batch);
   void retireRank(int rank);
   double now() const { return secondsSince(start_); }
 
@@ -145,6 +160,7 @@ class TileDispatcher {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::vector<std::unique_ptr<Frame>> frames_;  // running, oldest first; the last is current
+  std::unique_ptr<ShareBatch> shares_;          // the photon pass's shares being done, if any
   size_t reissuedBefore_ = 0;                   // by frames already ended
   bool stopped_ = false;
 };

@@ -29,7 +29,7 @@ constexpr uint32_t kPass = 3;
 struct CausticPhotons {
   CausticPhotons() : scene(loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml")) {
     const PhotonTracer tracer(scene, 20000, scene.causticSettings().maxBounces);
-    SlaveLink alone(nullptr, {});
+    TileDispatcher alone(scene, nullptr, {});
     PhotonPassStats stats;
     photons = *tracePhotonPass(tracer, kPass, 2, alone, stats);
     map = std::make_shared<const PhotonMap>(photons);
@@ -92,10 +92,11 @@ TEST(PhotonPass, ASlaveFindsItsShareOfTheRadiiAndGetsThemAll) {
       received = wire::decodePhotonRadii(*all).radii;
     }
   });
-  SlaveLink link(&network.endpoint(0), patientLink(60.0));
+  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  SlaveLink& link = dispatcher.link();
   link.receive(5.0);  // the slave's Ready
   PhotonPassStats stats;
-  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, link, stats);
+  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, dispatcher, stats);
   script.join();
 
   // Equal threads, equal shares (in whole chunks), the slave's second.
@@ -125,11 +126,12 @@ TEST(PhotonPass, ASilentSlavesShareOfTheRadiiIsFoundByRankZero) {
     slave.waitFor(wire::MessageType::PhotonRadiiJob);  // and never a word again
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  SlaveLink link(&network.endpoint(0), patientLink(0.6));
+  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(0.6));
+  SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
   const auto start = std::chrono::steady_clock::now();
-  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, link, stats);
+  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, dispatcher, stats);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stop = true;
@@ -162,10 +164,11 @@ TEST(PhotonPass, AFixedRadiusGatherSendsTheMapAlone) {
                         type == wire::MessageType::PhotonRadii;
     }
   });
-  SlaveLink link(&network.endpoint(0), patientLink(60.0));
+  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
-  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, link, stats);
+  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, dispatcher, stats);
   script.join();
   EXPECT_TRUE(gotMap);
   EXPECT_FALSE(gotRadiiMessage);
@@ -216,11 +219,12 @@ TEST(PhotonPass, ADroppedPassTellsTheSlavesFindingRadiiToStop) {
       cancelled = wire::decodePhotonCancel(*message).pass;
     }
   });
-  SlaveLink link(&network.endpoint(0), patientLink(60.0));
+  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
   const auto gather =
-      gatherFromPhotons(manyPhotons(), kPass, slowRadii(), 1, link, stats, false, &cancel);
+      gatherFromPhotons(manyPhotons(), kPass, slowRadii(), 1, dispatcher, stats, false, &cancel);
   const auto returnedAt = std::chrono::steady_clock::now();
   script.join();
   EXPECT_EQ(gather, nullptr);

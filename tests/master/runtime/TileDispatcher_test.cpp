@@ -303,7 +303,8 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   o.threads = 1;
   o.leaseSeconds = 60.0;
   o.heartbeatTimeoutSeconds = 60.0;
-  SlaveLink link(&job.master(), o);
+  TileDispatcher dispatcher(scene, &job.master(), o);
+  SlaveLink& link = dispatcher.link();
   link.receive(5.0);  // the scripted slave's Ready (taken in by the link)
   ASSERT_TRUE(link.ready(1));
   // Rank 0's own share is large enough to be still running when the cancel comes.
@@ -317,7 +318,7 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   });
   PhotonPassStats stats;
   const std::optional<std::vector<Photon>> photons =
-      tracePhotonPass(tracer, 7, 1, link, stats, &cancel);
+      tracePhotonPass(tracer, 7, 1, dispatcher, stats, &cancel);
   const auto returnedAt = std::chrono::steady_clock::now();
   mover.join();
   job.join();
