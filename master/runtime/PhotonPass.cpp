@@ -50,7 +50,7 @@ size_t sendToEverySlave(SlaveLink& link, const std::vector<uint8_t>& bytes) {
 class TraceWork final : public ShareWork {
  public:
   TraceWork(const PhotonTracer& tracer, size_t shares, int threads, const std::atomic<bool>* cancel)
-      : tracer_(tracer), threads_(threads), cancel_(cancel), photons(shares), stats(shares) {}
+      : photons(shares), stats(shares), tracer_(tracer), threads_(threads), cancel_(cancel) {}
 
   wire::MessageType answerType() const override { return wire::MessageType::PhotonShare; }
   std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
@@ -97,7 +97,7 @@ class RadiiWork final : public ShareWork {
  public:
   RadiiWork(const PhotonMap& map, const PhotonGatherSettings& gather, int threads,
             const std::atomic<bool>* cancel)
-      : map_(map), gather_(gather), threads_(threads), cancel_(cancel), radii(map.size(), 0.0f) {}
+      : radii(map.size(), 0.0f), map_(map), gather_(gather), threads_(threads), cancel_(cancel) {}
 
   wire::MessageType answerType() const override { return wire::MessageType::PhotonRadiiShare; }
   std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
