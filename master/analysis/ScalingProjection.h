@@ -44,7 +44,7 @@ std::vector<ProjectedPoint> projectScaling(const TileCostMap& costs, const Proje
 // one rank of report.threadsPerRank threads up to plan.maxWorkers), dynamic schedule, the
 // measured link. Tile costs are the measured ones scaled from report.samplesPerPixel to 1.
 // Results come as display bytes: a moving camera's frames, which a cluster only shows.
-// Pipelined (TileDispatcher::queueFrame): kPipelinedFrames frames' tiles in one queue, their
+// Pipelined (WorkDispatcher::queueFrame): kPipelinedFrames frames' tiles in one queue, their
 // count over the time until the last result (the first frame's start-up included, so slightly
 // low); unpipelined: one frame on its own, round trip included.
 inline constexpr int kPipelinedFrames = 16;

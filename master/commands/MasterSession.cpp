@@ -77,7 +77,7 @@ void MasterSession::start(bool keepEnvironment) {
                                          std::exchange(description_.environment, std::nullopt));
   setUp_.buildSeconds = secondsSince(buildStart);
   checkCausticMapsFit(*scene_, memoryLimitOrPhysical(options_.memoryLimit));
-  dispatcher_ = std::make_unique<TileDispatcher>(*scene_, transport_, options_.distribution);
+  dispatcher_ = std::make_unique<WorkDispatcher>(*scene_, transport_, options_.distribution);
 }
 
 int MasterSession::finish(int exitCode) {

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "master/commands/RenderOptions.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 #include "scene/Scene.h"
 #include "scene/SceneDescription.h"
 
@@ -67,7 +67,7 @@ class MasterSession {
   const RenderOptions& options() const { return options_; }
   const SceneDescription& description() const { return description_; }
   const Scene& scene() const { return *scene_; }
-  TileDispatcher& dispatcher() { return *dispatcher_; }
+  WorkDispatcher& dispatcher() { return *dispatcher_; }
   SlaveLink& link() { return dispatcher_->link(); }
   const SessionSetUp& setUp() const { return setUp_; }
 
@@ -83,7 +83,7 @@ class MasterSession {
   std::ostream& err_;
   SceneDescription description_;
   std::unique_ptr<Scene> scene_;
-  std::unique_ptr<TileDispatcher> dispatcher_;
+  std::unique_ptr<WorkDispatcher> dispatcher_;
   SessionSetUp setUp_;
   bool finished_ = false;
 };

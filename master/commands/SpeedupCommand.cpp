@@ -45,7 +45,7 @@ struct PreparedPass {
 // Caustics as `prism render` would do them for one frame: one photon pass traced by every
 // rank and sent to every slave, or rank 0's caustic maps (each slave builds its own during
 // the warm-up frame). A progressive scene is measured as one k-NN photon-map frame.
-PreparedPass prepareCaustics(TileDispatcher& dispatcher) {
+PreparedPass prepareCaustics(WorkDispatcher& dispatcher) {
   const Scene& scene = dispatcher.scene();
   const CausticSettings& settings = scene.causticSettings();
   PreparedPass prepared;
@@ -93,7 +93,7 @@ void waitForSlaves(SlaveLink& link) {
 
 class Measurement {
  public:
-  Measurement(TileDispatcher& dispatcher, const SpeedupOptions& options,
+  Measurement(WorkDispatcher& dispatcher, const SpeedupOptions& options,
               std::shared_ptr<const RenderPass> pass)
       : dispatcher_(dispatcher),
         serial_(dispatcher.scene(), nullptr, serialOptions()),
@@ -138,8 +138,8 @@ class Measurement {
     return o;
   }
 
-  TileDispatcher& dispatcher_;
-  TileDispatcher serial_;
+  WorkDispatcher& dispatcher_;
+  WorkDispatcher serial_;
   const SpeedupOptions& options_;
   std::shared_ptr<const RenderPass> pass_;
   uint32_t nextFrame_ = 1;

@@ -70,7 +70,7 @@ namespace {
 // totals of both.
 class CausticRun {
  public:
-  CausticRun(TileDispatcher& dispatcher, FrameOptions options, const PassProgress& progress)
+  CausticRun(WorkDispatcher& dispatcher, FrameOptions options, const PassProgress& progress)
       : dispatcher_(dispatcher),
         scene_(dispatcher.scene()),
         settings_(scene_.causticSettings()),
@@ -110,7 +110,7 @@ class CausticRun {
                                                  const PhotonGatherSettings& gather);
   CausticFrame progressive(const ProgressiveSnapshot& snapshot);
 
-  TileDispatcher& dispatcher_;
+  WorkDispatcher& dispatcher_;
   const Scene& scene_;
   const CausticSettings& settings_;
   FrameOptions options_;
@@ -216,7 +216,7 @@ CausticFrame CausticRun::progressive(const ProgressiveSnapshot& snapshot) {
 
 }  // namespace
 
-CausticFrame renderWithCaustics(TileDispatcher& dispatcher, const FrameOptions& options,
+CausticFrame renderWithCaustics(WorkDispatcher& dispatcher, const FrameOptions& options,
                                 const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
   CausticRun run(dispatcher, options, progress);
   if (dispatcher.scene().causticSettings().method == CausticMethod::CausticMap) {
@@ -227,7 +227,7 @@ CausticFrame renderWithCaustics(TileDispatcher& dispatcher, const FrameOptions& 
 
 CausticFrame renderWithCaustics(const Scene& scene, const FrameOptions& options,
                                 const PassProgress& progress, const ProgressiveSnapshot& snapshot) {
-  TileDispatcher alone(scene, nullptr, options.distribution);
+  WorkDispatcher alone(scene, nullptr, options.distribution);
   return renderWithCaustics(alone, options, progress, snapshot);
 }
 

@@ -67,7 +67,7 @@ using PassProgress = std::function<void(const std::string&, size_t, size_t)>;
 using ProgressiveSnapshot = std::function<void(int passes, const ImageRgb& image)>;
 
 // Every frame and photon pass of the run on the run's one dispatcher (and its link).
-CausticFrame renderWithCaustics(TileDispatcher& dispatcher, const FrameOptions& options,
+CausticFrame renderWithCaustics(WorkDispatcher& dispatcher, const FrameOptions& options,
                                 const PassProgress& progress = {},
                                 const ProgressiveSnapshot& snapshot = {});
 // On this process alone, with a dispatcher of its own.

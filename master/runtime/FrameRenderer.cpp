@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "master/runtime/Framebuffer.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 #include "master/runtime/TilePlan.h"
 
 namespace prism {
@@ -62,7 +62,7 @@ std::vector<RankStats> rosterSince(std::vector<RankStats> now,
 }
 
 // Runs the frame's coordinating loop until it completes, is stopped, or fails.
-void coordinateFrame(TileDispatcher& dispatcher, const FrameOptions& options, size_t tileCount,
+void coordinateFrame(WorkDispatcher& dispatcher, const FrameOptions& options, size_t tileCount,
                      FrameResult& result) {
   auto lastProgress = SteadyClock::now();
   while (!dispatcher.frameComplete()) {
@@ -96,7 +96,7 @@ void coordinateFrame(TileDispatcher& dispatcher, const FrameOptions& options, si
 
 }  // namespace
 
-FrameResult renderFrame(TileDispatcher& dispatcher, const FrameOptions& options) {
+FrameResult renderFrame(WorkDispatcher& dispatcher, const FrameOptions& options) {
   const auto start = SteadyClock::now();
   const RenderSettings& settings = dispatcher.scene().settings();
   const std::vector<RankStats> rosterBefore = dispatcher.stats();
@@ -146,7 +146,7 @@ FrameResult renderFrame(TileDispatcher& dispatcher, const FrameOptions& options)
 }
 
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options) {
-  TileDispatcher alone(scene, nullptr, options.distribution);
+  WorkDispatcher alone(scene, nullptr, options.distribution);
   return renderFrame(alone, options);
 }
 

@@ -1,4 +1,4 @@
-// Renders one frame on the tile dispatcher (master/runtime/TileDispatcher.h): plans the tiles,
+// Renders one frame on the work dispatcher (master/runtime/WorkDispatcher.h): plans the tiles,
 // hands them to this process's render threads and, in an MPI run, to the slaves, and assembles the
 // results. The single-process `prism render` runs exactly this code with no slaves.
 #pragma once
@@ -11,7 +11,7 @@
 #include "cluster/DistributionOptions.h"
 #include "image/ImageRgb.h"
 #include "master/runtime/SlaveLink.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 #include "render/RayCounters.h"
 #include "render/RenderPass.h"
 #include "render/Tile.h"
@@ -58,7 +58,7 @@ struct FrameResult {
 // On the run's dispatcher (and its rank 0 threads, started on the first frame that renders on
 // rank 0). Throws std::runtime_error when a slave reports an error (the message names the
 // rank). FrameResult::workers holds what each rank did for this frame.
-FrameResult renderFrame(TileDispatcher& dispatcher, const FrameOptions& options);
+FrameResult renderFrame(WorkDispatcher& dispatcher, const FrameOptions& options);
 // On this process alone, with a dispatcher of its own.
 FrameResult renderFrame(const Scene& scene, const FrameOptions& options);
 

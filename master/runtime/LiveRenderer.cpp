@@ -75,13 +75,13 @@ uint64_t LiveRenderer::passSeed(uint64_t sceneSeed, int pass) {
 }
 
 LiveRenderer::LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster)
-    : LiveRenderer(std::make_unique<TileDispatcher>(scene, cluster, options.distribution), nullptr,
+    : LiveRenderer(std::make_unique<WorkDispatcher>(scene, cluster, options.distribution), nullptr,
                    options) {}
 
-LiveRenderer::LiveRenderer(TileDispatcher& dispatcher, const LiveOptions& options)
+LiveRenderer::LiveRenderer(WorkDispatcher& dispatcher, const LiveOptions& options)
     : LiveRenderer(nullptr, &dispatcher, options) {}
 
-LiveRenderer::LiveRenderer(std::unique_ptr<TileDispatcher> own, TileDispatcher* dispatcher,
+LiveRenderer::LiveRenderer(std::unique_ptr<WorkDispatcher> own, WorkDispatcher* dispatcher,
                            const LiveOptions& options)
     : ownDispatcher_(std::move(own)),
       dispatcher_(dispatcher ? *dispatcher : *ownDispatcher_),

@@ -8,7 +8,7 @@
 // (master/runtime/ResolutionGovernor.h, down to 1/previewScale), and the resolution comes back as
 // soon as a frame fits again. Frames are pipelined: once every tile of the current frame has been
 // handed out, the next frame (the newest view, or the next pass of a still one) is queued on the
-// tile dispatcher, so render threads and slaves go straight on to its tiles while the last ones of
+// work dispatcher, so render threads and slaves go straight on to its tiles while the last ones of
 // the frame before return (except around photon passes: a slave holds one photon map at a time, and
 // the coordinator traces photons itself). The first frame of a view is always finished (a move
 // shows within about one frame time); a view that arrives meanwhile is rendered by the next frame.
@@ -42,7 +42,7 @@
 // caustics, and a move cancels a photon pass being traced (its map is dropped), so it never waits
 // for one.
 //
-// Every pass is a frame of the one tile dispatcher (master/runtime/TileDispatcher.h), which hands
+// Every pass is a frame of the one work dispatcher (master/runtime/WorkDispatcher.h), which hands
 // its tiles to rank 0's threads and the slaves exactly as for `prism render`: the same leases,
 // heartbeats (a slave's lost tiles are re-issued at once, a silent slave retired in seconds),
 // and late or duplicate results dropped.
@@ -70,7 +70,7 @@
 #include "master/runtime/PhotonPass.h"
 #include "master/runtime/ResolutionGovernor.h"
 #include "master/runtime/SlaveLink.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 #include "render/RayCounters.h"
 #include "render/RenderPass.h"
 #include "render/RenderView.h"
@@ -185,7 +185,7 @@ class LiveRenderer final : private FrameListener {
  public:
   // On the run's dispatcher (master/commands/MasterSession.h), whose scene it renders; it stops
   // the dispatcher when it stops.
-  LiveRenderer(TileDispatcher& dispatcher, const LiveOptions& options);
+  LiveRenderer(WorkDispatcher& dispatcher, const LiveOptions& options);
   // On a dispatcher of its own over cluster (null: this process alone), for a renderer that is
   // the whole run (tests).
   LiveRenderer(const Scene& scene, const LiveOptions& options, Transport* cluster = nullptr);
@@ -216,7 +216,7 @@ class LiveRenderer final : private FrameListener {
   static uint64_t passSeed(uint64_t sceneSeed, int pass);
 
  private:
-  LiveRenderer(std::unique_ptr<TileDispatcher> own, TileDispatcher* dispatcher,
+  LiveRenderer(std::unique_ptr<WorkDispatcher> own, WorkDispatcher* dispatcher,
                const LiveOptions& options);
   struct Event;
   struct Pass;
@@ -255,8 +255,8 @@ class LiveRenderer final : private FrameListener {
   LiveStats statsLocked(double elapsedSeconds, std::vector<RankStats> ranks);
   double now() const { return secondsSince(start_); }
 
-  std::unique_ptr<TileDispatcher> ownDispatcher_;  // when it was made without one
-  TileDispatcher& dispatcher_;
+  std::unique_ptr<WorkDispatcher> ownDispatcher_;  // when it was made without one
+  WorkDispatcher& dispatcher_;
   SlaveLink& link_;  // the dispatcher's: the photon passes use it too
   const Scene& scene_;
   LiveOptions options_;

@@ -146,7 +146,7 @@ std::vector<uint64_t> countByRank(const std::vector<ShareRange>& shares,
 }  // namespace
 
 std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
-                                                   int threads, TileDispatcher& dispatcher,
+                                                   int threads, WorkDispatcher& dispatcher,
                                                    PhotonPassStats& stats,
                                                    const std::atomic<bool>* cancel) {
   const auto start = SteadyClock::now();
@@ -168,7 +168,7 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
 
 std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photonList, uint32_t pass,
                                                       const PhotonGatherSettings& gather,
-                                                      int threads, TileDispatcher& dispatcher,
+                                                      int threads, WorkDispatcher& dispatcher,
                                                       PhotonPassStats& stats, bool keep,
                                                       const std::atomic<bool>* cancel) {
   const auto cancelled = [cancel] { return cancel && cancel->load(); };

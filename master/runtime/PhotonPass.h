@@ -17,7 +17,7 @@
 #include "caustics/PhotonMap.h"
 #include "caustics/PhotonTracer.h"
 #include "master/runtime/SlaveLink.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 
 namespace prism {
 
@@ -39,7 +39,7 @@ struct PhotonPassStats {
 // nothing for the pass) and returns none without waiting for them; a share already on its way
 // arrives late and is ignored.
 std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, uint32_t pass,
-                                                   int threads, TileDispatcher& dispatcher,
+                                                   int threads, WorkDispatcher& dispatcher,
                                                    PhotonPassStats& stats,
                                                    const std::atomic<bool>* cancel = nullptr);
 
@@ -56,7 +56,7 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
 // gather from that map.
 std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photons, uint32_t pass,
                                                       const PhotonGatherSettings& gather,
-                                                      int threads, TileDispatcher& dispatcher,
+                                                      int threads, WorkDispatcher& dispatcher,
                                                       PhotonPassStats& stats, bool keep = false,
                                                       const std::atomic<bool>* cancel = nullptr);
 // Tells every live slave that pass `pass` gathers from the map it keeps from pass `keptPass`.

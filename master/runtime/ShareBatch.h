@@ -1,7 +1,7 @@
-// The dispatcher's record of the shares being done (TileDispatcher::runShares): what they are,
+// The dispatcher's record of the shares being done (WorkDispatcher::runShares): what they are,
 // who holds each (a TileScheduler over the shares, each owned by its rank; only rank 0 takes a
 // re-issued one, as a slave works on one share at a time), and rank 0's share in progress.
-// Internal to master/runtime/TileDispatcher*.cpp.
+// Internal to master/runtime/WorkDispatcher*.cpp.
 #pragma once
 
 #include <future>
@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "master/runtime/ShareWork.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 #include "master/runtime/TileScheduler.h"
 
 namespace prism {
 
-struct TileDispatcher::ShareBatch {
+struct WorkDispatcher::ShareBatch {
   uint32_t pass = 0;
   std::vector<ShareRange> shares;
   ShareWork& work;

@@ -1,5 +1,5 @@
 // The shares of a photon pass's work, handed out by the run's dispatcher like tiles
-// (master/runtime/TileDispatcher.h, runShares): one share per live rank, sized by its threads;
+// (master/runtime/WorkDispatcher.h, runShares): one share per live rank, sized by its threads;
 // each leased to its rank; a slave's share re-issued to rank 0 when the slave goes silent, is
 // known gone, or is still building its scene past the lease; and each accepted once, whoever
 // answers first. What a share is (photon indices to trace, or positions of a photon map's

@@ -391,7 +391,7 @@ ImageRgb renderPassFrame(SceneDescription d, int pass, std::shared_ptr<const Ren
 ImageRgb passOneWithPhotonsOf(const SceneDescription& d, uint32_t photonFrame) {
   const Scene scene(d);
   const PhotonTracer tracer(scene, d.caustics.photons, d.caustics.maxBounces);
-  TileDispatcher alone(scene, nullptr, {});
+  WorkDispatcher alone(scene, nullptr, {});
   PhotonPassStats stats;
   auto map =
       std::make_shared<const PhotonMap>(*tracePhotonPass(tracer, photonFrame, 2, alone, stats));
@@ -428,7 +428,7 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
 
   // Pass i: the photon pass numbered by its frame id, the radius schedule of the scene.
   const PhotonTracer tracer(scene, c.photons, c.maxBounces);
-  TileDispatcher alone(scene, nullptr, {});
+  WorkDispatcher alone(scene, nullptr, {});
   PhotonGatherSettings settings;
   ImageRgb mean(d.render.width, d.render.height), expectedMean(d.render.width, d.render.height);
   ImageRgb causticMean(d.render.width, d.render.height);

@@ -29,7 +29,7 @@ constexpr uint32_t kPass = 3;
 struct CausticPhotons {
   CausticPhotons() : scene(loadScene(PRISM_SOURCE_DIR "/scenes/caustic-glass-sphere.yaml")) {
     const PhotonTracer tracer(scene, 20000, scene.causticSettings().maxBounces);
-    TileDispatcher alone(scene, nullptr, {});
+    WorkDispatcher alone(scene, nullptr, {});
     PhotonPassStats stats;
     photons = *tracePhotonPass(tracer, kPass, 2, alone, stats);
     map = std::make_shared<const PhotonMap>(photons);
@@ -92,7 +92,7 @@ TEST(PhotonPass, ASlaveFindsItsShareOfTheRadiiAndGetsThemAll) {
       received = wire::decodePhotonRadii(*all).radii;
     }
   });
-  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);  // the slave's Ready
   PhotonPassStats stats;
@@ -126,7 +126,7 @@ TEST(PhotonPass, ASilentSlavesShareOfTheRadiiIsFoundByRankZero) {
     slave.waitFor(wire::MessageType::PhotonRadiiJob);  // and never a word again
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(0.6));
+  WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(0.6));
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
@@ -164,7 +164,7 @@ TEST(PhotonPass, AFixedRadiusGatherSendsTheMapAlone) {
                         type == wire::MessageType::PhotonRadii;
     }
   });
-  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
@@ -219,7 +219,7 @@ TEST(PhotonPass, ADroppedPassTellsTheSlavesFindingRadiiToStop) {
       cancelled = wire::decodePhotonCancel(*message).pass;
     }
   });
-  TileDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
+  WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;

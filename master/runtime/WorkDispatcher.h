@@ -1,20 +1,25 @@
-// The one tile dispatcher: hands the tiles of a frame to rank 0's render threads and to the
-// slaves, and takes in what comes back. `prism render`, `speedup` and `sweep` run one frame on
-// it at a time (master/runtime/FrameRenderer.h); the viewer a stream of frames
-// (master/runtime/LiveRenderer.h).
+// The run's one work dispatcher: the lease-managed queue of all distributed work. It hands the
+// tiles of frames to rank 0's render threads and to the slaves, and a photon pass's shares
+// (photons to trace, radii to find: runShares, master/runtime/ShareWork.h) to the ranks, and
+// takes in what comes back, the same way for both: every piece is leased to its rank in a
+// TileScheduler, re-issued when its slave is retired, and accepted once. `prism render`,
+// `speedup` and `sweep` run one frame on it at a time (master/runtime/FrameRenderer.h), the
+// viewer a stream of frames (master/runtime/LiveRenderer.h); one dispatcher lives as long as
+// the run (master/commands/MasterSession.h). It owns the run's SlaveLink, whose roster is the
+// one record of every rank, and rank 0's render threads, started once and fed every frame.
 //
-// It owns the frame's TileScheduler (dynamic or static, leases), keeps every live slave
-// supplied with `prefetch` tiles per render thread (a View message first when the frame has a view
-// of its own), routes the slaves' messages (through SlaveLink, so status means the same
-// everywhere): a TileResult is checked against the plan and accepted once; a late or duplicate one,
-// or one of a frame already ended, is counted stale and dropped; a heartbeat naming the frame
-// re-issues the tiles its slave lost; a late PhotonShare or Echo (of a phase completed without it)
-// is ignored. Silent slaves (SlaveLink::retireSilent) and slaves past their lease are retired and
-// their tiles re-issued at once.
+// Tiles: it keeps every live slave supplied with `prefetch` tiles per render thread (a View
+// message first when the frame has a view of its own) and routes the slaves' messages (through
+// SlaveLink, so status means the same everywhere): a TileResult is checked against the plan and
+// accepted once; a late or duplicate one, or one of a frame already ended, is counted stale and
+// dropped; a heartbeat naming the frame re-issues the tiles its slave lost. A share's answer
+// goes to the shares being done (a late one, of a pass done without it, is dropped), and a late
+// Echo (of a link probe that gave up on it) is ignored. Silent slaves (SlaveLink::retireSilent)
+// and slaves past their lease are retired and their work re-issued at once.
 //
-// Threads: service() is called by one coordinating thread, the only one that talks to the
-// slaves, and calls beginFrame too; rank 0's render threads take tiles concurrently; endFrame,
-// stop and stats may be called from any thread.
+// Threads: service() and runShares() are called by one coordinating thread, the only one that
+// talks to the slaves, which calls beginFrame too; rank 0's render threads take tiles
+// concurrently; endFrame, stop and stats may be called from any thread.
 #pragma once
 
 #include <atomic>
@@ -68,13 +73,13 @@ class FrameListener {
   virtual void tileFinished(uint32_t frame, TileResult&& tile, int rank) = 0;
 };
 
-class TileDispatcher {
+class WorkDispatcher {
  public:
   // cluster null (or of one rank): rank 0's threads alone.
-  TileDispatcher(const Scene& scene, Transport* cluster, const DistributionOptions& options);
-  ~TileDispatcher();  // stops and joins the render threads
-  TileDispatcher(const TileDispatcher&) = delete;
-  TileDispatcher& operator=(const TileDispatcher&) = delete;
+  WorkDispatcher(const Scene& scene, Transport* cluster, const DistributionOptions& options);
+  ~WorkDispatcher();  // stops and joins the render threads
+  WorkDispatcher(const WorkDispatcher&) = delete;
+  WorkDispatcher& operator=(const WorkDispatcher&) = delete;
 
   const Scene& scene() const { return scene_; }
   SlaveLink& link() { return link_; }

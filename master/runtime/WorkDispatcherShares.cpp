@@ -1,13 +1,13 @@
-// TileDispatcher::runShares: a photon pass's shares on the run's one dispatcher, leased,
+// WorkDispatcher::runShares: a photon pass's shares on the run's one dispatcher, leased,
 // re-issued and accepted once like tiles (master/runtime/ShareWork.h).
 #include <chrono>
 
 #include "master/runtime/ShareBatch.h"
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 
 namespace prism {
 
-void TileDispatcher::sendShares(ShareBatch& batch) {
+void WorkDispatcher::sendShares(ShareBatch& batch) {
   for (int r = 1; r < link_.ranks(); ++r) {
     std::optional<uint32_t> own;
     {
@@ -23,7 +23,7 @@ void TileDispatcher::sendShares(ShareBatch& batch) {
   }
 }
 
-void TileDispatcher::cancelShares(ShareBatch& batch) {
+void WorkDispatcher::cancelShares(ShareBatch& batch) {
   for (int r = 1; r < link_.ranks(); ++r) {
     bool holds = false;
     {
@@ -35,7 +35,7 @@ void TileDispatcher::cancelShares(ShareBatch& batch) {
   if (batch.local.valid()) batch.local.wait();  // rank 0's work watches the cancel too
 }
 
-bool TileDispatcher::runShares(uint32_t pass, const std::vector<ShareRange>& shares,
+bool WorkDispatcher::runShares(uint32_t pass, const std::vector<ShareRange>& shares,
                                ShareWork& work, const std::atomic<bool>* cancel) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -47,7 +47,7 @@ bool TileDispatcher::runShares(uint32_t pass, const std::vector<ShareRange>& sha
   }
   ShareBatch& batch = *shares_;
   struct Finish {  // the batch ends however runShares leaves; late answers are then stale
-    TileDispatcher& d;
+    WorkDispatcher& d;
     ~Finish() {
       const std::lock_guard<std::mutex> lock(d.mutex_);
       d.shares_.reset();
@@ -99,7 +99,7 @@ bool TileDispatcher::runShares(uint32_t pass, const std::vector<ShareRange>& sha
   }
 }
 
-void TileDispatcher::routeShare(const SlaveMessage& incoming) {
+void WorkDispatcher::routeShare(const SlaveMessage& incoming) {
   ShareBatch* batch = shares_.get();
   if (!batch || incoming.message.type != batch->work.answerType()) return;  // late: pass done
   std::optional<size_t> s;

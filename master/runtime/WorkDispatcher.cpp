@@ -1,4 +1,4 @@
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -26,7 +26,7 @@ std::vector<bool> activeRanks(int ranks, const FramePlan& plan) {
 
 }  // namespace
 
-struct TileDispatcher::Frame {
+struct WorkDispatcher::Frame {
   FramePlan plan;
   FrameListener* listener;
   TileScheduler scheduler;
@@ -51,7 +51,7 @@ struct TileDispatcher::Frame {
   bool complete() const { return done == plan.tiles.size(); }
 };
 
-TileDispatcher::TileDispatcher(const Scene& scene, Transport* cluster,
+WorkDispatcher::WorkDispatcher(const Scene& scene, Transport* cluster,
                                const DistributionOptions& options)
     : scene_(scene),
       options_(options),
@@ -59,7 +59,7 @@ TileDispatcher::TileDispatcher(const Scene& scene, Transport* cluster,
       pool_(scene, options.threads),
       start_(SteadyClock::now()) {}
 
-TileDispatcher::~TileDispatcher() {
+WorkDispatcher::~WorkDispatcher() {
   stop();
   try {
     pool_.join();
@@ -67,7 +67,7 @@ TileDispatcher::~TileDispatcher() {
   }
 }
 
-int TileDispatcher::liveThreads() {
+int WorkDispatcher::liveThreads() {
   int threads = 0;
   for (const RankStats& r : link_.roster()) {
     if (!r.retired) threads += r.threads > 0 ? r.threads : pool_.threadCount();
@@ -75,7 +75,7 @@ int TileDispatcher::liveThreads() {
   return threads;
 }
 
-void TileDispatcher::startLocalWorkers() {
+void WorkDispatcher::startLocalWorkers() {
   if (pool_.started()) return;
   link_.setLocalThreads(pool_.threadCount());
   pool_.start([this] { return nextLocalJob(); },
@@ -84,22 +84,22 @@ void TileDispatcher::startLocalWorkers() {
               });
 }
 
-TileDispatcher::Frame* TileDispatcher::findLocked(uint32_t frame) {
+WorkDispatcher::Frame* WorkDispatcher::findLocked(uint32_t frame) {
   for (const std::unique_ptr<Frame>& f : frames_) {
     if (f->plan.frame == frame) return f.get();
   }
   return nullptr;
 }
 
-void TileDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
+void WorkDispatcher::beginFrame(FramePlan plan, FrameListener* listener) {
   addFrame(std::move(plan), listener, true);
 }
 
-void TileDispatcher::queueFrame(FramePlan plan, FrameListener* listener) {
+void WorkDispatcher::queueFrame(FramePlan plan, FrameListener* listener) {
   addFrame(std::move(plan), listener, false);
 }
 
-void TileDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endEarlier) {
+void WorkDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endEarlier) {
   std::vector<std::vector<std::vector<uint8_t>>> slaveJobs(static_cast<size_t>(link_.ranks()));
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -126,7 +126,7 @@ void TileDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endE
   changed_.notify_all();
 }
 
-void TileDispatcher::endFrame(uint32_t frame) {
+void WorkDispatcher::endFrame(uint32_t frame) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = frames_.begin(); it != frames_.end(); ++it) {
@@ -139,17 +139,17 @@ void TileDispatcher::endFrame(uint32_t frame) {
   changed_.notify_all();
 }
 
-bool TileDispatcher::frameComplete() {
+bool WorkDispatcher::frameComplete() {
   const std::lock_guard<std::mutex> lock(mutex_);
   return !frames_.empty() && frames_.back()->complete();
 }
 
-size_t TileDispatcher::tilesDone() {
+size_t WorkDispatcher::tilesDone() {
   const std::lock_guard<std::mutex> lock(mutex_);
   return frames_.empty() ? 0 : frames_.back()->done;
 }
 
-std::optional<TileJob> TileDispatcher::nextLocalJob() {
+std::optional<TileJob> WorkDispatcher::nextLocalJob() {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     if (stopped_) return std::nullopt;
@@ -167,7 +167,7 @@ std::optional<TileJob> TileDispatcher::nextLocalJob() {
   }
 }
 
-void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
+void WorkDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
   bool frameDone = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -196,12 +196,12 @@ void TileDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
   if (frameDone) wake();
 }
 
-void TileDispatcher::wake() {
+void WorkDispatcher::wake() {
   changed_.notify_all();
   link_.wake();
 }
 
-std::vector<std::vector<uint8_t>> TileDispatcher::jobsForLocked(int rank) {
+std::vector<std::vector<uint8_t>> WorkDispatcher::jobsForLocked(int rank) {
   std::vector<std::vector<uint8_t>> outgoing;
   // prefetch tiles per render thread: a slave of T threads renders T tiles at once, and
   // with a fixed count per slave most of a many-threaded rank's threads would idle.
@@ -232,7 +232,7 @@ std::vector<std::vector<uint8_t>> TileDispatcher::jobsForLocked(int rank) {
   return outgoing;
 }
 
-void TileDispatcher::sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs) {
+void WorkDispatcher::sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs) {
   for (std::vector<uint8_t>& bytes : jobs) {
     if (!link_.send(rank, std::move(bytes))) {
       retireRank(rank);  // the transport knows it is gone: its tiles go back at once
@@ -241,7 +241,7 @@ void TileDispatcher::sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs)
   }
 }
 
-void TileDispatcher::feedSlaves() {
+void WorkDispatcher::feedSlaves() {
   for (int rank = 1; rank < link_.ranks(); ++rank) {
     std::vector<std::vector<uint8_t>> jobs;
     {
@@ -252,7 +252,7 @@ void TileDispatcher::feedSlaves() {
   }
 }
 
-void TileDispatcher::retireRank(int rank) {
+void WorkDispatcher::retireRank(int rank) {
   link_.retire(rank);
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -262,7 +262,7 @@ void TileDispatcher::retireRank(int rank) {
   changed_.notify_all();
 }
 
-void TileDispatcher::route(const SlaveMessage& incoming) {
+void WorkDispatcher::route(const SlaveMessage& incoming) {
   const int rank = incoming.source;
   const wire::Message& message = incoming.message;
   switch (message.type) {
@@ -295,7 +295,7 @@ void TileDispatcher::route(const SlaveMessage& incoming) {
   }
 }
 
-void TileDispatcher::service(double waitSeconds) {
+void WorkDispatcher::service(double waitSeconds) {
   if (!link_.hasSlaves()) {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait_for(lock, std::chrono::duration<double>(waitSeconds), [this] {
@@ -335,7 +335,7 @@ void TileDispatcher::service(double waitSeconds) {
   for (int rank : expired) retireRank(rank);
 }
 
-void TileDispatcher::stop() {
+void WorkDispatcher::stop() {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     stopped_ = true;
@@ -343,16 +343,16 @@ void TileDispatcher::stop() {
   wake();
 }
 
-void TileDispatcher::cancel() {
+void WorkDispatcher::cancel() {
   pool_.cancel();
   stop();
 }
 
-void TileDispatcher::join() {
+void WorkDispatcher::join() {
   pool_.join();
 }
 
-size_t TileDispatcher::reissuedTiles() {
+size_t WorkDispatcher::reissuedTiles() {
   const std::lock_guard<std::mutex> lock(mutex_);
   size_t reissued = reissuedBefore_;
   for (const std::unique_ptr<Frame>& frame : frames_) reissued += frame->scheduler.reissuedCount();

@@ -3,7 +3,7 @@
 // (ScriptedSlave.h) or real ones (runSlave on threads), answer late, twice, out of order, lose
 // tiles, fall silent, freeze or vanish. The image must be bit-identical to one process's, and
 // each failure must cost what the design says: seconds, not the lease.
-#include "master/runtime/TileDispatcher.h"
+#include "master/runtime/WorkDispatcher.h"
 
 #include <gtest/gtest.h>
 
@@ -90,7 +90,7 @@ FrameOptions options(bool masterRenders, double heartbeatTimeout, double lease) 
   return o;
 }
 
-TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExact) {
+TEST(WorkDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExact) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
@@ -111,7 +111,7 @@ TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExa
       }
     }
   });
-  TileDispatcher dispatcher(scene, &job.master(), options(false, 2.0, 30.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(false, 2.0, 30.0).distribution);
   const FrameResult f = renderFrame(dispatcher, options(false, 2.0, 30.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
@@ -123,7 +123,7 @@ TEST(TileDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExa
   EXPECT_FALSE(f.workers[1].retired);
 }
 
-TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
+TEST(WorkDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
@@ -142,7 +142,7 @@ TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
     }
   });
   // Lease and silence far away: only the heartbeat can bring the tile back in time.
-  TileDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
   const FrameResult f = renderFrame(dispatcher, options(false, 60.0, 60.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
@@ -152,7 +152,7 @@ TEST(TileDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
   EXPECT_FALSE(f.workers[1].retired);
 }
 
-TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
+TEST(WorkDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
@@ -162,7 +162,7 @@ TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
     s.nextJob();
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  TileDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 120.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 120.0).distribution);
   const FrameResult f = renderFrame(dispatcher, options(true, 0.6, 120.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
@@ -172,7 +172,7 @@ TEST(TileDispatcher, ASilentSlaveIsRetiredAfterTheHeartbeatTimeoutNotTheLease) {
   EXPECT_LT(f.seconds, 20.0);  // the lease is 120 s
 }
 
-TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
+TEST(WorkDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
@@ -184,7 +184,7 @@ TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
   });
-  TileDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 1.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(true, 0.6, 1.0).distribution);
   const FrameResult f = renderFrame(dispatcher, options(true, 0.6, 1.0));
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
@@ -193,12 +193,12 @@ TEST(TileDispatcher, ASlaveThatHeartbeatsButNeverDeliversIsBoundedByTheLease) {
   EXPECT_EQ(f.workers[1].lostTiles, 0u);  // it says it holds them: not lost, just stuck
 }
 
-TEST(TileDispatcher, ASlaveTheTransportKnowsIsGoneIsRetiredAtTheFirstSend) {
+TEST(WorkDispatcher, ASlaveTheTransportKnowsIsGoneIsRetiredAtTheFirstSend) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
   TwoRanks job(scene);
   job.network().disconnect(1);
-  TileDispatcher dispatcher(scene, &job.master(), options(true, 60.0, 60.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(true, 60.0, 60.0).distribution);
   const FrameResult f = renderFrame(dispatcher, options(true, 60.0, 60.0));
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
   EXPECT_TRUE(f.workers[1].retired);
@@ -206,13 +206,13 @@ TEST(TileDispatcher, ASlaveTheTransportKnowsIsGoneIsRetiredAtTheFirstSend) {
   EXPECT_LT(f.seconds, 20.0);
 }
 
-TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
+TEST(WorkDispatcher, AnUnexpectedMessageNamesTheRank) {
   const Scene scene(smallScene());
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>&) {
     s.send(wire::encodePhotonJob({1, 0, 10, 10}));  // a master's message, from a slave
   });
-  TileDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
   try {
     renderFrame(dispatcher, options(false, 60.0, 60.0));
     FAIL() << "expected an error";
@@ -224,7 +224,7 @@ TEST(TileDispatcher, AnUnexpectedMessageNamesTheRank) {
 
 // A slave retired during a photon pass (silent past the heartbeat timeout) that sends its share
 // afterwards: rank 0 traced the share itself, the late one is ignored wherever it lands.
-TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
+TEST(WorkDispatcher, APhotonShareAfterRetirementIsIgnored) {
   const SceneDescription d = smallCausticScene();
   const Scene scene(d);
   FrameOptions o = options(true, 0.6, 60.0);
@@ -242,7 +242,7 @@ TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
     }
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
-  TileDispatcher dispatcher(scene, &job.master(), o.distribution);
+  WorkDispatcher dispatcher(scene, &job.master(), o.distribution);
   const CausticFrame f = renderWithCaustics(dispatcher, o);
   job.join();
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
@@ -251,7 +251,7 @@ TEST(TileDispatcher, APhotonShareAfterRetirementIsIgnored) {
 
 // Real slaves (runSlave on threads) over the loopback: photon shares, the map broadcast and
 // tiles, then the shutdown handshake; the same image as one process.
-TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
+TEST(WorkDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   const SceneDescription d = smallCausticScene();
   const Scene scene(d);
   FrameOptions o = options(true, 2.0, 60.0);
@@ -267,7 +267,7 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   network.endpoint(0).broadcast(bytes, 10.0);
   // Rank 0 renders no tiles here, so the slaves' share cannot depend on how fast they start.
   const FrameOptions distributed = options(false, 2.0, 60.0);
-  TileDispatcher dispatcher(scene, &network.endpoint(0), distributed.distribution);
+  WorkDispatcher dispatcher(scene, &network.endpoint(0), distributed.distribution);
   const CausticFrame f = renderWithCaustics(dispatcher, distributed);
   std::ostringstream err;
   EXPECT_EQ(shutDownSlaves(&network.endpoint(0), 0, dispatcher.link().retiredRanks(), err), 0)
@@ -287,7 +287,7 @@ TEST(TileDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
 
 // A camera move cancels rank 0's photon pass; a slave still tracing its share of it is told to
 // stop (PhotonCancel) with the pass's number.
-TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
+TEST(WorkDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   const Scene scene(smallCausticScene());
   TwoRanks job(scene);
   std::atomic<bool> cancelReceived{false};
@@ -303,7 +303,7 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   o.threads = 1;
   o.leaseSeconds = 60.0;
   o.heartbeatTimeoutSeconds = 60.0;
-  TileDispatcher dispatcher(scene, &job.master(), o);
+  WorkDispatcher dispatcher(scene, &job.master(), o);
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);  // the scripted slave's Ready (taken in by the link)
   ASSERT_TRUE(link.ready(1));
@@ -334,7 +334,7 @@ TEST(TileDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
 // A real slave (runSlave on a thread) told to cancel the share it is tracing stops within a
 // chunk of photons and sends nothing for it: its shutdown acknowledgement comes at once, not
 // after the share's seconds of tracing (the slave finishes its photon work before it leaves).
-TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) {
+TEST(WorkDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) {
   const SceneDescription d = smallCausticScene();
   test::RealSlaveJob job(d);
   Transport& master = job.master();
@@ -356,7 +356,7 @@ TEST(TileDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
 // A real slave rendering a tile of a frame that a View then ends (its liveFrom is later) stops
 // the tile after its row and sends nothing for it: the next frame's tile comes at once, not
 // after the ended tile's seconds.
-TEST(TileDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
+TEST(WorkDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
   const SceneDescription d = smallScene();
   test::RealSlaveJob job(d);
   Transport& master = job.master();
@@ -418,11 +418,11 @@ class CountingListener : public FrameListener {
 // The viewer ends the frame of the view it leaves from the GUI thread while its coordinator may
 // already have begun the next view's frame; ending the older frame late must leave the newer one
 // running (before, it ended whatever frame was current and the viewer waited forever).
-TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
+TEST(WorkDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 1;
-  TileDispatcher dispatcher(scene, nullptr, o);
+  WorkDispatcher dispatcher(scene, nullptr, o);
   CountingListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.beginFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
@@ -446,7 +446,7 @@ TEST(TileDispatcher, EndingAnOlderFrameLateLeavesTheCurrentOneRunning) {
 
 // Renders the dispatcher's frames on rank 0's threads until the current one is complete (20 s at
 // most), then stops them.
-void renderUntilComplete(TileDispatcher& dispatcher) {
+void renderUntilComplete(WorkDispatcher& dispatcher) {
   dispatcher.startLocalWorkers();
   const auto start = std::chrono::steady_clock::now();
   while (!dispatcher.frameComplete() &&
@@ -472,11 +472,11 @@ class OrderListener : public FrameListener {
   std::map<uint32_t, size_t> finished_;
 };
 
-TEST(TileDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
+TEST(WorkDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 2;
-  TileDispatcher dispatcher(scene, nullptr, o);
+  WorkDispatcher dispatcher(scene, nullptr, o);
   OrderListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
@@ -492,11 +492,11 @@ TEST(TileDispatcher, AQueuedFrameFollowsTheRunningOneWithoutEndingIt) {
 
 // beginFrame, unlike queueFrame, ends every frame before: none of the first frame's tiles is
 // handed out once the second has begun.
-TEST(TileDispatcher, BeginningAFrameEndsAQueuedOne) {
+TEST(WorkDispatcher, BeginningAFrameEndsAQueuedOne) {
   const Scene scene(smallScene());
   DistributionOptions o;
   o.threads = 1;
-  TileDispatcher dispatcher(scene, nullptr, o);
+  WorkDispatcher dispatcher(scene, nullptr, o);
   OrderListener listener;
   const std::vector<TileRect> tiles = planTiles(64, 48, 16);
   dispatcher.queueFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
