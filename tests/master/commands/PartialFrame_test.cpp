@@ -4,7 +4,7 @@
 
 #include <fstream>
 
-#include "PrismProcess.h"
+#include "master/PrismProcess.h"
 #include "image/ImageIo.h"
 
 namespace prism {

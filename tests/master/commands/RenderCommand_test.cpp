@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "PrismProcess.h"
+#include "master/PrismProcess.h"
 #include "image/ImageIo.h"
 #include "parse/SceneLoader.h"
 #include "scene/Camera.h"

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "PrismProcess.h"
+#include "master/PrismProcess.h"
 #include "image/ImageIo.h"
 
 namespace prism {
