@@ -18,7 +18,8 @@ struct SlaveEnd {
 
 // Errors are sent to the master, which reports them; a slave prints only when it cannot reach
 // the master.
-// Reads options.threads, masterTimeoutSeconds and fault. A scene whose geometry exceeds
+// Reads options.threads, masterTimeoutSeconds and fault (when it names this rank, the session
+// talks through a FaultInjectingTransport around `session`). A scene whose geometry exceeds
 // memoryLimit (this rank's --memory-limit, or its machine's memory) is refused before it is built.
 SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
                   const MemoryLimit& memoryLimit = {});

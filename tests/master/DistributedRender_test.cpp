@@ -394,6 +394,34 @@ TEST_F(DistributedRender, HungSlavesPhotonShareIsTracedByRankZeroWithTheSamePixe
   EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
 }
 
+// A slave killed during a photon pass (--inject-fault crash-photons:2: it dies when its first
+// PhotonJob arrives, as if killed) under `mpirun --enable-recovery`: rank 0 retires it, traces
+// its share itself, and renders the frame without it. The photons are the same, so the pixels
+// are too. Classic (the photon pass before the only frame) and progressive (the slave has
+// rendered the direct pass's tiles and dies at the first caustic pass).
+TEST_F(DistributedRender, CrashedSlaveDuringAPhotonPassUnderEnableRecoveryGivesTheSamePixels) {
+  const CrashedJobLock alone;
+  for (const char* mode : {"", " --progressive --passes 3"}) {
+    const std::string scene = kCausticScene + mode;
+    const test::ProcessRun single =
+        test::runPrism("render " + scene + " -q --overwrite -o " + path("reference.exr"));
+    ASSERT_EQ(single.exitCode, 0) << single.output;
+    const test::ProcessRun run =
+        test::runPrismMpi(3,
+                          "render " + scene + " --overwrite -o " + path("crash.exr") +
+                              " --tile-size 8 --lease-timeout 1 --inject-fault crash-photons:2",
+                          "--enable-recovery");
+    ASSERT_EQ(run.exitCode, 0) << mode << "\n" << run.output;
+    EXPECT_TRUE(samePixels(readImage(path("crash.exr")), readImage(path("reference.exr"))))
+        << mode << "\n"
+        << run.output;
+    EXPECT_NE(run.output.find("STOPPED ANSWERING"), std::string::npos) << run.output;
+    // Rank 2 traced nothing and found no radius: rank 0 did its shares.
+    EXPECT_NE(run.output.find(", 2: 0; radii found by rank:"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(", 2: 0\n"), std::string::npos) << run.output;
+  }
+}
+
 // Budgets smaller than the ranks: with 2 photons two of three ranks trace none (no job is sent,
 // and none is waited for: such a run used to wait for them forever), and 40 photons store fewer
 // than one chunk of radii, found by one rank. The pixels are one process's.

@@ -1,0 +1,55 @@
+// One slave's part of a job, from the scene to the end: receive the scene rank 0 broadcasts,
+// build it and say Ready (or say why not), then serve rank 0's messages (slave/SlaveHandlers.h)
+// while the render threads, the photon work and the heartbeat run (slave/SlaveWork.h), sending
+// each finished tile and photon share as it comes, until rank 0's Shutdown, a failure, an
+// interrupt or rank 0's silence; then stop the threads and end as each case needs.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "cluster/DistributionOptions.h"
+#include "slave/SlaveLoop.h"
+#include "transport/Transport.h"
+#include "util/MemorySize.h"
+
+namespace prism {
+
+class Scene;
+struct SlaveWork;
+
+class SlaveSession {
+ public:
+  // Reads options.threads and masterTimeoutSeconds; memoryLimit as runSlave's.
+  SlaveSession(Transport& transport, const DistributionOptions& options,
+               const MemoryLimit& memoryLimit);
+  ~SlaveSession();
+
+  // The whole session; how the process should end.
+  SlaveEnd run();
+
+ private:
+  // The scene built and Ready sent; else how the session ends (rank 0 silent or failed, the
+  // scene refused: reported to rank 0).
+  std::optional<SlaveEnd> buildScene(double startSeconds);
+  std::unique_ptr<Scene> decodeAndBuild(const std::vector<uint8_t>& bytes, double startSeconds);
+  // The message loop, until it ends; a failure in it is reported to rank 0.
+  void serve();
+  void loop();
+  // Sends the finished tiles and photon share; false when rank 0 is gone.
+  bool sendFinished();
+  // The next message, after waiting (without the lock) up to the idle bound for one.
+  std::optional<IncomingMessage> nextMessage();
+  void stopOn(const char* why, bool masterLost);
+  SlaveEnd finish();
+
+  Transport& transport_;
+  DistributionOptions options_;
+  MemoryLimit memoryLimit_;
+  std::unique_ptr<SlaveWork> work_;
+  bool interrupted_ = false;
+  SlaveEnd end_;
+};
+
+}  // namespace prism
