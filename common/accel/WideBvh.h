@@ -43,7 +43,7 @@ using SlabLanes = simd::Float4;
 // its origin, reciprocal direction and tMin broadcast to every lane, made once a walk. The walk
 // calls its leaf visitor between node tests, and a call clobbers every vector register; node
 // tests that broadcast these again after each took 122 instructions where they now take 75
-// (docs/performance.md, "A node test's instructions").
+// (docs/journal/2026-11-27-node-test-broadcasts.md).
 struct WideRay {
   int nearSide[3];  // 0: lower plane first (direction >= +0), 1: upper plane first
   SlabLanes originLanes[3];

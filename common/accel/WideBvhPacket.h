@@ -28,7 +28,7 @@ struct RayPacket8 {
   // spread by about a hundredth of their length (the default scene's floor at 640 × 360; less at
   // higher resolutions); a block whose hits lie on different objects far apart spreads by much
   // more, and the interval test would then admit every box between them. 0.01 to 0.03 measured
-  // alike (docs/performance.md, "Packets whose origins lie far apart").
+  // alike (docs/journal/2026-11-26-packets-whose-origins-lie-far-apart.md).
   static constexpr float kMaxOriginSpread = 0.02f;
   // Per axis, the bounds of the packet's origins and reciprocal directions.
   float originLow[3], originHigh[3], invLow[3], invHigh[3];

@@ -15,7 +15,7 @@ namespace prism {
 // Compression trades file size for time; compression is OpenEXR's exr_compression_t value. The
 // default is none: on a rendered 512² frame the lossless methods save 3 % (ZIPS), 11 % (ZIP) or
 // 14 % (PIZ) of 3 MiB, because the low mantissa bits of float radiance are noise, for 8 to 17
-// times the 7.5 ms an uncompressed write takes (docs/performance.md, "Fixed costs").
+// times the 7.5 ms an uncompressed write takes (docs/journal/2026-11-23-png-and-exr-encoding.md).
 struct ExrEncoding {
   int compression = 0;  // EXR_COMPRESSION_NONE
   int zipLevel = 4;     // OpenEXR's default, for ZIP and ZIPS

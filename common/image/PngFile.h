@@ -17,9 +17,9 @@ namespace prism {
 // tagged sRGB, with metadata as tEXt chunks ("ImageDescription" is stored under PNG's keyword
 // "Description"). Throws std::runtime_error with libpng's message (without the path).
 // The zlib level and the row filters trade file size for time. The defaults, measured on a 512²
-// render (docs/performance.md, "Fixed costs"): zlib level 1 with the Sub filter on every row
-// encodes in 8 ms to 189 KiB, where OpenImageIO's settings (level 3, libpng's adaptive choice
-// among all five filters) took 17 ms for 181 KiB.
+// render (docs/journal/2026-11-23-png-and-exr-encoding.md): zlib level 1 with the Sub filter on
+// every row encodes in 8 ms to 189 KiB, where OpenImageIO's settings (level 3, libpng's adaptive
+// choice among all five filters) took 17 ms for 181 KiB.
 struct PngEncoding {
   int zlibLevel = 1;
   int filters = 0x10;  // PNG_FILTER_SUB

@@ -1,5 +1,5 @@
 // Rays per CPU-second: Prism's traversal against Intel Embree 3 on the same triangles and the
-// same rays, side by side in one process (docs/performance.md, "Ray traversal against Embree").
+// same rays, side by side in one process (docs/performance.md, "Rays against Embree").
 //
 //   build/tests/prism_embree_compare [--runs N] [--quick] [--no-variants] [--threads 1,2]
 //                                    [--kinds primary,incoherent,shadow] [--no-generated]

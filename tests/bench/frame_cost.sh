@@ -3,7 +3,7 @@
 # misses of `prism render` (one thread) under Cachegrind, the run at 2 samples per pixel less the
 # run at 1, so start-up, scene and caustic-map builds and the image write cancel. The counts do
 # not move with the machine's load, so changes of 1 % show, where wall-clock medians on a noisy
-# 2-core machine need a 5 % change (docs/performance.md, "Counting a frame's work"). They are
+# 2-core machine need a 5 % change (docs/journal/2026-11-26-counting-a-frames-work.md). They are
 # not times: confirm a kept change with alternating timed runs.
 #   tests/bench/frame_cost.sh [--top N] PRISM [PRISM2 ...] [-- RENDER ARGS]
 # RENDER ARGS default to the default scene at 320x180. For each binary: the frame's

@@ -1,7 +1,7 @@
 // Time and size of the PNG and EXR encoders on a rendered frame, for each zlib level, PNG row
-// filter and EXR compression worth considering (docs/performance.md, "Fixed costs"). Prints the
-// median of the runs; the image is an EXR render (linear radiance), by default scenes/default.yaml
-// at 512², made with
+// filter and EXR compression worth considering (docs/journal/2026-11-23-png-and-exr-encoding.md).
+// Prints the median of the runs; the image is an EXR render (linear radiance), by default
+// scenes/default.yaml at 512², made with
 //   build/prism render scenes/default.yaml -W 512 -H 512 -o /tmp/frame.exr
 // Usage: prism_image_encode [frame.exr] [runs]
 #include <OpenEXR/openexr.h>

@@ -1,6 +1,6 @@
 // Time to encode and decode a photon map message (rank 0 sends one to every slave per photon
-// pass; each slave decodes it) and the share of the FNV-1a checksum in both (docs/performance.md,
-// "Photon radii found by every rank"). Prints the median of the runs.
+// pass; each slave decodes it) and the share of the FNV-1a checksum in both
+// (docs/journal/2026-11-26-photon-radii-across-ranks.md). Prints the median of the runs.
 // Usage: prism_wire_encode [photons (415000: caustic-glass-sphere.yaml's stored)] [runs (5)]
 #include <algorithm>
 #include <cstdio>
