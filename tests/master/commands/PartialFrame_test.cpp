@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "PrismProcess.h"
 #include "image/ImageIo.h"
+#include "master/PrismProcess.h"
 
 namespace prism {
 namespace {

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "PrismProcess.h"
 #include "image/ImageIo.h"
+#include "master/PrismProcess.h"
 #include "parse/SceneLoader.h"
 #include "scene/Camera.h"
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "PrismProcess.h"
 #include "image/ImageIo.h"
+#include "master/PrismProcess.h"
 
 namespace prism {
 namespace {
