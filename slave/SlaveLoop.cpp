@@ -100,7 +100,7 @@ class PhotonWork {
       share.photons =
           tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats, &cancel_);
       share.seconds = secondsSince(start);
-      return wire::encodePhotonShare(share);
+      return wire::encode(share);
     });
   }
 
@@ -111,7 +111,7 @@ class PhotonWork {
       wire::PhotonRadiiShareMessage share{job.pass, job.first, {}};
       share.radii = photonRadiiShare(*map, gather.k, gather.radius, gather.automaticK, job.first,
                                      job.count, threads_, &cancel_);
-      return wire::encodePhotonRadiiShare(share);
+      return wire::encode(share);
     });
   }
 
@@ -287,7 +287,8 @@ void awaitShutdown(Transport& session, double timeoutSeconds) {
     try {
       if (wire::decodeMessage(incoming->bytes.data(), incoming->bytes.size()).type ==
           wire::MessageType::Shutdown) {
-        session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+        session.send(0,
+                     wire::encode(wire::ShutdownMessage{}));  // acknowledged: the master may finish
         return;
       }
     } catch (const wire::WireError&) {
@@ -322,10 +323,11 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
     checkCausticMapsFit(*scene, memoryLimit);  // before any map is built
     const int threads = options.threads > 0 ? options.threads : availableCores();
-    session.send(0, wire::encodeReady(
-                        {secondsSince(buildStart), threads, startSeconds, session.setUpSeconds()}));
+    session.send(0, wire::encode(wire::ReadyMessage{secondsSince(buildStart), threads, startSeconds,
+                                                    session.setUpSeconds()}));
   } catch (const std::exception& e) {
-    session.send(0, wire::encodeError({std::string("cannot build the scene: ") + e.what()}));
+    session.send(
+        0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);
     return {1};
   }
@@ -388,7 +390,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       }
       if (progress.empty()) progress.push_back({});
       for (const wire::ProgressMessage& p : progress) {
-        if (!session.send(0, wire::encodeProgress(p))) masterGone = true;
+        if (!session.send(0, wire::encode(p))) masterGone = true;
       }
     }
   });
@@ -427,7 +429,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         const auto work = frames.find(result.frame);
         if (work == frames.end()) continue;  // finished after the viewer moved on: stale
         work->second.held.erase(result.result.tileIndex);
-        masterReachable = session.send(0, wire::encodeTileResult(result)) && masterReachable;
+        masterReachable = session.send(0, wire::encode(result)) && masterReachable;
       }
       if (std::optional<std::vector<uint8_t>> share = photons.finished()) {
         masterReachable = session.send(0, std::move(*share)) && masterReachable;
@@ -463,7 +465,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
         break;
       }
       if (message.type == wire::MessageType::View) {
-        wire::ViewMessage next = wire::decodeView(message);
+        wire::ViewMessage next = wire::decode<wire::ViewMessage>(message);
         endFrames(frames.begin(), frames.lower_bound(next.liveFrom));
         jobs.dropBefore(next.liveFrom);  // tiles of frames nobody wants any more
         FrameWork& work = frames[next.frame];
@@ -478,35 +480,35 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
       if (message.type == wire::MessageType::PhotonJob) {
         if (hang) continue;
         // Waits for a share still being traced.
-        unlocked([&] { photons.start(wire::decodePhotonJob(message)); });
+        unlocked([&] { photons.start(wire::decode<wire::PhotonJobMessage>(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonCancel) {
-        photons.cancel(wire::decodePhotonCancel(message).pass);
+        photons.cancel(wire::decode<wire::PhotonCancelMessage>(message).pass);
         continue;
       }
       if (message.type == wire::MessageType::PhotonMap) {
         // Builds the kd-tree.
-        unlocked([&] { photons.acceptMap(wire::decodePhotonMap(message)); });
+        unlocked([&] { photons.acceptMap(wire::decode<wire::PhotonMapMessage>(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadiiJob) {
         if (hang) continue;
         // Waits for a share still being finished.
-        unlocked([&] { photons.findRadii(wire::decodePhotonRadiiJob(message)); });
+        unlocked([&] { photons.findRadii(wire::decode<wire::PhotonRadiiJobMessage>(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonRadii) {
         // Builds the disc tree.
-        unlocked([&] { photons.acceptRadii(wire::decodePhotonRadii(message)); });
+        unlocked([&] { photons.acceptRadii(wire::decode<wire::PhotonRadiiMessage>(message)); });
         continue;
       }
       if (message.type == wire::MessageType::PhotonMapAgain) {
-        photons.reuseMap(wire::decodePhotonMapAgain(message));
+        photons.reuseMap(wire::decode<wire::PhotonMapAgainMessage>(message));
         continue;
       }
       if (message.type != wire::MessageType::TileJob) continue;
-      const wire::TileJobMessage job = wire::decodeTileJob(message);
+      const wire::TileJobMessage job = wire::decode<wire::TileJobMessage>(message);
       auto work = frames.find(job.frame);
       if (work == frames.end()) {
         if (!frames.empty() && job.frame < frames.rbegin()->first) continue;  // ended already
@@ -531,7 +533,7 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
     }
   } catch (const std::exception& e) {
     stopHeartbeat();
-    session.send(0, wire::encodeError({e.what()}));
+    session.send(0, wire::encode(wire::ErrorMessage{e.what()}));
     exitCode = 1;
   }
   stopHeartbeat();
@@ -542,17 +544,19 @@ SlaveEnd runSlave(Transport& session, const DistributionOptions& options,
   try {
     pool.join();
   } catch (const std::exception& e) {
-    session.send(0, wire::encodeError({std::string("render thread failed: ") + e.what()}));
+    session.send(
+        0, wire::encode(wire::ErrorMessage{std::string("render thread failed: ") + e.what()}));
     awaitShutdown(session, options.masterTimeoutSeconds);
     return {1};
   }
   if (shutdownReceived) {
-    session.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+    session.send(0, wire::encode(wire::ShutdownMessage{}));  // acknowledged: the master may finish
   } else if (interrupted) {
     // Usually every rank got the signal (mpiexec sends SIGTERM to all) and rank 0 is writing
     // its partial frame: wait for its shutdown a little, well inside mpiexec's one second
     // before SIGKILL. A slave interrupted alone tells rank 0, which ends the run with an error.
-    session.send(0, wire::encodeError({std::string("stopped by ") + interruptSignalName()}));
+    session.send(
+        0, wire::encode(wire::ErrorMessage{std::string("stopped by ") + interruptSignalName()}));
     awaitShutdown(session, kInterruptedShutdownSeconds);
     // SIGTERM comes from mpiexec ending the job: MPI_Finalize would wait for the SIGKILL.
     if (interruptSignalName() == std::string("SIGTERM")) std::_Exit(kInterruptedExitCode);

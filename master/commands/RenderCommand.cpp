@@ -83,7 +83,7 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
 
 int failBeforeScene(Transport* session, const std::string& what, std::ostream& err) {
   if (session) {
-    std::vector<uint8_t> bytes = wire::encodeError({what});
+    std::vector<uint8_t> bytes = wire::encode(wire::ErrorMessage{what});
     session->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
   }
   err << "prism: error: " << what << "\n";

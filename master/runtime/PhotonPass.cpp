@@ -82,7 +82,8 @@ bool collectShares(std::vector<Share>& shares, uint32_t pass, SlaveLink& link,
   for (;;) {
     if (cancel && cancel->load()) {
       for (const Share& s : shares) {
-        if (s.rank != 0 && !s.done) link.send(s.rank, wire::encodePhotonCancel({pass}));
+        if (s.rank != 0 && !s.done)
+          link.send(s.rank, wire::encode(wire::PhotonCancelMessage{pass}));
       }
       local.wait();
       return false;
@@ -129,8 +130,8 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
   for (const Share& share : shares) {
     if (share.rank == 0 || share.count == 0) continue;
     // A refused send retires the rank: its share is traced here.
-    link.send(share.rank,
-              wire::encodePhotonJob({pass, share.first, share.count, tracer.photonsPerPass()}));
+    link.send(share.rank, wire::encode(wire::PhotonJobMessage{pass, share.first, share.count,
+                                                              tracer.photonsPerPass()}));
   }
   std::vector<std::vector<Photon>> photons(shares.size());
   std::vector<PhotonTraceStats> traced(shares.size());
@@ -145,7 +146,7 @@ std::optional<std::vector<Photon>> tracePhotonPass(const PhotonTracer& tracer, u
   });
   const auto accept = [&](const SlaveMessage& incoming) {
     if (incoming.message.type != wire::MessageType::PhotonShare) return;
-    wire::PhotonShareMessage share = wire::decodePhotonShare(incoming.message);
+    wire::PhotonShareMessage share = wire::decode<wire::PhotonShareMessage>(incoming.message);
     const std::optional<size_t> s = awaitedShare(shares, incoming.source);
     if (share.pass != pass || !s || share.first != shares[*s].first ||
         share.count != shares[*s].count) {
@@ -204,7 +205,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
     s.first *= kPhotonRadiiChunk;
     s.count = s.first < end ? end - s.first : 0;
     if (s.rank != 0 && s.count > 0)
-      link.send(s.rank, wire::encodePhotonRadiiJob({pass, s.first, s.count}));
+      link.send(s.rank, wire::encode(wire::PhotonRadiiJobMessage{pass, s.first, s.count}));
   }
   std::vector<float> radii(map->size(), 0.0f);
   const auto findHere = [&](size_t s) {
@@ -219,7 +220,8 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   });
   const auto accept = [&](const SlaveMessage& incoming) {
     if (incoming.message.type != wire::MessageType::PhotonRadiiShare) return;
-    const wire::PhotonRadiiShareMessage share = wire::decodePhotonRadiiShare(incoming.message);
+    const wire::PhotonRadiiShareMessage share =
+        wire::decode<wire::PhotonRadiiShareMessage>(incoming.message);
     const std::optional<size_t> s = awaitedShare(shares, incoming.source);
     if (share.pass != pass || !s || share.first != shares[*s].first ||
         share.radii.size() != shares[*s].count) {
@@ -233,7 +235,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   if (cancelled()) return nullptr;  // moved while the last share came: no disc tree to build
   stats.radiiByRank.assign(static_cast<size_t>(link.ranks()), 0);
   for (const Share& s : shares) stats.radiiByRank[static_cast<size_t>(s.doneBy)] += s.count;
-  if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, radii}));
+  if (link.hasSlaves()) sendToEverySlave(link, wire::encode(wire::PhotonRadiiMessage{pass, radii}));
   auto made =
       std::make_shared<const PhotonGather>(std::move(map), gather, std::move(radii), threads);
   stats.radiiSeconds = secondsSince(start);
@@ -241,7 +243,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
 }
 
 void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link) {
-  sendToEverySlave(link, wire::encodePhotonMapAgain({pass, keptPass}));
+  sendToEverySlave(link, wire::encode(wire::PhotonMapAgainMessage{pass, keptPass}));
 }
 
 }  // namespace prism

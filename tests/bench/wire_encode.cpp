@@ -39,14 +39,15 @@ bool tileResults(int runs) {
     const double encode = medianMs(runs, [&] {
       for (size_t i = 0; i < tiles.size(); ++i) {
         tiles[i].displayExposure = exposure;
-        bytes[i] = wire::encodeTileResult(tiles[i]);
+        bytes[i] = wire::encode(tiles[i]);
       }
     });
     size_t pixels = 0;
     const double decode = medianMs(runs, [&] {
       pixels = 0;
       for (const std::vector<uint8_t>& b : bytes) {
-        pixels += wire::decodeTileResult(wire::decodeMessage(b)).result.pixels.size();
+        pixels +=
+            wire::decode<wire::TileResultMessage>(wire::decodeMessage(b)).result.pixels.size();
       }
     });
     std::printf(
@@ -76,8 +77,9 @@ int main(int argc, char** argv) {
   // differently and reads at another speed).
   const std::vector<uint8_t> received(bytes.begin(), bytes.end());
   size_t decoded = 0;
-  const double decode = medianMs(
-      runs, [&] { decoded = wire::decodePhotonMap(wire::decodeMessage(received)).photons.size(); });
+  const double decode = medianMs(runs, [&] {
+    decoded = wire::decode<wire::PhotonMapMessage>(wire::decodeMessage(received)).photons.size();
+  });
   volatile uint64_t sink = 0;
   const double checksum = medianMs(runs, [&] { sink = wire::fnv1a64(bytes.data(), bytes.size()); });
   std::printf(
