@@ -105,7 +105,7 @@ bool FaultInjectingTransport::admit(const std::vector<uint8_t>& bytes) {
       return true;
     case Kind::DropTiles: {
       if (message->type != Type::TileJob) return true;
-      const uint32_t frame = wire::decodeTileJob(*message).frame;
+      const uint32_t frame = wire::decode<wire::TileJobMessage>(*message).frame;
       const std::lock_guard<std::mutex> lock(mutex_);
       if (++tileJobs_[frame] % 2 != 0) return true;
       ++dropped_[frame];
@@ -126,7 +126,8 @@ std::optional<std::vector<uint8_t>> FaultInjectingTransport::outgoing(
   }
   if (kind_ != Kind::Slow) return std::move(bytes);
   if (message->type == Type::Ready) {
-    lanes_.assign(static_cast<size_t>(std::max(1, wire::decodeReady(*message).threads)), 0.0);
+    lanes_.assign(
+        static_cast<size_t>(std::max(1, wire::decode<wire::ReadyMessage>(*message).threads)), 0.0);
   } else if (message->type == Type::TileResult) {
     holdBack(dest, *message, std::move(bytes));
     return std::nullopt;
@@ -137,7 +138,7 @@ std::optional<std::vector<uint8_t>> FaultInjectingTransport::outgoing(
 // Drop: the tiles swallowed were received, as far as rank 0 can tell. Slow: the results held
 // back are still held.
 std::vector<uint8_t> FaultInjectingTransport::rewriteProgress(const wire::Message& message) const {
-  wire::ProgressMessage progress = wire::decodeProgress(message);
+  wire::ProgressMessage progress = wire::decode<wire::ProgressMessage>(message);
   const auto dropped = dropped_.find(progress.frame);
   if (dropped != dropped_.end()) progress.jobsReceived += dropped->second;
   for (const HeldResult& h : held_) {
@@ -146,14 +147,14 @@ std::vector<uint8_t> FaultInjectingTransport::rewriteProgress(const wire::Messag
   std::sort(progress.heldTiles.begin(), progress.heldTiles.end());
   progress.heldTiles.erase(std::unique(progress.heldTiles.begin(), progress.heldTiles.end()),
                            progress.heldTiles.end());
-  return wire::encodeProgress(progress);
+  return wire::encode(progress);
 }
 
 // The result takes the render thread's lane that is free first, for kSlowTileDelaySeconds from
 // the later of now and then. Due times never decrease, so the queue stays in release order.
 void FaultInjectingTransport::holdBack(int dest, const wire::Message& message,
                                        std::vector<uint8_t>&& bytes) {
-  const wire::TileResultMessage result = wire::decodeTileResult(message);
+  const wire::TileResultMessage result = wire::decode<wire::TileResultMessage>(message);
   double& lane = *std::min_element(lanes_.begin(), lanes_.end());
   lane = std::max(clock_(), lane) + kSlowTileDelaySeconds;
   held_.push_back({lane, dest, result.frame, result.result.tileIndex, std::move(bytes)});

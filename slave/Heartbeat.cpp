@@ -30,7 +30,7 @@ void Heartbeat::beat() {
   while (!stopped_.wait_for(lock, std::chrono::duration<double>(kHeartbeatSeconds),
                             [this] { return stopping_; })) {
     for (const wire::ProgressMessage& p : frames_.progress()) {
-      if (!transport_.send(0, wire::encodeProgress(p))) masterGone_ = true;
+      if (!transport_.send(0, wire::encode(p))) masterGone_ = true;
     }
   }
 }

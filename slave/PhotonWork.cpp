@@ -40,7 +40,7 @@ void PhotonWork::start(const wire::PhotonJobMessage& job) {
     share.photons =
         tracePhotons(*tracer_, job.pass, job.first, job.count, threads_, &share.stats, &cancel_);
     share.seconds = secondsSince(start);
-    return wire::encodePhotonShare(share);
+    return wire::encode(share);
   });
 }
 
@@ -50,7 +50,7 @@ void PhotonWork::findRadii(const wire::PhotonRadiiJobMessage& job) {
     wire::PhotonRadiiShareMessage share{job.pass, job.first, {}};
     share.radii = photonRadiiShare(*map, gather.k, gather.radius, gather.automaticK, job.first,
                                    job.count, threads_, &cancel_);
-    return wire::encodePhotonRadiiShare(share);
+    return wire::encode(share);
   });
 }
 

@@ -13,7 +13,8 @@ bool awaitShutdown(Transport& transport, double timeoutSeconds) {
     if (!incoming) continue;
     try {
       if (wire::decodeMessage(incoming->bytes).type == wire::MessageType::Shutdown) {
-        transport.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+        transport.send(
+            0, wire::encode(wire::ShutdownMessage{}));  // acknowledged: the master may finish
         return true;
       }
     } catch (const wire::WireError&) {

@@ -25,7 +25,7 @@ Next onShutdown(SlaveWork& work, const Received&) {
 
 // The viewer's next frame: the frames it no longer wants end, their queued tiles are dropped.
 Next onView(SlaveWork& work, const Received& r) {
-  wire::ViewMessage next = wire::decodeView(r.message);
+  wire::ViewMessage next = wire::decode<wire::ViewMessage>(r.message);
   work.frames.startView(next.frame, next.liveFrom, std::move(next.view));
   work.jobs.dropBefore(next.liveFrom);
   return Next::Continue;
@@ -38,7 +38,7 @@ Next onEcho(SlaveWork& work, const Received& r) {
 }
 
 Next onTileJob(SlaveWork& work, const Received& r) {
-  const wire::TileJobMessage job = wire::decodeTileJob(r.message);
+  const wire::TileJobMessage job = wire::decode<wire::TileJobMessage>(r.message);
   FrameWork* frame = work.frames.frameOfJob(job.frame);
   if (!frame) return Next::Continue;  // its frame has ended
   ++frame->received;
@@ -55,35 +55,37 @@ Next onTileJob(SlaveWork& work, const Received& r) {
 
 Next onPhotonJob(SlaveWork& work, const Received& r) {
   // Waits for a share still being traced.
-  work.unlocked([&] { work.photons.start(wire::decodePhotonJob(r.message)); });
+  work.unlocked([&] { work.photons.start(wire::decode<wire::PhotonJobMessage>(r.message)); });
   return Next::Continue;
 }
 
 Next onPhotonCancel(SlaveWork& work, const Received& r) {
-  work.photons.cancel(wire::decodePhotonCancel(r.message).pass);
+  work.photons.cancel(wire::decode<wire::PhotonCancelMessage>(r.message).pass);
   return Next::Continue;
 }
 
 Next onPhotonMap(SlaveWork& work, const Received& r) {
   // Builds the kd-tree.
-  work.unlocked([&] { work.photons.acceptMap(wire::decodePhotonMap(r.message)); });
+  work.unlocked([&] { work.photons.acceptMap(wire::decode<wire::PhotonMapMessage>(r.message)); });
   return Next::Continue;
 }
 
 Next onPhotonRadiiJob(SlaveWork& work, const Received& r) {
   // Waits for a share still being finished.
-  work.unlocked([&] { work.photons.findRadii(wire::decodePhotonRadiiJob(r.message)); });
+  work.unlocked(
+      [&] { work.photons.findRadii(wire::decode<wire::PhotonRadiiJobMessage>(r.message)); });
   return Next::Continue;
 }
 
 Next onPhotonRadii(SlaveWork& work, const Received& r) {
   // Builds the disc tree.
-  work.unlocked([&] { work.photons.acceptRadii(wire::decodePhotonRadii(r.message)); });
+  work.unlocked(
+      [&] { work.photons.acceptRadii(wire::decode<wire::PhotonRadiiMessage>(r.message)); });
   return Next::Continue;
 }
 
 Next onPhotonMapAgain(SlaveWork& work, const Received& r) {
-  work.photons.reuseMap(wire::decodePhotonMapAgain(r.message));
+  work.photons.reuseMap(wire::decode<wire::PhotonMapAgainMessage>(r.message));
   return Next::Continue;
 }
 

@@ -59,7 +59,8 @@ std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
   } catch (const NoScene&) {
     return SlaveEnd{1};
   } catch (const std::exception& e) {
-    transport_.send(0, wire::encodeError({std::string("cannot build the scene: ") + e.what()}));
+    transport_.send(
+        0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
     awaitShutdown(transport_, options_.masterTimeoutSeconds);
     return SlaveEnd{1};
   }
@@ -78,8 +79,8 @@ std::unique_ptr<Scene> SlaveSession::decodeAndBuild(const std::vector<uint8_t>& 
       std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
   checkCausticMapsFit(*scene, memoryLimit_);  // before any map is built
   const int threads = options_.threads > 0 ? options_.threads : availableCores();
-  transport_.send(0, wire::encodeReady({secondsSince(buildStart), threads, startSeconds,
-                                        transport_.setUpSeconds()}));
+  transport_.send(0, wire::encode(wire::ReadyMessage{secondsSince(buildStart), threads,
+                                                     startSeconds, transport_.setUpSeconds()}));
   return scene;
 }
 
@@ -91,7 +92,7 @@ void SlaveSession::serve() {
   } catch (const std::exception& e) {
     if (work_->loopLock.owns_lock()) work_->loopLock.unlock();
     work_->heartbeat.stop();
-    transport_.send(0, wire::encodeError({e.what()}));
+    transport_.send(0, wire::encode(wire::ErrorMessage{e.what()}));
     end_.exitCode = 1;
   }
   work_->heartbeat.stop();
@@ -125,7 +126,7 @@ bool SlaveSession::sendFinished() {
   bool reachable = !work_->heartbeat.masterGone();
   for (wire::TileResultMessage& result : work_->outbox.take()) {
     if (!work_->frames.finish(result.frame, result.result.tileIndex)) continue;  // stale
-    reachable = transport_.send(0, wire::encodeTileResult(result)) && reachable;
+    reachable = transport_.send(0, wire::encode(result)) && reachable;
   }
   if (std::optional<std::vector<uint8_t>> share = work_->photons.finished()) {
     reachable = transport_.send(0, std::move(*share)) && reachable;
@@ -151,17 +152,20 @@ SlaveEnd SlaveSession::finish() {
   try {
     work_->stop();
   } catch (const std::exception& e) {
-    transport_.send(0, wire::encodeError({std::string("render thread failed: ") + e.what()}));
+    transport_.send(
+        0, wire::encode(wire::ErrorMessage{std::string("render thread failed: ") + e.what()}));
     awaitShutdown(transport_, options_.masterTimeoutSeconds);
     return {1};
   }
   if (work_->shutdownReceived) {
-    transport_.send(0, wire::encodeShutdown());  // acknowledged: the master may finish
+    transport_.send(0,
+                    wire::encode(wire::ShutdownMessage{}));  // acknowledged: the master may finish
   } else if (interrupted_) {
     // Usually every rank got the signal (mpiexec sends SIGTERM to all) and rank 0 is writing
     // its partial frame: wait for its shutdown a little, well inside mpiexec's one second
     // before SIGKILL. A slave interrupted alone tells rank 0, which ends the run with an error.
-    transport_.send(0, wire::encodeError({std::string("stopped by ") + interruptSignalName()}));
+    transport_.send(
+        0, wire::encode(wire::ErrorMessage{std::string("stopped by ") + interruptSignalName()}));
     awaitShutdown(transport_, kInterruptedShutdownSeconds);
     // SIGTERM comes from mpiexec ending the job: MPI_Finalize would wait for the SIGKILL.
     if (interruptSignalName() == std::string("SIGTERM")) std::_Exit(kInterruptedExitCode);

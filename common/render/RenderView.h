@@ -10,8 +10,8 @@
 namespace prism {
 
 // What a pixel shows. A new per-pixel view gets its enumerator here, its shading in
-// render/DebugShading.cpp and its wire check in wire/Messages.cpp. The caustic maps' debug views
-// are not per pixel: the viewer shows them in light space (gui/LightSpaceImage.h).
+// render/DebugShading.cpp and its case in isKnown in wire/WireEnums.h. The caustic maps' debug
+// views are not per pixel: the viewer shows them in light space (gui/LightSpaceImage.h).
 enum class DebugView : uint8_t {
   Image = 0,    // radiance, as `prism render` computes it
   Normals = 1,  // shading normal of the first hit, mapped from [-1, 1] to [0, 1]

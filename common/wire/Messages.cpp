@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "image/DisplayBytes.h"
-#include "wire/SceneCodec.h"
+#include "wire/FieldCodec.h"
 
 namespace prism::wire {
 namespace {
@@ -14,29 +14,6 @@ std::string hex(uint64_t v, int digits) {
   char buffer[24];
   std::snprintf(buffer, sizeof buffer, "0x%0*llX", digits, static_cast<unsigned long long>(v));
   return buffer;
-}
-
-bool isKnownType(uint16_t raw) {
-  return raw >= static_cast<uint16_t>(MessageType::Scene) &&
-         raw <= static_cast<uint16_t>(MessageType::PhotonRadii);
-}
-
-// Checks the type, runs readPayload over the payload, insists it consumed every byte, and puts
-// the message type in front of any error so the log says which message was bad.
-template <typename ReadPayload>
-auto decodePayload(const Message& message, MessageType expected, ReadPayload readPayload) {
-  if (message.type != expected) {
-    throw WireError(std::string("expected a ") + messageTypeName(expected) + " message, got " +
-                    messageTypeName(message.type));
-  }
-  try {
-    ByteReader r(message.payload);
-    auto value = readPayload(r);
-    r.expectEnd();
-    return value;
-  } catch (const WireError& e) {
-    throw WireError(std::string(messageTypeName(expected)) + " message: " + e.what());
-  }
 }
 
 // The envelope: magic u32, version u16, type u16, payload size u64 (at kSizeOffset), checksum
@@ -69,32 +46,6 @@ std::vector<uint8_t> encodeWith(MessageType type, WritePayload writePayload) {
   return bytes;
 }
 
-void writeRect(ByteWriter& w, const TileRect& rect) {
-  const auto& [x, y, width, height] = rect;
-  w.writeI32(x);
-  w.writeI32(y);
-  w.writeI32(width);
-  w.writeI32(height);
-}
-
-// A tile must be non-empty, start inside the first quadrant, and have a pixel count and far
-// corner that fit in an int, since TileRect does its arithmetic in int.
-TileRect readRect(ByteReader& r) {
-  TileRect rect;
-  auto& [x, y, width, height] = rect;
-  x = r.readI32();
-  y = r.readI32();
-  width = r.readI32();
-  height = r.readI32();
-  const bool sane = x >= 0 && y >= 0 && width > 0 && height > 0 && int64_t{x} + width <= INT_MAX &&
-                    int64_t{y} + height <= INT_MAX && int64_t{width} * height <= INT_MAX;
-  if (!sane) {
-    throw WireError("invalid tile rectangle at (" + std::to_string(x) + ", " + std::to_string(y) +
-                    ") of size " + std::to_string(width) + "x" + std::to_string(height));
-  }
-  return rect;
-}
-
 void checkSeconds(double seconds, const char* what) {
   if (!(std::isfinite(seconds) && seconds >= 0.0)) {
     throw WireError(std::string("invalid ") + what + " " + std::to_string(seconds));
@@ -112,46 +63,6 @@ void checkDisplayExposure(float exposure) {
 }
 
 }  // namespace
-
-const char* messageTypeName(MessageType type) {
-  switch (type) {
-    case MessageType::Scene:
-      return "Scene";
-    case MessageType::Ready:
-      return "Ready";
-    case MessageType::TileJob:
-      return "TileJob";
-    case MessageType::TileResult:
-      return "TileResult";
-    case MessageType::Shutdown:
-      return "Shutdown";
-    case MessageType::Error:
-      return "Error";
-    case MessageType::Progress:
-      return "Progress";
-    case MessageType::View:
-      return "View";
-    case MessageType::Echo:
-      return "Echo";
-    case MessageType::PhotonCancel:
-      return "PhotonCancel";
-    case MessageType::PhotonJob:
-      return "PhotonJob";
-    case MessageType::PhotonShare:
-      return "PhotonShare";
-    case MessageType::PhotonMap:
-      return "PhotonMap";
-    case MessageType::PhotonMapAgain:
-      return "PhotonMapAgain";
-    case MessageType::PhotonRadiiJob:
-      return "PhotonRadiiJob";
-    case MessageType::PhotonRadiiShare:
-      return "PhotonRadiiShare";
-    case MessageType::PhotonRadii:
-      return "PhotonRadii";
-  }
-  return "unknown";
-}
 
 uint64_t fnv1a64(const uint8_t* data, size_t size) {
   uint64_t hash = 14695981039346656037ull;
@@ -204,493 +115,165 @@ Message decodeMessage(const uint8_t* data, size_t size) {
           std::vector<uint8_t>(data + kHeaderSize, data + kHeaderSize + actual)};
 }
 
-std::vector<uint8_t> encodeScene(const SceneDescription& scene) {
-  return encodeWith(MessageType::Scene, [&](ByteWriter& w) { writeScene(w, scene); });
+template <WireMessage T>
+std::vector<uint8_t> encode(const T& value) {
+  return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) { writeFields(w, value); });
 }
 
-SceneDescription decodeScene(const Message& message) {
-  return decodePayload(message, MessageType::Scene, readScene);
-}
-
-std::vector<uint8_t> encodeTileJob(const TileJobMessage& job) {
-  return encodeWith(MessageType::TileJob, [&](ByteWriter& w) {
-    const auto& [frame, tileIndex, rect, pass, terms] = job;
-    w.writeU32(frame);
-    w.writeU32(tileIndex);
-    writeRect(w, rect);
-    w.writeU32(pass);
-    w.writeU8(terms);
-  });
-}
-
-TileJobMessage decodeTileJob(const Message& message) {
-  return decodePayload(message, MessageType::TileJob, [](ByteReader& r) {
-    TileJobMessage job;
-    auto& [frame, tileIndex, rect, pass, terms] = job;
-    frame = r.readU32();
-    tileIndex = r.readU32();
-    rect = readRect(r);
-    pass = r.readU32();
-    terms = r.readU8();
-    // Any non-empty set of the three, but never both kinds of caustics.
-    const bool bothCaustics = (terms & kTermCaustics) && (terms & kTermCausticMap);
-    if (terms == 0 || terms > (kTermDirect | kTermCaustics | kTermCausticMap) || bothCaustics) {
-      throw WireError("invalid light terms " + std::to_string(terms));
-    }
-    return job;
-  });
-}
-
-std::vector<uint8_t> encodeTileResult(const TileResultMessage& message) {
-  return encodeWith(MessageType::TileResult, [&](ByteWriter& w) {
-    const auto& [frame, result, displayExposure] = message;
-    const auto& [tileIndex, rect, pixels, rays, seconds] = result;
-    const auto& [primary, shadow, secondary, nonFinite] = rays;
-    w.writeU32(frame);
-    w.writeU32(tileIndex);
-    writeRect(w, rect);
-    w.writeF32(displayExposure);
-    if (displayExposure > 0.0f) {
-      w.writeU8s(toDisplayBytes(pixels, displayExposure));
-    } else {
-      w.writeVec3s(pixels);
-    }
-    w.writeU64(primary);
-    w.writeU64(shadow);
-    w.writeU64(secondary);
-    w.writeU64(nonFinite);
-    w.writeF64(seconds);
-  });
-}
-
-TileResultMessage decodeTileResult(const Message& message) {
-  return decodePayload(message, MessageType::TileResult, [](ByteReader& r) {
-    TileResultMessage m;
-    auto& [frame, result, displayExposure] = m;
-    auto& [tileIndex, rect, pixels, rays, seconds] = result;
-    auto& [primary, shadow, secondary, nonFinite] = rays;
-    frame = r.readU32();
-    tileIndex = r.readU32();
-    rect = readRect(r);
-    displayExposure = r.readF32();
-    checkDisplayExposure(displayExposure);
-    if (displayExposure != 0.0f) {
-      const std::vector<uint8_t> bytes = r.readU8s();
-      if (bytes.size() % 3 != 0) {
-        throw WireError("display bytes of tile " + std::to_string(tileIndex) + " are " +
-                        std::to_string(bytes.size()) + ", not 3 a pixel");
-      }
-      pixels = fromDisplayBytes(bytes, displayExposure);
-    } else {
-      pixels = r.readVec3s();
-    }
-    if (pixels.size() != static_cast<size_t>(rect.pixelCount())) {
-      throw WireError("tile " + std::to_string(tileIndex) + " is " + std::to_string(rect.width) +
-                      "x" + std::to_string(rect.height) + " but carries " +
-                      std::to_string(pixels.size()) + " pixels");
-    }
-    primary = r.readU64();
-    shadow = r.readU64();
-    secondary = r.readU64();
-    nonFinite = r.readU64();
-    seconds = r.readF64();
-    checkSeconds(seconds, "tile render time");
-    return m;
-  });
-}
-
-std::vector<uint8_t> encodeReady(const ReadyMessage& ready) {
-  return encodeWith(MessageType::Ready, [&](ByteWriter& w) {
-    const auto& [buildSeconds, threads, startSeconds, mpiInitSeconds] = ready;
-    w.writeF64(buildSeconds);
-    w.writeI32(threads);
-    w.writeF64(startSeconds);
-    w.writeF64(mpiInitSeconds);
-  });
-}
-
-ReadyMessage decodeReady(const Message& message) {
-  return decodePayload(message, MessageType::Ready, [](ByteReader& r) {
-    ReadyMessage ready;
-    auto& [buildSeconds, threads, startSeconds, mpiInitSeconds] = ready;
-    buildSeconds = r.readF64();
-    threads = r.readI32();
-    startSeconds = r.readF64();
-    mpiInitSeconds = r.readF64();
-    checkSeconds(buildSeconds, "scene build time");
-    if (startSeconds != -1.0) checkSeconds(startSeconds, "start time");
-    checkSeconds(mpiInitSeconds, "MPI_Init time");
-    if (threads < 0) throw WireError("invalid thread count " + std::to_string(threads));
-    return ready;
-  });
-}
-
-std::vector<uint8_t> encodeError(const ErrorMessage& error) {
-  return encodeWith(MessageType::Error, [&](ByteWriter& w) { w.writeString(error.text); });
-}
-
-ErrorMessage decodeError(const Message& message) {
-  return decodePayload(message, MessageType::Error,
-                       [](ByteReader& r) { return ErrorMessage{r.readString()}; });
-}
-
-std::vector<uint8_t> encodeEcho(const EchoMessage& echo) {
-  return encodeWith(MessageType::Echo, [&](ByteWriter& w) {
-    w.writeU32(echo.sequence);
-    w.writeString(echo.padding);
-  });
-}
-
-EchoMessage decodeEcho(const Message& message) {
-  return decodePayload(message, MessageType::Echo, [](ByteReader& r) {
-    EchoMessage echo;
-    echo.sequence = r.readU32();
-    echo.padding = r.readString();
-    return echo;
-  });
-}
-
-std::vector<uint8_t> encodePhotonMapAgain(const PhotonMapAgainMessage& again) {
-  return encodeWith(MessageType::PhotonMapAgain, [&](ByteWriter& w) {
-    w.writeU32(again.pass);
-    w.writeU32(again.keptPass);
-  });
-}
-
-PhotonMapAgainMessage decodePhotonMapAgain(const Message& message) {
-  return decodePayload(message, MessageType::PhotonMapAgain, [](ByteReader& r) {
-    PhotonMapAgainMessage again;
-    again.pass = r.readU32();
-    again.keptPass = r.readU32();
-    return again;
-  });
-}
-
-std::vector<uint8_t> encodePhotonCancel(const PhotonCancelMessage& cancel) {
-  return encodeWith(MessageType::PhotonCancel, [&](ByteWriter& w) { w.writeU32(cancel.pass); });
-}
-
-PhotonCancelMessage decodePhotonCancel(const Message& message) {
-  return decodePayload(message, MessageType::PhotonCancel,
-                       [](ByteReader& r) { return PhotonCancelMessage{r.readU32()}; });
-}
-
-std::vector<uint8_t> encodeShutdown() {
-  return encodeMessage(MessageType::Shutdown, {});
-}
-
-void decodeShutdown(const Message& message) {
-  decodePayload(message, MessageType::Shutdown, [](ByteReader&) { return 0; });
-}
-
-std::vector<uint8_t> encodeProgress(const ProgressMessage& progress) {
-  return encodeWith(MessageType::Progress, [&](ByteWriter& w) {
-    const auto& [frame, jobsReceived, heldTiles] = progress;
-    w.writeU32(frame);
-    w.writeU64(jobsReceived);
-    w.writeU32s(heldTiles);
-  });
-}
-
-ProgressMessage decodeProgress(const Message& message) {
-  return decodePayload(message, MessageType::Progress, [](ByteReader& r) {
-    ProgressMessage progress;
-    auto& [frame, jobsReceived, heldTiles] = progress;
-    frame = r.readU32();
-    jobsReceived = r.readU64();
-    heldTiles = r.readU32s();
-    return progress;
-  });
-}
-
-std::vector<uint8_t> encodeView(const ViewMessage& message) {
-  return encodeWith(MessageType::View, [&](ByteWriter& w) {
-    const auto& [frame, liveFrom, view] = message;
-    const auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
-                 jitterSingleSample, displayExposure] = view;
-    w.writeU32(frame);
-    w.writeU32(liveFrom);
-    writeCamera(w, camera);
-    w.writeI32(width);
-    w.writeI32(height);
-    w.writeI32(samplesPerPixel);
-    w.writeU64(seed);
-    w.writeU32(static_cast<uint32_t>(debugView));
-    w.writeU8(causticMapBlur ? 1 : 0);
-    w.writeU8(jitterSingleSample ? 1 : 0);
-    w.writeF32(displayExposure);
-  });
-}
-
-ViewMessage decodeView(const Message& message) {
-  return decodePayload(message, MessageType::View, [](ByteReader& r) {
-    ViewMessage m;
-    auto& [frame, liveFrom, view] = m;
-    auto& [camera, width, height, samplesPerPixel, seed, debugView, causticMapBlur,
-           jitterSingleSample, displayExposure] = view;
-    frame = r.readU32();
-    liveFrom = r.readU32();
-    if (liveFrom > frame) {
-      throw WireError("view of frame " + std::to_string(frame) + " keeps a later frame " +
-                      std::to_string(liveFrom) + " running");
-    }
-    camera = readCamera(r);
-    width = r.readI32();
-    height = r.readI32();
-    samplesPerPixel = r.readI32();
-    seed = r.readU64();
-    const uint32_t rawView = r.readU32();
-    const uint8_t blur = r.readU8();
-    if (blur > 1) throw WireError("invalid caustic-map blur flag " + std::to_string(blur));
-    causticMapBlur = blur == 1;
-    const uint8_t jitter = r.readU8();
-    if (jitter > 1) throw WireError("invalid jitter flag " + std::to_string(jitter));
-    jitterSingleSample = jitter == 1;
-    displayExposure = r.readF32();
-    checkDisplayExposure(displayExposure);
-    if (width <= 0 || height <= 0 || int64_t{width} * height > INT_MAX) {
-      throw WireError("invalid view size " + std::to_string(width) + "x" + std::to_string(height));
-    }
-    if (samplesPerPixel <= 0) {
-      throw WireError("invalid samples per pixel " + std::to_string(samplesPerPixel));
-    }
-    // DebugView is a byte: compare before trusting the cast, or 256 would read as Image (found
-    // by the wire fuzzer).
-    const auto known = static_cast<DebugView>(rawView);
-    if (static_cast<uint32_t>(known) == rawView) {
-      switch (known) {
-        case DebugView::Image:
-        case DebugView::Normals:
-          debugView = known;
-          return m;
-      }
-    }
-    throw WireError("invalid debug view " + std::to_string(rawView));
-  });
-}
-
-namespace {
-
-constexpr size_t kPhotonBytes = 28;
-// A photon's wire form is position, power, direction: its memory where the wire order is native
-// (no padding), so a map of millions is copied in one go (11.6 MB: 33-50 ms number by number).
-constexpr bool kPhotonIsItsWireForm = kWireOrderIsNative && sizeof(Photon) == kPhotonBytes &&
-                                      sizeof(Vec3) == 12 && sizeof(Photon::direction) == 4;
-constexpr size_t kPhotonBlock = 1024;  // photons copied in one go (28 KiB)
-
-void writePhotons(ByteWriter& w, const std::vector<Photon>& photons) {
-  w.writeCount(photons.size());
-  if constexpr (kPhotonIsItsWireForm) {
-    w.writeRaw(photons.data(), photons.size() * kPhotonBytes);
-    return;
+// Checks the type, reads the payload, insists it consumed every byte, and puts the message type
+// in front of any error so the log says which message was bad.
+template <WireMessage T>
+T decode(const Message& message) {
+  constexpr MessageType expected = MessageTraits<T>::kType;
+  if (message.type != expected) {
+    throw WireError(std::string("expected a ") + messageTypeName(expected) + " message, got " +
+                    messageTypeName(message.type));
   }
-  for (const Photon& p : photons) {
-    w.writeVec3(p.position);
-    w.writeVec3(p.power);
-    w.writeU16(p.direction[0]);
-    w.writeU16(p.direction[1]);
+  try {
+    ByteReader r(message.payload);
+    T value;
+    readFields(r, value);
+    r.expectEnd();
+    return value;
+  } catch (const WireError& e) {
+    throw WireError(std::string(messageTypeName(expected)) + " message: " + e.what());
   }
 }
 
-std::vector<Photon> readPhotons(ByteReader& r) {
-  const size_t count = r.readCount(kPhotonBytes);
-  std::vector<Photon> photons(count);
-  for (size_t i = 0; i < count; ++i) {
-    Photon& p = photons[i];
-    if constexpr (kPhotonIsItsWireForm) {
-      // A block at a time, checked while it is still in the cache.
-      if (i % kPhotonBlock == 0) {
-        r.readRaw(&p, std::min(kPhotonBlock, count - i) * kPhotonBytes);
-      }
-    } else {
-      p.position = r.readVec3();
-      p.power = r.readVec3();
-      p.direction[0] = r.readU16();
-      p.direction[1] = r.readU16();
-    }
-    if (!isFinite(p.position) || !isFinite(p.power) || p.power.x < 0.0f || p.power.y < 0.0f ||
-        p.power.z < 0.0f) {
-      throw WireError("photon " + std::to_string(i) + " has a non-finite position or a power " +
-                      "that is negative or not finite");
-    }
-  }
-  return photons;
-}
-
-// Gather radii: finite and not negative (a photon without k neighbours has its cap).
-std::vector<float> readRadii(ByteReader& r) {
-  std::vector<float> radii = r.readF32s();
-  for (size_t i = 0; i < radii.size(); ++i) {
-    if (!(radii[i] >= 0.0f) || !std::isfinite(radii[i])) {
-      throw WireError("radius " + std::to_string(i) + " is negative or not finite");
-    }
-  }
-  return radii;
-}
-
-}  // namespace
-
-std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job) {
-  return encodeWith(MessageType::PhotonJob, [&](ByteWriter& w) {
-    const auto& [pass, first, count, photonsPerPass] = job;
-    w.writeU32(pass);
-    w.writeU64(first);
-    w.writeU64(count);
-    w.writeU64(photonsPerPass);
-  });
-}
-
-PhotonJobMessage decodePhotonJob(const Message& message) {
-  return decodePayload(message, MessageType::PhotonJob, [](ByteReader& r) {
-    PhotonJobMessage job;
-    auto& [pass, first, count, photonsPerPass] = job;
-    pass = r.readU32();
-    first = r.readU64();
-    count = r.readU64();
-    photonsPerPass = r.readU64();
-    if (first + count < first) throw WireError("photon range overflows");
-    if (first + count > photonsPerPass) throw WireError("photon range exceeds the budget");
-    return job;
-  });
-}
-
-std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share) {
-  return encodeWith(MessageType::PhotonShare, [&](ByteWriter& w) {
-    const auto& [pass, first, count, stats, seconds, photons] = share;
-    const auto& [emitted, stored, missed, absorbed] = stats;
-    w.writeU32(pass);
-    w.writeU64(first);
-    w.writeU64(count);
-    w.writeU64(emitted);
-    w.writeU64(stored);
-    w.writeU64(missed);
-    w.writeU64(absorbed);
-    w.writeF64(seconds);
-    writePhotons(w, photons);
-  });
-}
-
-PhotonShareMessage decodePhotonShare(const Message& message) {
-  return decodePayload(message, MessageType::PhotonShare, [](ByteReader& r) {
-    PhotonShareMessage share;
-    auto& [pass, first, count, stats, seconds, photons] = share;
-    auto& [emitted, stored, missed, absorbed] = stats;
-    pass = r.readU32();
-    first = r.readU64();
-    count = r.readU64();
-    emitted = r.readU64();
-    stored = r.readU64();
-    missed = r.readU64();
-    absorbed = r.readU64();
-    seconds = r.readF64();
-    photons = readPhotons(r);
-    if (photons.size() != stored) {
-      throw WireError("carries " + std::to_string(photons.size()) + " photons but reports " +
-                      std::to_string(stored) + " stored");
-    }
-    return share;
-  });
-}
-
-std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map) {
-  const auto& [pass, gather, photons, keep] = map;
-  return encodePhotonMap(pass, gather, photons, keep);
-}
+#define PRISM_WIRE_INSTANTIATE(name, number, Type)               \
+  template std::vector<uint8_t> encode<Type>(const Type& value); \
+  template Type decode<Type>(const Message& message);
+PRISM_WIRE_MESSAGES(PRISM_WIRE_INSTANTIATE)
+#undef PRISM_WIRE_INSTANTIATE
 
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons, bool keep) {
+  // PhotonMapMessage's members, in its order, by reference: its field list reads them as it
+  // reads the message's own (Messages_test checks that both give the same bytes).
+  struct PhotonMapView {
+    const uint32_t& pass;
+    const PhotonGatherSettings& gather;
+    const std::vector<Photon>& photons;
+    const bool& keep;
+  };
+  const PhotonMapView view{pass, gather, photons, keep};
   return encodeWith(MessageType::PhotonMap, [&](ByteWriter& w) {
-    const auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
-    w.writeU32(pass);
-    w.writeBool(fixedRadius);
-    w.writeI32(k);
-    w.writeF32(radius);
-    w.writeU32(static_cast<uint32_t>(filter));
-    w.writeF32(radiusScale);
-    w.writeBool(automaticK);
-    w.writeBool(keep);
-    writePhotons(w, photons);
+    PhotonMapMessage::fields(view, [&w](const auto&... field) { (writeField(w, field), ...); });
   });
 }
 
-PhotonMapMessage decodePhotonMap(const Message& message) {
-  return decodePayload(message, MessageType::PhotonMap, [](ByteReader& r) {
-    PhotonMapMessage map;
-    auto& [pass, gather, photons, keep] = map;
-    auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
-    pass = r.readU32();
-    fixedRadius = r.readBool();
-    k = r.readI32();
-    radius = r.readF32();
-    const uint32_t rawFilter = r.readU32();
-    if (rawFilter > static_cast<uint32_t>(PhotonFilter::Epanechnikov)) {
-      throw WireError("invalid photon filter " + std::to_string(rawFilter));
+// ---- the checks of the message structs and their parts ---------------------------------------
+
+void Fields<TileRect>::check(const TileRect& rect) {
+  const auto& [x, y, width, height] = rect;
+  const bool sane = x >= 0 && y >= 0 && width > 0 && height > 0 && int64_t{x} + width <= INT_MAX &&
+                    int64_t{y} + height <= INT_MAX && int64_t{width} * height <= INT_MAX;
+  if (!sane) {
+    throw WireError("invalid tile rectangle at (" + std::to_string(x) + ", " + std::to_string(y) +
+                    ") of size " + std::to_string(width) + "x" + std::to_string(height));
+  }
+}
+
+void Fields<PhotonGatherSettings>::check(const PhotonGatherSettings& gather) {
+  const auto& [fixedRadius, k, radius, filter, radiusScale, automaticK] = gather;
+  if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius) || !(radiusScale > 0.0f) ||
+      !std::isfinite(radiusScale)) {
+    throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +
+                    std::to_string(radius) + ")");
+  }
+}
+
+void Fields<RenderView>::check(const RenderView& view) {
+  checkDisplayExposure(view.displayExposure);
+  if (view.width <= 0 || view.height <= 0 || int64_t{view.width} * view.height > INT_MAX) {
+    throw WireError("invalid view size " + std::to_string(view.width) + "x" +
+                    std::to_string(view.height));
+  }
+  if (view.samplesPerPixel <= 0) {
+    throw WireError("invalid samples per pixel " + std::to_string(view.samplesPerPixel));
+  }
+}
+
+void throwBadPhoton(size_t index) {
+  throw WireError("photon " + std::to_string(index) + " has a non-finite position or a power " +
+                  "that is negative or not finite");
+}
+
+void throwBadRadius(size_t index) {
+  throw WireError("radius " + std::to_string(index) + " is negative or not finite");
+}
+
+void writeTilePixels(ByteWriter& w, const TileResult& result, float exposure) {
+  w.writeF32(exposure);
+  if (exposure > 0.0f) {
+    w.writeU8s(toDisplayBytes(result.pixels, exposure));
+  } else {
+    w.writeVec3s(result.pixels);
+  }
+}
+
+void readTilePixels(ByteReader& r, TileResult& result, float& exposure) {
+  exposure = r.readF32();
+  checkDisplayExposure(exposure);
+  if (exposure != 0.0f) {
+    const std::vector<uint8_t> bytes = r.readU8s();
+    if (bytes.size() % 3 != 0) {
+      throw WireError("display bytes of tile " + std::to_string(result.tileIndex) + " are " +
+                      std::to_string(bytes.size()) + ", not 3 a pixel");
     }
-    filter = static_cast<PhotonFilter>(rawFilter);
-    radiusScale = r.readF32();
-    automaticK = r.readBool();
-    keep = r.readBool();
-    if (k <= 0 || !(radius > 0.0f) || !std::isfinite(radius) || !(radiusScale > 0.0f) ||
-        !std::isfinite(radiusScale)) {
-      throw WireError("invalid gather settings (k " + std::to_string(k) + ", radius " +
-                      std::to_string(radius) + ")");
-    }
-    photons = readPhotons(r);
-    return map;
-  });
+    result.pixels = fromDisplayBytes(bytes, exposure);
+  } else {
+    result.pixels = r.readVec3s();
+  }
+  if (result.pixels.size() != static_cast<size_t>(result.rect.pixelCount())) {
+    throw WireError("tile " + std::to_string(result.tileIndex) + " is " +
+                    std::to_string(result.rect.width) + "x" + std::to_string(result.rect.height) +
+                    " but carries " + std::to_string(result.pixels.size()) + " pixels");
+  }
 }
 
-std::vector<uint8_t> encodePhotonRadiiJob(const PhotonRadiiJobMessage& job) {
-  return encodeWith(MessageType::PhotonRadiiJob, [&](ByteWriter& w) {
-    w.writeU32(job.pass);
-    w.writeU64(job.first);
-    w.writeU64(job.count);
-  });
+void TileJobMessage::check(const TileJobMessage& job) {
+  const uint8_t terms = job.terms;
+  const bool bothCaustics = (terms & kTermCaustics) && (terms & kTermCausticMap);
+  if (terms == 0 || terms > (kTermDirect | kTermCaustics | kTermCausticMap) || bothCaustics) {
+    throw WireError("invalid light terms " + std::to_string(terms));
+  }
 }
 
-PhotonRadiiJobMessage decodePhotonRadiiJob(const Message& message) {
-  return decodePayload(message, MessageType::PhotonRadiiJob, [](ByteReader& r) {
-    PhotonRadiiJobMessage job;
-    job.pass = r.readU32();
-    job.first = r.readU64();
-    job.count = r.readU64();
-    if (job.first + job.count < job.first) throw WireError("radii range overflows");
-    return job;
-  });
+void TileResultMessage::check(const TileResultMessage& message) {
+  checkSeconds(message.result.seconds, "tile render time");
 }
 
-std::vector<uint8_t> encodePhotonRadiiShare(const PhotonRadiiShareMessage& share) {
-  return encodeWith(MessageType::PhotonRadiiShare, [&](ByteWriter& w) {
-    w.writeU32(share.pass);
-    w.writeU64(share.first);
-    w.writeF32s(share.radii);
-  });
+void ReadyMessage::check(const ReadyMessage& ready) {
+  checkSeconds(ready.buildSeconds, "scene build time");
+  if (ready.startSeconds != -1.0) checkSeconds(ready.startSeconds, "start time");
+  checkSeconds(ready.mpiInitSeconds, "MPI_Init time");
+  if (ready.threads < 0) throw WireError("invalid thread count " + std::to_string(ready.threads));
 }
 
-PhotonRadiiShareMessage decodePhotonRadiiShare(const Message& message) {
-  return decodePayload(message, MessageType::PhotonRadiiShare, [](ByteReader& r) {
-    PhotonRadiiShareMessage share;
-    share.pass = r.readU32();
-    share.first = r.readU64();
-    share.radii = readRadii(r);
-    return share;
-  });
+void ViewMessage::check(const ViewMessage& message) {
+  if (message.liveFrom > message.frame) {
+    throw WireError("view of frame " + std::to_string(message.frame) + " keeps a later frame " +
+                    std::to_string(message.liveFrom) + " running");
+  }
 }
 
-std::vector<uint8_t> encodePhotonRadii(const PhotonRadiiMessage& radii) {
-  return encodeWith(MessageType::PhotonRadii, [&](ByteWriter& w) {
-    w.writeU32(radii.pass);
-    w.writeF32s(radii.radii);
-  });
+void PhotonJobMessage::check(const PhotonJobMessage& job) {
+  if (job.first + job.count < job.first) throw WireError("photon range overflows");
+  if (job.first + job.count > job.photonsPerPass) {
+    throw WireError("photon range exceeds the budget");
+  }
 }
 
-PhotonRadiiMessage decodePhotonRadii(const Message& message) {
-  return decodePayload(message, MessageType::PhotonRadii, [](ByteReader& r) {
-    PhotonRadiiMessage radii;
-    radii.pass = r.readU32();
-    radii.radii = readRadii(r);
-    return radii;
-  });
+void PhotonShareMessage::check(const PhotonShareMessage& share) {
+  if (share.photons.size() != share.stats.stored) {
+    throw WireError("carries " + std::to_string(share.photons.size()) + " photons but reports " +
+                    std::to_string(share.stats.stored) + " stored");
+  }
+}
+
+void PhotonRadiiJobMessage::check(const PhotonRadiiJobMessage& job) {
+  if (job.first + job.count < job.first) throw WireError("radii range overflows");
 }
 
 }  // namespace prism::wire

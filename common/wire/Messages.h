@@ -2,11 +2,17 @@
 // (magic, version, type, payload size, payload checksum) around a payload; decoding checks the
 // envelope and then the payload strictly, and throws WireError naming what is wrong. No MPI
 // here: the transport moves the bytes, this file gives them meaning.
+//
+// Each message is a struct that lists its fields once (wire/Fields.h); encode, decode and
+// sameFields follow from the list. PRISM_WIRE_MESSAGES below is the one list of message types:
+// the MessageType enumeration, its names, isKnownType and the per-type dispatch come from it.
+// Adding a message takes its struct (fields, list, any check) here and a line in that list.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "caustics/Photon.h"
@@ -16,6 +22,9 @@
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"
 #include "wire/ByteBuffer.h"
+#include "wire/Fields.h"
+#include "wire/MessageParts.h"
+#include "wire/SceneCodec.h"
 
 namespace prism::wire {
 
@@ -33,28 +42,53 @@ inline constexpr uint16_t kVersion = 11;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
+// Every message type: its name, its number on the wire (never reused) and the struct it carries.
+#define PRISM_WIRE_MESSAGES(X)                     \
+  X(Scene, 1, SceneDescription)                    \
+  X(Ready, 2, ReadyMessage)                        \
+  X(TileJob, 3, TileJobMessage)                    \
+  X(TileResult, 4, TileResultMessage)              \
+  X(Shutdown, 5, ShutdownMessage)                  \
+  X(Error, 6, ErrorMessage)                        \
+  X(Progress, 7, ProgressMessage)                  \
+  X(PhotonJob, 8, PhotonJobMessage)                \
+  X(PhotonShare, 9, PhotonShareMessage)            \
+  X(PhotonMap, 10, PhotonMapMessage)               \
+  X(View, 11, ViewMessage)                         \
+  X(Echo, 12, EchoMessage)                         \
+  X(PhotonCancel, 13, PhotonCancelMessage)         \
+  X(PhotonMapAgain, 14, PhotonMapAgainMessage)     \
+  X(PhotonRadiiJob, 15, PhotonRadiiJobMessage)     \
+  X(PhotonRadiiShare, 16, PhotonRadiiShareMessage) \
+  X(PhotonRadii, 17, PhotonRadiiMessage)
+
 enum class MessageType : uint16_t {
-  Scene = 1,
-  Ready = 2,
-  TileJob = 3,
-  TileResult = 4,
-  Shutdown = 5,
-  Error = 6,
-  Progress = 7,
-  PhotonJob = 8,
-  PhotonShare = 9,
-  PhotonMap = 10,
-  View = 11,
-  Echo = 12,
-  PhotonCancel = 13,
-  PhotonMapAgain = 14,
-  PhotonRadiiJob = 15,
-  PhotonRadiiShare = 16,
-  PhotonRadii = 17
+#define PRISM_WIRE_ENUMERATOR(name, number, Type) name = number,
+  PRISM_WIRE_MESSAGES(PRISM_WIRE_ENUMERATOR)
+#undef PRISM_WIRE_ENUMERATOR
 };
 
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
-const char* messageTypeName(MessageType type);
+constexpr const char* messageTypeName(MessageType type) {
+  switch (type) {
+#define PRISM_WIRE_NAME(name, number, Type) \
+  case MessageType::name:                   \
+    return #name;
+    PRISM_WIRE_MESSAGES(PRISM_WIRE_NAME)
+#undef PRISM_WIRE_NAME
+  }
+  return "unknown";
+}
+
+constexpr bool isKnownType(uint16_t raw) {
+  switch (raw) {
+#define PRISM_WIRE_NUMBER(name, number, Type) case number:
+    PRISM_WIRE_MESSAGES(PRISM_WIRE_NUMBER)
+#undef PRISM_WIRE_NUMBER
+    return true;
+  }
+  return false;
+}
 
 // FNV-1a, 64 bit: detects every single-byte change, which is what a checksum here is for.
 uint64_t fnv1a64(const uint8_t* data, size_t size);
@@ -85,6 +119,9 @@ struct TileJobMessage {
   TileRect rect;
   uint32_t pass = 0;
   uint8_t terms = kTermDirect;
+  PRISM_WIRE_FIELDS(frame, tileIndex, rect, pass, terms)
+  // Any non-empty set of the three terms, but never both kinds of caustics.
+  static void check(const TileJobMessage& job);
 };
 
 // Master to slave: trace photons [first, first + count) of a pass and send them back.
@@ -95,12 +132,15 @@ struct PhotonJobMessage {
   uint64_t first = 0;
   uint64_t count = 0;
   uint64_t photonsPerPass = 0;
+  PRISM_WIRE_FIELDS(pass, first, count, photonsPerPass)
+  static void check(const PhotonJobMessage& job);  // the range fits in the budget
 };
 
 // Master to slave: stop the PhotonJob or PhotonRadiiJob of this pass and send nothing for it
 // (the camera moved or the viewer stopped: rank 0 dropped the pass).
 struct PhotonCancelMessage {
   uint32_t pass = 0;
+  PRISM_WIRE_FIELDS(pass)
 };
 
 // Slave to master: the photons it stored for a PhotonJob, in photon-index order.
@@ -111,6 +151,11 @@ struct PhotonShareMessage {
   PhotonTraceStats stats;
   double seconds = 0;
   std::vector<Photon> photons;
+  static void fields(auto& self, auto&& visit) {
+    auto& [pass, first, count, stats, seconds, photons] = self;
+    visit(pass, first, count, stats, seconds, each(photons, CheckPhoton{}));
+  }
+  static void check(const PhotonShareMessage& share);  // as many photons as stats.stored
 };
 
 // Master to slave: every photon of a pass, and how to gather from them; tiles of that pass
@@ -123,6 +168,10 @@ struct PhotonMapMessage {
   PhotonGatherSettings gather;
   std::vector<Photon> photons;
   bool keep = false;
+  static void fields(auto& self, auto&& visit) {  // the keep flag before the photons
+    auto& [pass, gather, photons, keep] = self;
+    visit(pass, gather, keep, each(photons, CheckPhoton{}));
+  }
 };
 
 // Master to slave: find the radii of positions [first, first + count) of the spatial order of
@@ -131,6 +180,8 @@ struct PhotonRadiiJobMessage {
   uint32_t pass = 0;
   uint64_t first = 0;
   uint64_t count = 0;
+  PRISM_WIRE_FIELDS(pass, first, count)
+  static void check(const PhotonRadiiJobMessage& job);  // the range does not overflow
 };
 
 // Slave to master: the radii of a PhotonRadiiJob, in spatial order from `first`.
@@ -138,12 +189,20 @@ struct PhotonRadiiShareMessage {
   uint32_t pass = 0;
   uint64_t first = 0;
   std::vector<float> radii;
+  static void fields(auto& self, auto&& visit) {
+    auto& [pass, first, radii] = self;
+    visit(pass, first, each(radii, CheckRadius{}));
+  }
 };
 
 // Master to slave: every photon's radius of the map of `pass`, by photon index.
 struct PhotonRadiiMessage {
   uint32_t pass = 0;
   std::vector<float> radii;
+  static void fields(auto& self, auto&& visit) {
+    auto& [pass, radii] = self;
+    visit(pass, each(radii, CheckRadius{}));
+  }
 };
 
 // Master to slave: the tiles of pass `pass` gather from the map this rank was sent as pass
@@ -151,6 +210,7 @@ struct PhotonRadiiMessage {
 struct PhotonMapAgainMessage {
   uint32_t pass = 0;
   uint32_t keptPass = 0;
+  PRISM_WIRE_FIELDS(pass, keptPass)
 };
 
 struct TileResultMessage {
@@ -160,6 +220,12 @@ struct TileResultMessage {
   // displayExposure), 3 bytes a pixel, and arrive as the smallest radiance that gives each byte
   // (DisplayEncoder::lowestRadianceOf): shown with the same exposure, they show the same.
   float displayExposure = 0.0f;
+  static void fields(auto& self, auto&& visit) {
+    auto& [frame, result, displayExposure] = self;
+    auto& [tileIndex, rect, pixels, rays, seconds] = result;
+    visit(frame, tileIndex, rect, tilePixels(result, displayExposure), rays, seconds);
+  }
+  static void check(const TileResultMessage& message);  // render time finite, not negative
 };
 
 struct ReadyMessage {
@@ -169,10 +235,13 @@ struct ReadyMessage {
   // MPI_Init within that.
   double startSeconds = -1;
   double mpiInitSeconds = 0;
+  PRISM_WIRE_FIELDS(buildSeconds, threads, startSeconds, mpiInitSeconds)
+  static void check(const ReadyMessage& ready);  // times finite, not negative; threads ≥ 0
 };
 
 struct ErrorMessage {
   std::string text;
+  PRISM_WIRE_FIELDS(text)
 };
 
 // A slave's heartbeat while it has work: how many jobs it has received so far and which tiles
@@ -182,6 +251,7 @@ struct ProgressMessage {
   uint32_t frame = 0;  // the frame the counts belong to; they restart with each frame
   uint64_t jobsReceived = 0;
   std::vector<uint32_t> heldTiles;
+  PRISM_WIRE_FIELDS(frame, jobsReceived, heldTiles)
 };
 
 // The viewer's render request: the TileJobs that follow with the same frame are tiles of this
@@ -191,6 +261,8 @@ struct ViewMessage {
   uint32_t frame = 0;
   uint32_t liveFrom = 0;  // ≤ frame; equal: this view ends every earlier frame
   RenderView view;
+  PRISM_WIRE_FIELDS(frame, liveFrom, view)
+  static void check(const ViewMessage& message);  // liveFrom ≤ frame
 };
 
 // Master to slave and back unchanged: a ping-pong that times the link (latency from small
@@ -198,62 +270,70 @@ struct ViewMessage {
 struct EchoMessage {
   uint32_t sequence = 0;
   std::string padding;
+  PRISM_WIRE_FIELDS(sequence, padding)
 };
 
-// Each encodeX returns a full message (envelope included); each decodeX checks the message type
-// and the payload (sizes, ranges, nothing left over) and throws WireError.
-std::vector<uint8_t> encodeScene(const SceneDescription& scene);
-SceneDescription decodeScene(const Message& message);
+// Master to slave: stop and answer with a Shutdown; slave to master: the answer. No payload.
+struct ShutdownMessage {
+  static void fields(auto&, auto&& visit) { visit(); }
+};
 
-std::vector<uint8_t> encodeTileJob(const TileJobMessage& job);
-TileJobMessage decodeTileJob(const Message& message);
+// The message type of each struct in the list.
+template <class T>
+struct MessageTraits {};
+#define PRISM_WIRE_TRAITS(name, number, Type)               \
+  template <>                                               \
+  struct MessageTraits<Type> {                              \
+    static constexpr MessageType kType = MessageType::name; \
+  };
+PRISM_WIRE_MESSAGES(PRISM_WIRE_TRAITS)
+#undef PRISM_WIRE_TRAITS
 
-std::vector<uint8_t> encodeTileResult(const TileResultMessage& result);
-TileResultMessage decodeTileResult(const Message& message);
+template <class T>
+concept WireMessage = requires {
+  MessageTraits<T>::kType;
+};
 
-std::vector<uint8_t> encodeReady(const ReadyMessage& ready);
-ReadyMessage decodeReady(const Message& message);
+// The full message (envelope included) that carries value.
+template <WireMessage T>
+std::vector<uint8_t> encode(const T& value);
 
-std::vector<uint8_t> encodeError(const ErrorMessage& error);
-ErrorMessage decodeError(const Message& message);
+// The struct a message of T's type carries. Checks the type, every field and the struct, and
+// that nothing is left over; throws WireError naming the message type.
+template <WireMessage T>
+T decode(const Message& message);
 
-std::vector<uint8_t> encodeProgress(const ProgressMessage& progress);
-ProgressMessage decodeProgress(const Message& message);
+// A Scene message carries the scene description itself.
+inline std::vector<uint8_t> encodeScene(const SceneDescription& scene) {
+  return encode(scene);
+}
+inline SceneDescription decodeScene(const Message& message) {
+  return decode<SceneDescription>(message);
+}
 
-std::vector<uint8_t> encodeView(const ViewMessage& view);
-ViewMessage decodeView(const Message& message);
-std::vector<uint8_t> encodePhotonJob(const PhotonJobMessage& job);
-PhotonJobMessage decodePhotonJob(const Message& message);
-
-std::vector<uint8_t> encodePhotonCancel(const PhotonCancelMessage& cancel);
-PhotonCancelMessage decodePhotonCancel(const Message& message);
-
-std::vector<uint8_t> encodePhotonShare(const PhotonShareMessage& share);
-PhotonShareMessage decodePhotonShare(const Message& message);
-
-std::vector<uint8_t> encodePhotonMap(const PhotonMapMessage& map);
-// The same bytes without first copying the photons into a message struct.
+// The same bytes as encode(PhotonMapMessage{...}) without first copying the photons into one.
 std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& gather,
                                      const std::vector<Photon>& photons, bool keep = false);
-PhotonMapMessage decodePhotonMap(const Message& message);
 
-std::vector<uint8_t> encodePhotonRadiiJob(const PhotonRadiiJobMessage& job);
-PhotonRadiiJobMessage decodePhotonRadiiJob(const Message& message);
+// Calls f(std::type_identity<T>{}) for the struct T of every message type, in the list's order.
+template <class F>
+void forEachMessageType(F&& f) {
+#define PRISM_WIRE_EACH(name, number, Type) f(std::type_identity<Type>{});
+  PRISM_WIRE_MESSAGES(PRISM_WIRE_EACH)
+#undef PRISM_WIRE_EACH
+}
 
-std::vector<uint8_t> encodePhotonRadiiShare(const PhotonRadiiShareMessage& share);
-PhotonRadiiShareMessage decodePhotonRadiiShare(const Message& message);
-
-std::vector<uint8_t> encodePhotonRadii(const PhotonRadiiMessage& radii);
-PhotonRadiiMessage decodePhotonRadii(const Message& message);
-
-std::vector<uint8_t> encodePhotonMapAgain(const PhotonMapAgainMessage& again);
-PhotonMapAgainMessage decodePhotonMapAgain(const Message& message);
-
-std::vector<uint8_t> encodeEcho(const EchoMessage& echo);
-EchoMessage decodeEcho(const Message& message);
-
-std::vector<uint8_t> encodeShutdown();
-// Checks that message is a Shutdown with an empty payload.
-void decodeShutdown(const Message& message);
+// Decodes message as the struct its type carries and returns f(that struct).
+template <class F>
+decltype(auto) visitMessage(const Message& message, F&& f) {
+  switch (message.type) {
+#define PRISM_WIRE_VISIT(name, number, Type) \
+  case MessageType::name:                    \
+    return f(decode<Type>(message));
+    PRISM_WIRE_MESSAGES(PRISM_WIRE_VISIT)
+#undef PRISM_WIRE_VISIT
+  }
+  throw WireError("unknown message type " + std::to_string(static_cast<int>(message.type)));
+}
 
 }  // namespace prism::wire

@@ -1,23 +1,118 @@
-// Encodes a SceneDescription, every field of it, so the master can broadcast the parsed scene
-// and each slave builds the same Scene without reading a file.
+// The field lists of the SceneDescription structs (wire/Fields.h says how a list reads): every
+// field of the description travels, meshes and cube-map images included, so the master can
+// broadcast the parsed scene and each slave builds the same Scene without reading a file.
 #pragma once
 
 #include "scene/SceneDescription.h"
 #include "wire/ByteBuffer.h"
+#include "wire/Fields.h"
 
 namespace prism::wire {
 
+template <>
+struct Fields<FileLoc> {
+  PRISM_WIRE_FIELDS(file, line, column)
+};
+
+template <>
+struct Fields<CameraDesc> {
+  PRISM_WIRE_FIELDS(projection, position, lookAt, up, fovDegrees, width, nearClip, loc)
+};
+
+template <>
+struct Fields<RenderSettings> {
+  PRISM_WIRE_FIELDS(width, height, samplesPerPixel, maxDepth, minContribution, seed, exposure,
+                    triangleTest)
+  static void check(const RenderSettings& render);  // validate(): what the parser refuses
+};
+
+template <>
+struct Fields<CausticSettings> {
+  PRISM_WIRE_FIELDS(method, photons, gather, automaticGather, gatherNoise, maxRadius, filter,
+                    maxBounces, progressive, passes, alpha, radius, timeBudgetSeconds,
+                    mapResolution, mapSteps, mapBlurSigma, mapBlurRadius, mapPaths)
+  static void check(const CausticSettings& caustics);  // validate()
+};
+
+template <>
+struct Fields<ImageRgb> {
+  PRISM_WIRE_FIELDS(width, height, pixels)
+};
+
+template <>
+struct Fields<CubeMapDesc> {
+  PRISM_WIRE_FIELDS(faces, paths, scale)
+  // Each face non-empty (CubeMap::texel would index -1) with width × height pixels.
+  static void check(const CubeMapDesc& cube);
+};
+
+template <>
+struct Fields<CheckerDesc> {
+  PRISM_WIRE_FIELDS(colorA, colorB, scale)
+};
+
+template <>
+struct Fields<MaterialDesc> {
+  PRISM_WIRE_FIELDS(name, ambient, diffuse, specular, shininess, reflectance, transmittance, ior,
+                    fresnel, checker, loc)
+};
+
+template <>
+struct Fields<Attenuation> {
+  PRISM_WIRE_FIELDS(constant, linear, quadratic)
+};
+
+template <>
+struct Fields<PointLightDesc> {
+  PRISM_WIRE_FIELDS(position, intensity, attenuation, loc)
+};
+
+// The shapes send their caustic role before their location.
+template <>
+struct Fields<SphereDesc> {
+  static void fields(auto& self, auto&& visit) {
+    auto& [center, radius, material, loc, caustic] = self;
+    visit(center, radius, material, caustic, loc);
+  }
+};
+
+template <>
+struct Fields<PlaneDesc> {
+  static void fields(auto& self, auto&& visit) {
+    auto& [point, normal, material, loc, caustic] = self;
+    visit(point, normal, material, caustic, loc);
+  }
+};
+
+template <>
+struct Fields<ConeDesc> {
+  static void fields(auto& self, auto&& visit) {
+    auto& [base, baseRadius, apex, apexRadius, material, loc, caustic] = self;
+    visit(base, baseRadius, apex, apexRadius, material, caustic, loc);
+  }
+};
+
+template <>
+struct Fields<MeshDesc> {
+  static void fields(auto& self, auto&& visit) {
+    auto& [source, positions, normals, indices, material, loc, caustic] = self;
+    visit(source, positions, normals, indices, material, caustic, loc);
+  }
+};
+
+template <>
+struct Fields<SceneDescription> {
+  PRISM_WIRE_FIELDS(sourcePath, camera, render, caustics, background, ambientLight, environment,
+                    materials, lights, spheres, planes, cones, meshes)
+  // What would crash the renderer later: mesh indices past the positions, normals not parallel
+  // to positions, index counts not a multiple of three, material ids past the material list.
+  static void check(const SceneDescription& scene);
+};
+
+// The payload of a Scene message (Messages.h: encodeScene, decodeScene). readScene checks every
+// field (enumerators, sizes, the settings' validate(), the checks above) but not that nothing is
+// left over; both throw WireError.
 void writeScene(ByteWriter& w, const SceneDescription& scene);
-
-// Reads what writeScene wrote. Besides the byte-level checks it rejects what would crash the
-// renderer later: unknown enum values, non-positive image or render sizes, image pixel counts
-// that disagree with width × height, mesh indices past the positions, normals not parallel to
-// positions, index counts not a multiple of three, and material ids past the material list.
-// Throws WireError.
 SceneDescription readScene(ByteReader& r);
-
-// The camera alone, for the viewer's View message. readCamera rejects unknown projections.
-void writeCamera(ByteWriter& w, const CameraDesc& camera);
-CameraDesc readCamera(ByteReader& r);
 
 }  // namespace prism::wire

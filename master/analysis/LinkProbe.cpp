@@ -20,7 +20,7 @@ void awaitEcho(SlaveLink& link, int rank, uint32_t sequence) {
     const wire::Message& message = incoming->message;
     // Other than our echo: a late echo of an earlier probe, or a heartbeat.
     if (message.type == wire::MessageType::Echo && incoming->source == rank &&
-        wire::decodeEcho(message).sequence == sequence) {
+        wire::decode<wire::EchoMessage>(message).sequence == sequence) {
       return;
     }
   }
@@ -31,7 +31,7 @@ void awaitEcho(SlaveLink& link, int rank, uint32_t sequence) {
 }  // namespace
 
 LinkMeasurement measureLink(SlaveLink& link, size_t largePayloadBytes, int roundTrips) {
-  const std::vector<uint8_t> small = wire::encodeEcho({0, {}});
+  const std::vector<uint8_t> small = wire::encode(wire::EchoMessage{0, {}});
   const std::string padding(largePayloadBytes, '\0');
   std::vector<double> smallTrips, largeTrips;
   uint32_t sequence = 0;
@@ -40,7 +40,8 @@ LinkMeasurement measureLink(SlaveLink& link, size_t largePayloadBytes, int round
     for (int trip = 0; trip < roundTrips; ++trip) {
       for (bool large : {false, true}) {
         const auto start = SteadyClock::now();
-        if (!link.send(rank, wire::encodeEcho({++sequence, large ? padding : std::string()}))) {
+        if (!link.send(rank, wire::encode(
+                                 wire::EchoMessage{++sequence, large ? padding : std::string()}))) {
           throw std::runtime_error("rank " + std::to_string(rank) + " is gone");
         }
         awaitEcho(link, rank, sequence);
@@ -51,7 +52,7 @@ LinkMeasurement measureLink(SlaveLink& link, size_t largePayloadBytes, int round
   if (smallTrips.empty()) throw std::runtime_error("no slave to measure the link with");
   LinkMeasurement measured;
   measured.smallBytes = small.size();
-  measured.largeBytes = wire::encodeEcho({0, padding}).size();
+  measured.largeBytes = wire::encode(wire::EchoMessage{0, padding}).size();
   measured.roundTrips = roundTrips;
   measured.wakesOnMessage = link.transport()->wakesOnMessage();
   measured.smallRoundTrip = spreadOf(smallTrips);

@@ -32,13 +32,13 @@ ScheduleSimulation simulationOf(std::vector<double> tileSeconds, const std::vect
 }  // namespace
 
 double tileJobBytes() {
-  return static_cast<double>(wire::encodeTileJob({}).size());
+  return static_cast<double>(wire::encode(wire::TileJobMessage{}).size());
 }
 
 double tileResultBytes(int pixels, bool displayBytes) {
   // The envelope and fixed fields, measured on an empty tile (the same either way), then 3
   // floats or 3 bytes a pixel.
-  static const double fixed = static_cast<double>(wire::encodeTileResult({}).size());
+  static const double fixed = static_cast<double>(wire::encode(wire::TileResultMessage{}).size());
   return fixed + (displayBytes ? 3.0 : 3.0 * sizeof(float)) * pixels;
 }
 

@@ -54,7 +54,7 @@ bool MasterSession::load(const std::function<void()>& check) {
 
 int MasterSession::refuse(const std::string& why) {
   if (transport_) {
-    std::vector<uint8_t> bytes = wire::encodeError({why});
+    std::vector<uint8_t> bytes = wire::encode(wire::ErrorMessage{why});
     transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
   }
   err_ << "prism: error: " << why << "\n";

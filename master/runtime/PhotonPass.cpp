@@ -54,10 +54,11 @@ class TraceWork final : public ShareWork {
 
   wire::MessageType answerType() const override { return wire::MessageType::PhotonShare; }
   std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
-    return wire::encodePhotonJob({pass, share.first, share.count, tracer_.photonsPerPass()});
+    return wire::encode(
+        wire::PhotonJobMessage{pass, share.first, share.count, tracer_.photonsPerPass()});
   }
   bool readAnswer(uint32_t pass, const ShareRange& share, const wire::Message& answer) override {
-    answer_ = wire::decodePhotonShare(answer);
+    answer_ = wire::decode<wire::PhotonShareMessage>(answer);
     return answer_.pass == pass && answer_.first == share.first && answer_.count == share.count;
   }
   void acceptAnswer(size_t s, int rank) override {
@@ -101,10 +102,10 @@ class RadiiWork final : public ShareWork {
 
   wire::MessageType answerType() const override { return wire::MessageType::PhotonRadiiShare; }
   std::vector<uint8_t> request(uint32_t pass, const ShareRange& share) const override {
-    return wire::encodePhotonRadiiJob({pass, share.first, share.count});
+    return wire::encode(wire::PhotonRadiiJobMessage{pass, share.first, share.count});
   }
   bool readAnswer(uint32_t pass, const ShareRange& share, const wire::Message& answer) override {
-    answer_ = wire::decodePhotonRadiiShare(answer);
+    answer_ = wire::decode<wire::PhotonRadiiShareMessage>(answer);
     return answer_.pass == pass && answer_.first == share.first &&
            answer_.radii.size() == share.count;
   }
@@ -203,7 +204,8 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   if (!dispatcher.runShares(pass, shares, work, cancel)) return nullptr;
   if (cancelled()) return nullptr;  // moved while the last share came: no disc tree to build
   stats.radiiByRank = countByRank(shares, work.doneBy, link.ranks());
-  if (link.hasSlaves()) sendToEverySlave(link, wire::encodePhotonRadii({pass, work.radii}));
+  if (link.hasSlaves())
+    sendToEverySlave(link, wire::encode(wire::PhotonRadiiMessage{pass, work.radii}));
   auto made =
       std::make_shared<const PhotonGather>(std::move(map), gather, std::move(work.radii), threads);
   stats.radiiSeconds = secondsSince(start);
@@ -211,7 +213,7 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
 }
 
 void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link) {
-  sendToEverySlave(link, wire::encodePhotonMapAgain({pass, keptPass}));
+  sendToEverySlave(link, wire::encode(wire::PhotonMapAgainMessage{pass, keptPass}));
 }
 
 }  // namespace prism

@@ -103,7 +103,7 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
   wire::Message message = wire::decodeMessage(incoming->bytes);
   switch (message.type) {
     case wire::MessageType::Ready: {
-      const wire::ReadyMessage ready = wire::decodeReady(message);
+      const wire::ReadyMessage ready = wire::decode<wire::ReadyMessage>(message);
       const std::lock_guard<std::mutex> lock(rosterMutex_);
       RankStats& r = recordLocked(source);
       r.threads = ready.threads;
@@ -115,7 +115,7 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
     }
     case wire::MessageType::Error:
       throw std::runtime_error("rank " + std::to_string(source) + ": " +
-                               wire::decodeError(message).text);
+                               wire::decode<wire::ErrorMessage>(message).text);
     default:
       return SlaveMessage{source, std::move(message)};
   }

@@ -21,7 +21,7 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
   std::vector<bool> lost(static_cast<size_t>(session->size()), false);
   int waiting = session->size() - 1;
   for (int rank = 1; rank < session->size(); ++rank) {
-    if (!session->send(rank, wire::encodeShutdown())) {
+    if (!session->send(rank, wire::encode(wire::ShutdownMessage{}))) {
       gone[rank] = lost[rank] = true;  // the transport knows its process has ended
       --waiting;
     }
@@ -65,7 +65,8 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
 }
 
 void leaveEndingJob(Transport& session, int exitCode) {
-  for (int rank = 1; rank < session.size(); ++rank) session.send(rank, wire::encodeShutdown());
+  for (int rank = 1; rank < session.size(); ++rank)
+    session.send(rank, wire::encode(wire::ShutdownMessage{}));
   const auto start = std::chrono::steady_clock::now();
   while (session.progressSends() > 0 && secondsSince(start) < 0.1) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));

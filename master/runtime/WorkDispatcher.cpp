@@ -221,10 +221,10 @@ std::vector<std::vector<uint8_t>> WorkDispatcher::jobsForLocked(int rank) {
       if (!tile) break;
       ++outstanding;
       if (plan.view && !frame->viewSent[rank]) {
-        outgoing.push_back(wire::encodeView({plan.frame, liveFrom, *plan.view}));
+        outgoing.push_back(wire::encode(wire::ViewMessage{plan.frame, liveFrom, *plan.view}));
         frame->viewSent[rank] = true;
       }
-      outgoing.push_back(wire::encodeTileJob(
+      outgoing.push_back(wire::encode(
           tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
       if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
     }
@@ -267,12 +267,12 @@ void WorkDispatcher::route(const SlaveMessage& incoming) {
   const wire::Message& message = incoming.message;
   switch (message.type) {
     case wire::MessageType::TileResult: {
-      wire::TileResultMessage result = wire::decodeTileResult(message);
+      wire::TileResultMessage result = wire::decode<wire::TileResultMessage>(message);
       accept(result.frame, std::move(result.result), rank);
       return;
     }
     case wire::MessageType::Progress: {
-      const wire::ProgressMessage progress = wire::decodeProgress(message);
+      const wire::ProgressMessage progress = wire::decode<wire::ProgressMessage>(message);
       {
         const std::lock_guard<std::mutex> lock(mutex_);
         Frame* frame = findLocked(progress.frame);

@@ -30,7 +30,7 @@ void WorkDispatcher::cancelShares(ShareBatch& batch) {
       const std::lock_guard<std::mutex> lock(mutex_);
       holds = batch.scheduler.outstanding(r) > 0;
     }
-    if (holds) link_.send(r, wire::encodePhotonCancel({batch.pass}));
+    if (holds) link_.send(r, wire::encode(wire::PhotonCancelMessage{batch.pass}));
   }
   if (batch.local.valid()) batch.local.wait();  // rank 0's work watches the cancel too
 }

@@ -1,7 +1,10 @@
-// Writes the wire fuzzer's seeds into tests/fuzz/corpus/wire: one full message of each type (for
-// the envelope checks) and the same payload behind a type byte (the harness's second form), so
-// the fuzzer starts inside every payload decoder. Scenes come from the example scene files.
-// (the long runs then merged more inputs into that folder):
+// Writes the wire fuzzer's seeds into tests/fuzz/corpus/wire: for every message type, the
+// examples that WireExamples.h makes from its field list (its default value, and one with every
+// field set) as full messages (for the envelope checks) and as the same payload behind a type
+// byte (the harness's second form), so the fuzzer starts inside every payload decoder; scenes
+// from the example scene files; and two refused messages.
+// (the long runs then merged more inputs into that folder, and the seeds of earlier versions,
+// written by hand, stay there):
 //   build/tests/fuzz/prism_fuzz_wire_seeds tests/fuzz/corpus/wire
 //       scenes/caustic-{glass-sphere,ring}.yaml scenes/caustic-map-*.yaml scenes/lambert-plane.yaml
 #include <cstdio>
@@ -9,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz/WireExamples.h"
 #include "parse/SceneLoader.h"
 #include "wire/Messages.h"
 
@@ -32,16 +36,6 @@ void writeSeed(const std::string& dir, const std::string& name, const std::vecto
   writeFile(dir + "/" + name + ".typed", typed);
 }
 
-std::vector<Photon> somePhotons() {
-  std::vector<Photon> photons(3);
-  for (int i = 0; i < 3; ++i) {
-    photons[i].position = Vec3(float(i), 1.0f, -2.0f);
-    photons[i].power = Color(0.5f, 0.25f, 0.125f);
-    photons[i].setDirection(glm::normalize(Vec3(0.0f, -1.0f, 0.1f * float(i))));
-  }
-  return photons;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,53 +49,18 @@ int main(int argc, char** argv) {
     const std::string stem = path.substr(path.find_last_of('/') + 1);
     writeSeed(dir, "scene-" + stem.substr(0, stem.find('.')), encodeScene(loadScene(path)));
   }
-  writeSeed(dir, "ready", encodeReady({0.25, 8}));
-  writeSeed(dir, "tile-job",
-            encodeTileJob({3, 7, {16, 32, 16, 16}, 1, kTermDirect | kTermCaustics}));
-  TileResultMessage result;
-  result.frame = 3;
-  result.result.tileIndex = 7;
-  result.result.rect = {16, 32, 2, 2};
-  result.result.pixels.assign(4, Color(0.5f, 1.0f, 2.0f));
-  result.result.rays = {4, 8, 16};
-  result.result.seconds = 0.01;
-  writeSeed(dir, "tile-result", encodeTileResult(result));
-  result.displayExposure = 1.5f;  // a frame only shown: display bytes
-  writeSeed(dir, "tile-result-display", encodeTileResult(result));
-  writeSeed(dir, "shutdown", encodeShutdown());
-  writeSeed(dir, "error", encodeError({"slave 2: out of memory"}));
-  writeSeed(dir, "progress", encodeProgress({3, 12, {4, 5, 9}}));
-  writeSeed(dir, "photon-job", encodePhotonJob({1, 1000, 500, 4000}));
-  PhotonShareMessage share;
-  share.pass = 1;
-  share.first = 1000;
-  share.count = 500;
-  share.stats = {500, 3, 400, 100};
-  share.seconds = 0.5;
-  share.photons = somePhotons();
-  writeSeed(dir, "photon-share", encodePhotonShare(share));
-  writeSeed(dir, "photon-map", encodePhotonMap(1, PhotonGatherSettings{}, somePhotons()));
-  ViewMessage view;
-  view.frame = 4;
-  view.liveFrom = 3;
-  view.view.camera = loadScene(PRISM_SOURCE_DIR "/scenes/default.yaml").camera;
-  view.view.width = 320;
-  view.view.height = 240;
-  view.view.samplesPerPixel = 2;
-  view.view.seed = 99;
-  view.view.displayExposure = 1.5f;
-  writeSeed(dir, "view", encodeView(view));
-  writeSeed(dir, "echo", encodeEcho({5, std::string(64, 'x')}));
-  writeSeed(dir, "photon-cancel", encodePhotonCancel({3}));
-  writeSeed(dir, "photon-map-again", encodePhotonMapAgain({9, 4}));
-  writeSeed(dir, "photon-radii-job", encodePhotonRadiiJob({9, 64, 200}));
-  writeSeed(dir, "photon-radii-share", encodePhotonRadiiShare({9, 64, {0.5f, 0.25f, 0.125f}}));
-  writeSeed(dir, "photon-radii", encodePhotonRadii({9, {0.5f, 0.25f, 0.125f}}));
+  forEachMessageType([&](auto type) {
+    using T = typename decltype(type)::type;
+    const std::string name = messageTypeName(MessageTraits<T>::kType);
+    for (const fuzz::Example& example : fuzz::acceptedExamples<T>()) {
+      writeSeed(dir, name + "-" + example.kind, example.bytes);
+    }
+  });
   // Refused ones: a truncated message and a flipped payload byte.
-  std::vector<uint8_t> bytes = encodeReady({0.25, 8});
+  std::vector<uint8_t> bytes = encode(ReadyMessage{0.25, 8});
   bytes.pop_back();
   writeFile(dir + "/bad-truncated.msg", bytes);
-  bytes = encodeError({"flipped"});
+  bytes = encode(ErrorMessage{"flipped"});
   bytes.back() ^= 1;
   writeFile(dir + "/bad-checksum.msg", bytes);
   return 0;

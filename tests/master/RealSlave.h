@@ -83,8 +83,8 @@ struct CancelledPass {
   double seconds = 0.0;
 };
 inline CancelledPass cancelPassAndShutDown(Transport& master, uint32_t pass, double seconds) {
-  master.send(1, wire::encodePhotonCancel({pass}));
-  master.send(1, wire::encodeShutdown());
+  master.send(1, wire::encode(wire::PhotonCancelMessage{pass}));
+  master.send(1, wire::encode(wire::ShutdownMessage{}));
   const auto start = std::chrono::steady_clock::now();
   CancelledPass c;
   c.seen = messagesUntil(master, wire::MessageType::Shutdown, seconds);

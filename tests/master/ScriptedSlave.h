@@ -22,7 +22,9 @@ class ScriptedSlave {
  public:
   ScriptedSlave(Transport& transport, const Scene& scene) : transport_(transport), scene_(scene) {}
 
-  void ready(int threads = 1) { transport_.send(0, wire::encodeReady({0.01, threads})); }
+  void ready(int threads = 1) {
+    transport_.send(0, wire::encode(wire::ReadyMessage{0.01, threads}));
+  }
 
   // The next tile job, up to timeoutSeconds; a View before it sets the frame and view its tiles
   // render with. Other messages (photon jobs and maps) are skipped.
@@ -37,7 +39,7 @@ class ScriptedSlave {
         return std::nullopt;
       }
       if (message.type == wire::MessageType::View) {
-        wire::ViewMessage view = wire::decodeView(message);
+        wire::ViewMessage view = wire::decode<wire::ViewMessage>(message);
         frame_ = view.frame;
         view_ = view.view;
         received_ = 0;
@@ -45,7 +47,7 @@ class ScriptedSlave {
         continue;
       }
       if (message.type != wire::MessageType::TileJob) continue;
-      const wire::TileJobMessage job = wire::decodeTileJob(message);
+      const wire::TileJobMessage job = wire::decode<wire::TileJobMessage>(message);
       if (job.frame != frame_) {
         frame_ = job.frame;
         received_ = 0;
@@ -78,13 +80,14 @@ class ScriptedSlave {
 
   void deliver(const wire::TileResultMessage& tile) {
     held_.erase(tile.result.tileIndex);
-    transport_.send(0, wire::encodeTileResult(tile));
+    transport_.send(0, wire::encode(tile));
   }
   // The slave no longer holds this tile and never delivers it.
   void lose(uint32_t tile) { held_.erase(tile); }
   // What a real slave's heartbeat says: its frame, the jobs of it received, the tiles held.
   void heartbeat() {
-    transport_.send(0, wire::encodeProgress({frame_, received_, {held_.begin(), held_.end()}}));
+    transport_.send(
+        0, wire::encode(wire::ProgressMessage{frame_, received_, {held_.begin(), held_.end()}}));
   }
   void send(std::vector<uint8_t> bytes) { transport_.send(0, std::move(bytes)); }
 
@@ -98,7 +101,7 @@ class ScriptedSlave {
         shutdown_ = true;
       }
     }
-    if (shutdown_) transport_.send(0, wire::encodeShutdown());
+    if (shutdown_) transport_.send(0, wire::encode(wire::ShutdownMessage{}));
   }
 
   uint32_t frame() const { return frame_; }

@@ -60,24 +60,28 @@ wire::TileResultMessage tileResult(uint32_t frame, uint32_t tile) {
 }
 
 std::vector<uint8_t> tileJob(uint32_t frame, uint32_t tile) {
-  return wire::encodeTileJob({frame, tile, {0, 0, 8, 8}, 0, wire::kTermDirect});
+  return wire::encode(wire::TileJobMessage{frame, tile, {0, 0, 8, 8}, 0, wire::kTermDirect});
 }
 
 TEST(FaultInjectingTransport, HangSwallowsTheWorkAndTheAnswersAndLetsTheRestThrough) {
   FaultyLink link(FaultInjection::Kind::Hang);
   for (std::vector<uint8_t> m :
-       {tileJob(1, 0), wire::encodeView({1, 1, {}}), wire::encodePhotonJob({1, 0, 10, 10}),
-        wire::encodePhotonRadiiJob({1, 0, 10}), wire::encodePhotonMap({1, {}, {}, false}),
-        wire::encodeEcho({1, ""}), wire::encodeShutdown()}) {
+       {tileJob(1, 0), wire::encode(wire::ViewMessage{1, 1, {}}),
+        wire::encode(wire::PhotonJobMessage{1, 0, 10, 10}),
+        wire::encode(wire::PhotonRadiiJobMessage{1, 0, 10}),
+        wire::encode(wire::PhotonMapMessage{1, {}, {}, false}),
+        wire::encode(wire::EchoMessage{1, ""}), wire::encode(wire::ShutdownMessage{})}) {
     link.master().send(1, std::move(m));
   }
   EXPECT_EQ(link.received(),
             (std::vector<Type>{Type::View, Type::PhotonMap, Type::Echo, Type::Shutdown}));
   for (std::vector<uint8_t> m :
-       {wire::encodeReady({0.1, 1}), wire::encodeTileResult(tileResult(1, 0)),
-        wire::encodeProgress({1, 1, {0}}), wire::encodePhotonShare({1, 0, 10, {}, 0.0, {}}),
-        wire::encodePhotonRadiiShare({1, 0, {}}), wire::encodeEcho({1, ""}),
-        wire::encodeError({"x"}), wire::encodeShutdown()}) {
+       {wire::encode(wire::ReadyMessage{0.1, 1}), wire::encode(tileResult(1, 0)),
+        wire::encode(wire::ProgressMessage{1, 1, {0}}),
+        wire::encode(wire::PhotonShareMessage{1, 0, 10, {}, 0.0, {}}),
+        wire::encode(wire::PhotonRadiiShareMessage{1, 0, {}}),
+        wire::encode(wire::EchoMessage{1, ""}), wire::encode(wire::ErrorMessage{"x"}),
+        wire::encode(wire::ShutdownMessage{})}) {
     EXPECT_TRUE(link.faulty.send(0, std::move(m)));  // as if sent
   }
   EXPECT_EQ(typesOf(link.delivered()),
@@ -92,33 +96,35 @@ TEST(FaultInjectingTransport, DropSwallowsEverySecondTileJobOfAFrameAndCountsItR
   for (uint32_t tile = 0; tile < 2; ++tile) link.master().send(1, tileJob(2, tile));
   std::vector<std::pair<uint32_t, uint32_t>> taken;  // (frame, tile)
   while (const std::optional<IncomingMessage> m = link.faulty.poll()) {
-    const wire::TileJobMessage job = wire::decodeTileJob(wire::decodeMessage(m->bytes));
+    const wire::TileJobMessage job =
+        wire::decode<wire::TileJobMessage>(wire::decodeMessage(m->bytes));
     taken.emplace_back(job.frame, job.tileIndex);
   }
   EXPECT_EQ(taken, (std::vector<std::pair<uint32_t, uint32_t>>{{1, 0}, {1, 2}, {1, 4}, {2, 0}}));
-  link.faulty.send(0, wire::encodeProgress({1, 3, {4}}));
-  link.faulty.send(0, wire::encodeProgress({2, 1, {}}));
-  link.faulty.send(0, wire::encodeProgress({3, 0, {}}));
+  link.faulty.send(0, wire::encode(wire::ProgressMessage{1, 3, {4}}));
+  link.faulty.send(0, wire::encode(wire::ProgressMessage{2, 1, {}}));
+  link.faulty.send(0, wire::encode(wire::ProgressMessage{3, 0, {}}));
   const std::vector<wire::Message> sent = link.delivered();
   ASSERT_EQ(sent.size(), 3u);
-  EXPECT_EQ(wire::decodeProgress(sent[0]).jobsReceived, 5u);
-  EXPECT_EQ(wire::decodeProgress(sent[0]).heldTiles, std::vector<uint32_t>{4});
-  EXPECT_EQ(wire::decodeProgress(sent[1]).jobsReceived, 2u);
-  EXPECT_EQ(wire::decodeProgress(sent[2]).jobsReceived, 0u);
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(sent[0]).jobsReceived, 5u);
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(sent[0]).heldTiles, std::vector<uint32_t>{4});
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(sent[1]).jobsReceived, 2u);
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(sent[2]).jobsReceived, 0u);
 }
 
 // A slow rank: each tile result leaves kSlowTileDelaySeconds after the previous one on its
 // render thread's lane (two threads here, from Ready), and is held until then.
 TEST(FaultInjectingTransport, SlowHoldsEachTileResultBackPerRenderThread) {
   FaultyLink link(FaultInjection::Kind::Slow);
-  link.faulty.send(0, wire::encodeReady({0.1, 2}));
+  link.faulty.send(0, wire::encode(wire::ReadyMessage{0.1, 2}));
   for (uint32_t tile = 0; tile < 3; ++tile) {
-    EXPECT_TRUE(link.faulty.send(0, wire::encodeTileResult(tileResult(1, tile))));
+    EXPECT_TRUE(link.faulty.send(0, wire::encode(tileResult(1, tile))));
   }
-  link.faulty.send(0, wire::encodeProgress({1, 4, {3}}));
+  link.faulty.send(0, wire::encode(wire::ProgressMessage{1, 4, {3}}));
   std::vector<wire::Message> sent = link.delivered();
   ASSERT_EQ(typesOf(sent), (std::vector<Type>{Type::Ready, Type::Progress}));
-  EXPECT_EQ(wire::decodeProgress(sent[1]).heldTiles, (std::vector<uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(sent[1]).heldTiles,
+            (std::vector<uint32_t>{0, 1, 2, 3}));
   EXPECT_EQ(link.faulty.heldBack(), 3u);
 
   link.now += kSlowTileDelaySeconds * 0.99;
@@ -128,16 +134,17 @@ TEST(FaultInjectingTransport, SlowHoldsEachTileResultBackPerRenderThread) {
   link.faulty.poll();
   sent = link.delivered();
   ASSERT_EQ(typesOf(sent), (std::vector<Type>{Type::TileResult, Type::TileResult}));
-  EXPECT_EQ(wire::decodeTileResult(sent[0]).result.tileIndex, 0u);
-  EXPECT_EQ(wire::decodeTileResult(sent[1]).result.tileIndex, 1u);
-  link.faulty.send(0, wire::encodeProgress({1, 4, {3}}));
-  EXPECT_EQ(wire::decodeProgress(link.delivered().at(0)).heldTiles, (std::vector<uint32_t>{2, 3}));
+  EXPECT_EQ(wire::decode<wire::TileResultMessage>(sent[0]).result.tileIndex, 0u);
+  EXPECT_EQ(wire::decode<wire::TileResultMessage>(sent[1]).result.tileIndex, 1u);
+  link.faulty.send(0, wire::encode(wire::ProgressMessage{1, 4, {3}}));
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(link.delivered().at(0)).heldTiles,
+            (std::vector<uint32_t>{2, 3}));
 
   link.now += kSlowTileDelaySeconds;  // two delays on: the third
   link.faulty.progressSends();
   sent = link.delivered();
   ASSERT_EQ(sent.size(), 1u);
-  EXPECT_EQ(wire::decodeTileResult(sent[0]).result.tileIndex, 2u);
+  EXPECT_EQ(wire::decode<wire::TileResultMessage>(sent[0]).result.tileIndex, 2u);
   EXPECT_EQ(link.faulty.heldBack(), 0u);
 }
 
@@ -147,9 +154,9 @@ TEST(FaultInjectingTransport, SlowPacesOneThreadOneDelayPerTile) {
   FaultyLink link(FaultInjection::Kind::Slow);
   const auto at = [&link](double delays) { link.now = 100.0 + delays * kSlowTileDelaySeconds; };
   at(0.0);
-  link.faulty.send(0, wire::encodeTileResult(tileResult(1, 0)));  // leaves at 1
+  link.faulty.send(0, wire::encode(tileResult(1, 0)));  // leaves at 1
   at(0.5);
-  link.faulty.send(0, wire::encodeTileResult(tileResult(1, 1)));  // leaves at 2
+  link.faulty.send(0, wire::encode(tileResult(1, 1)));  // leaves at 2
   at(1.05);
   link.faulty.poll();
   EXPECT_EQ(link.delivered().size(), 1u);
@@ -187,8 +194,8 @@ class FaultInjectingTransportDeathTest : public ::testing::Test {
 
 TEST_F(FaultInjectingTransportDeathTest, CrashDiesOnTheFirstTileJobAsIfKilled) {
   FaultyLink link(FaultInjection::Kind::Crash);
-  link.master().send(1, wire::encodePhotonJob({1, 0, 10, 10}));
-  link.master().send(1, wire::encodeEcho({1, ""}));
+  link.master().send(1, wire::encode(wire::PhotonJobMessage{1, 0, 10, 10}));
+  link.master().send(1, wire::encode(wire::EchoMessage{1, ""}));
   EXPECT_EQ(link.received(), (std::vector<Type>{Type::PhotonJob, Type::Echo}));
   link.master().send(1, tileJob(1, 0));
   EXPECT_EXIT(link.faulty.poll(), ::testing::ExitedWithCode(9), "");
@@ -197,9 +204,9 @@ TEST_F(FaultInjectingTransportDeathTest, CrashDiesOnTheFirstTileJobAsIfKilled) {
 TEST_F(FaultInjectingTransportDeathTest, CrashPhotonsDiesOnTheFirstPhotonJob) {
   FaultyLink link(FaultInjection::Kind::CrashOnPhotons);
   link.master().send(1, tileJob(1, 0));
-  link.master().send(1, wire::encodePhotonMap({1, {}, {}, false}));
+  link.master().send(1, wire::encode(wire::PhotonMapMessage{1, {}, {}, false}));
   EXPECT_EQ(link.received(), (std::vector<Type>{Type::TileJob, Type::PhotonMap}));
-  link.master().send(1, wire::encodePhotonJob({2, 0, 10, 10}));
+  link.master().send(1, wire::encode(wire::PhotonJobMessage{2, 0, 10, 10}));
   EXPECT_EXIT(link.faulty.poll(), ::testing::ExitedWithCode(9), "");
 }
 
@@ -218,7 +225,7 @@ TEST(FaultInjectingTransport, AHungSlaveSaysReadyAndAcknowledgesTheShutdownOnly)
   slave.broadcast(test::smallScene());
   ASSERT_TRUE(slave.ready());
   slave.send(tileJob(1, 0));
-  slave.send(wire::encodePhotonJob({1, 0, 100, 100}));
+  slave.send(wire::encode(wire::PhotonJobMessage{1, 0, 100, 100}));
   std::this_thread::sleep_for(std::chrono::duration<double>(3 * kHeartbeatSeconds));
   EXPECT_EQ(slave.shutDown(), std::vector<Type>{Type::Shutdown});
   EXPECT_EQ(slave.seen(), (std::vector<Type>{Type::Ready, Type::Shutdown}));
@@ -236,14 +243,14 @@ TEST(FaultInjectingTransport, ASlaveThatDropsTilesRendersEveryOtherAndItsHeartbe
   for (int i = 0; i < 2; ++i) {
     const std::optional<wire::Message> m = slave.next(Type::TileResult);
     ASSERT_TRUE(m);
-    rendered.push_back(wire::decodeTileResult(*m).result.tileIndex);
+    rendered.push_back(wire::decode<wire::TileResultMessage>(*m).result.tileIndex);
   }
   std::sort(rendered.begin(), rendered.end());
   EXPECT_EQ(rendered, (std::vector<uint32_t>{0, 2}));
   // A beat after both results (the jobs all taken by then): the two others received, none held.
   std::optional<wire::ProgressMessage> beat;
   while (const std::optional<wire::Message> m = slave.next(Type::Progress)) {
-    beat = wire::decodeProgress(*m);
+    beat = wire::decode<wire::ProgressMessage>(*m);
     if (beat->frame == 1 && beat->jobsReceived == 4) break;
   }
   ASSERT_TRUE(beat);
@@ -265,7 +272,7 @@ TEST(FaultInjectingTransport, ASlowSlaveDeliversEveryTileWithTheSamePixels) {
   for (int i = 0; i < 3; ++i) {
     const std::optional<wire::Message> m = slave.next(Type::TileResult);
     ASSERT_TRUE(m);
-    const wire::TileResultMessage r = wire::decodeTileResult(*m);
+    const wire::TileResultMessage r = wire::decode<wire::TileResultMessage>(*m);
     EXPECT_TRUE(test::samePixels(
         r.result.pixels, TileRenderer(scene).render(r.result.tileIndex, r.result.rect).pixels));
   }

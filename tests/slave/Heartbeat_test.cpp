@@ -17,7 +17,7 @@ namespace {
 std::optional<wire::ProgressMessage> nextBeat(Transport& master) {
   const std::optional<IncomingMessage> m = master.waitForMessage(10.0);
   if (!m) return std::nullopt;
-  return wire::decodeProgress(wire::decodeMessage(m->bytes));
+  return wire::decode<wire::ProgressMessage>(wire::decodeMessage(m->bytes));
 }
 
 TEST(Heartbeat, SendsTheFrameBooksProgressOnePerRunningFrame) {

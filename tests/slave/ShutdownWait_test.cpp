@@ -10,9 +10,9 @@ namespace {
 
 TEST(ShutdownWait, AcknowledgesTheShutdownAfterDroppingWhatCameBeforeIt) {
   LoopbackNetwork network(2);
-  network.endpoint(0).send(1, wire::encodeEcho({1, ""}));
+  network.endpoint(0).send(1, wire::encode(wire::EchoMessage{1, ""}));
   network.endpoint(0).send(1, {1, 2, 3});  // malformed: dropped too
-  network.endpoint(0).send(1, wire::encodeShutdown());
+  network.endpoint(0).send(1, wire::encode(wire::ShutdownMessage{}));
   EXPECT_TRUE(awaitShutdown(network.endpoint(1), 30.0));
   const std::optional<IncomingMessage> ack = network.endpoint(0).poll();
   ASSERT_TRUE(ack);
@@ -22,7 +22,7 @@ TEST(ShutdownWait, AcknowledgesTheShutdownAfterDroppingWhatCameBeforeIt) {
 
 TEST(ShutdownWait, GivesUpWithoutAShutdown) {
   LoopbackNetwork network(2);
-  network.endpoint(0).send(1, wire::encodeEcho({1, ""}));
+  network.endpoint(0).send(1, wire::encode(wire::EchoMessage{1, ""}));
   EXPECT_FALSE(awaitShutdown(network.endpoint(1), 0.2));
   EXPECT_FALSE(network.endpoint(0).poll());
 }

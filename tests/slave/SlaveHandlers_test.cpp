@@ -31,12 +31,12 @@ wire::TileJobMessage tileJob(uint32_t frame, uint32_t tile, TileRect rect, uint3
 // The results the slave sends for `jobs` (in any order), by tile index.
 std::map<uint32_t, wire::TileResultMessage> resultsOf(
     SlaveUnderTest& slave, const std::vector<wire::TileJobMessage>& jobs) {
-  for (const wire::TileJobMessage& job : jobs) slave.send(wire::encodeTileJob(job));
+  for (const wire::TileJobMessage& job : jobs) slave.send(wire::encode(job));
   std::map<uint32_t, wire::TileResultMessage> results;
   while (results.size() < jobs.size()) {
     const std::optional<wire::Message> m = slave.next(Type::TileResult);
     if (!m) break;
-    wire::TileResultMessage result = wire::decodeTileResult(*m);
+    wire::TileResultMessage result = wire::decode<wire::TileResultMessage>(*m);
     results.emplace(result.result.tileIndex, std::move(result));
   }
   return results;
@@ -79,7 +79,7 @@ TEST(SlaveHandlers, AViewGivesTheTilesOfItsFrameItsCamera) {
   SlaveUnderTest slave;
   slave.broadcast(d);
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodeView({5, 5, view}));
+  slave.send(wire::encode(wire::ViewMessage{5, 5, view}));
   const auto results = resultsOf(slave, {tileJob(5, 2, {8, 8, 16, 16})});
   ASSERT_EQ(results.size(), 1u);
   EXPECT_TRUE(test::samePixels(results.at(2).result.pixels,
@@ -94,11 +94,11 @@ TEST(SlaveHandlers, TheHeartbeatListsTheTilesHeld) {
   SlaveUnderTest slave;
   slave.broadcast(d);
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodeTileJob(tileJob(2, 0, {0, 0, 32, 24})));
-  slave.send(wire::encodeTileJob(tileJob(2, 1, {32, 0, 32, 24})));
+  slave.send(wire::encode(tileJob(2, 0, {0, 0, 32, 24})));
+  slave.send(wire::encode(tileJob(2, 1, {32, 0, 32, 24})));
   std::optional<wire::ProgressMessage> progress;
   while (const std::optional<wire::Message> m = slave.next(Type::Progress)) {
-    progress = wire::decodeProgress(*m);
+    progress = wire::decode<wire::ProgressMessage>(*m);
     if (progress->frame == 2 && progress->jobsReceived == 2) break;
   }
   ASSERT_TRUE(progress);
@@ -116,13 +116,13 @@ TEST(SlaveHandlers, TheHeartbeatCountsTheJobsOfAFrameAndReleasesDeliveredTiles) 
   ASSERT_TRUE(slave.ready());
   const std::optional<wire::Message> idle = slave.next(Type::Progress);
   ASSERT_TRUE(idle);
-  EXPECT_EQ(wire::decodeProgress(*idle).frame, 0u);
-  EXPECT_EQ(wire::decodeProgress(*idle).jobsReceived, 0u);
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(*idle).frame, 0u);
+  EXPECT_EQ(wire::decode<wire::ProgressMessage>(*idle).jobsReceived, 0u);
   ASSERT_EQ(resultsOf(slave, {tileJob(3, 0, {0, 0, 8, 8}), tileJob(3, 1, {8, 0, 8, 8})}).size(),
             2u);
   std::optional<wire::ProgressMessage> progress;
   while (const std::optional<wire::Message> m = slave.next(Type::Progress)) {
-    progress = wire::decodeProgress(*m);
+    progress = wire::decode<wire::ProgressMessage>(*m);
     if (progress->frame == 3) break;
   }
   ASSERT_TRUE(progress);
@@ -138,12 +138,12 @@ TEST(SlaveHandlers, AJobOfALaterFrameEndsTheEarlierOne) {
   ASSERT_TRUE(slave.ready());
   ASSERT_EQ(resultsOf(slave, {tileJob(4, 0, {0, 0, 8, 8})}).size(), 1u);
   ASSERT_EQ(resultsOf(slave, {tileJob(6, 1, {8, 0, 8, 8})}).size(), 1u);
-  slave.send(wire::encodeTileJob(tileJob(4, 2, {16, 0, 8, 8})));  // its frame has ended
-  slave.send(wire::encodeEcho({1, ""}));
+  slave.send(wire::encode(tileJob(4, 2, {16, 0, 8, 8})));  // its frame has ended
+  slave.send(wire::encode(wire::EchoMessage{1, ""}));
   ASSERT_TRUE(slave.next(Type::Echo));  // the late job was handled before it
   const std::optional<wire::Message> beat = slave.next(Type::Progress);
   ASSERT_TRUE(beat);
-  const wire::ProgressMessage p = wire::decodeProgress(*beat);
+  const wire::ProgressMessage p = wire::decode<wire::ProgressMessage>(*beat);
   EXPECT_EQ(p.frame, 6u);  // the only frame running
   EXPECT_EQ(p.jobsReceived, 1u);
   EXPECT_TRUE(p.heldTiles.empty());
@@ -155,7 +155,7 @@ TEST(SlaveHandlers, AnEchoComesStraightBackByteForByte) {
   SlaveUnderTest slave;
   slave.broadcast(test::smallScene());
   ASSERT_TRUE(slave.ready());
-  const std::vector<uint8_t> echo = wire::encodeEcho({42, std::string(1000, 'x')});
+  const std::vector<uint8_t> echo = wire::encode(wire::EchoMessage{42, std::string(1000, 'x')});
   slave.send(echo);
   ASSERT_TRUE(slave.next(Type::Echo));
   EXPECT_EQ(slave.raw().back(), echo);
@@ -169,10 +169,10 @@ TEST(SlaveHandlers, APhotonJobIsAnsweredWithTheSharesPhotons) {
   slave.broadcast(d);
   ASSERT_TRUE(slave.ready());
   const wire::PhotonJobMessage job{7, 1000, 3000, 8000};
-  slave.send(wire::encodePhotonJob(job));
+  slave.send(wire::encode(job));
   const std::optional<wire::Message> m = slave.next(Type::PhotonShare);
   ASSERT_TRUE(m);
-  const wire::PhotonShareMessage share = wire::decodePhotonShare(*m);
+  const wire::PhotonShareMessage share = wire::decode<wire::PhotonShareMessage>(*m);
   EXPECT_EQ(share.pass, 7u);
   EXPECT_EQ(share.first, 1000u);
   EXPECT_EQ(share.count, 3000u);
@@ -187,8 +187,9 @@ TEST(SlaveHandlers, ACancelledPhotonPassSendsNothing) {
   SlaveUnderTest slave;
   slave.broadcast(test::causticScene());
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodePhotonJob({3, 0, 200'000'000, 200'000'000}));  // minutes, uncancelled
-  slave.send(wire::encodePhotonCancel({3}));
+  slave.send(wire::encode(
+      wire::PhotonJobMessage{3, 0, 200'000'000, 200'000'000}));  // minutes, uncancelled
+  slave.send(wire::encode(wire::PhotonCancelMessage{3}));
   const std::vector<Type> end = slave.shutDown();
   ASSERT_FALSE(end.empty());
   EXPECT_EQ(end.back(), Type::Shutdown);
@@ -200,11 +201,11 @@ TEST(SlaveHandlers, ACancelOfAnotherPassLeavesTheShareBeingTraced) {
   SlaveUnderTest slave;
   slave.broadcast(test::causticScene());
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodePhotonJob({3, 0, 2000, 2000}));
-  slave.send(wire::encodePhotonCancel({2}));
+  slave.send(wire::encode(wire::PhotonJobMessage{3, 0, 2000, 2000}));
+  slave.send(wire::encode(wire::PhotonCancelMessage{2}));
   const std::optional<wire::Message> m = slave.next(Type::PhotonShare);
   ASSERT_TRUE(m);
-  EXPECT_EQ(wire::decodePhotonShare(*m).pass, 3u);
+  EXPECT_EQ(wire::decode<wire::PhotonShareMessage>(*m).pass, 3u);
 }
 
 // Photons of the caustic scene, and gather settings for them.
@@ -239,7 +240,7 @@ TEST(SlaveHandlers, APhotonMapGivesTheTilesOfItsPassTheirCaustics) {
   SlaveUnderTest slave;
   slave.broadcast(c.description);
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodePhotonMap({2, c.gather, c.photons, false}));
+  slave.send(wire::encode(wire::PhotonMapMessage{2, c.gather, c.photons, false}));
   const auto results = resultsOf(slave, {tileJob(1, 0, kCausticTile, 2, kDirectAndCaustics)});
   ASSERT_EQ(results.size(), 1u);
   const auto gather = std::make_shared<const PhotonGather>(c.map, c.gather, 1);
@@ -254,16 +255,16 @@ TEST(SlaveHandlers, APhotonMapWithRadiiGathersOnceTheRadiiCome) {
   SlaveUnderTest slave;
   slave.broadcast(c.description);
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodePhotonMap({2, c.gather, c.photons, false}));
-  slave.send(wire::encodePhotonRadiiJob({2, 0, c.photons.size()}));
+  slave.send(wire::encode(wire::PhotonMapMessage{2, c.gather, c.photons, false}));
+  slave.send(wire::encode(wire::PhotonRadiiJobMessage{2, 0, c.photons.size()}));
   const std::optional<wire::Message> m = slave.next(Type::PhotonRadiiShare);
   ASSERT_TRUE(m);
-  const wire::PhotonRadiiShareMessage share = wire::decodePhotonRadiiShare(*m);
+  const wire::PhotonRadiiShareMessage share = wire::decode<wire::PhotonRadiiShareMessage>(*m);
   EXPECT_EQ(share.pass, 2u);
   EXPECT_EQ(share.radii,
             photonRadiiShare(*c.map, c.gather.k, c.gather.radius, false, 0, c.photons.size(), 1));
   const std::vector<float> radii = photonRadii(*c.map, c.gather.k, c.gather.radius, false, 1);
-  slave.send(wire::encodePhotonRadii({2, radii}));
+  slave.send(wire::encode(wire::PhotonRadiiMessage{2, radii}));
   const auto results = resultsOf(slave, {tileJob(1, 0, kCausticTile, 2, kDirectAndCaustics)});
   ASSERT_EQ(results.size(), 1u);
   const auto gather = std::make_shared<const PhotonGather>(c.map, c.gather, radii, 1);
@@ -277,10 +278,10 @@ TEST(SlaveHandlers, PhotonMapAgainGathersFromTheKeptMap) {
   SlaveUnderTest slave;
   slave.broadcast(c.description);
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodePhotonMap({1, c.gather, c.photons, true}));
+  slave.send(wire::encode(wire::PhotonMapMessage{1, c.gather, c.photons, true}));
   const std::vector<Photon> fewer(c.photons.begin(), c.photons.begin() + c.photons.size() / 4);
-  slave.send(wire::encodePhotonMap({2, c.gather, fewer, false}));
-  slave.send(wire::encodePhotonMapAgain({3, 1}));
+  slave.send(wire::encode(wire::PhotonMapMessage{2, c.gather, fewer, false}));
+  slave.send(wire::encode(wire::PhotonMapAgainMessage{3, 1}));
   const auto results = resultsOf(slave, {tileJob(1, 0, kCausticTile, 3, kDirectAndCaustics)});
   ASSERT_EQ(results.size(), 1u);
   const auto gather = std::make_shared<const PhotonGather>(c.map, c.gather, 1);
@@ -297,23 +298,23 @@ std::string errorFor(std::vector<std::vector<uint8_t>> messages) {
   const std::vector<Type> end = slave.shutDown();
   EXPECT_EQ(end.back(), Type::Shutdown);  // the error reported, it waits for the shutdown
   EXPECT_EQ(slave.join().exitCode, 1);
-  return error ? wire::decodeError(*error).text : "no error";
+  return error ? wire::decode<wire::ErrorMessage>(*error).text : "no error";
 }
 
 TEST(SlaveHandlers, ACausticTileWithoutItsMapIsAnError) {
-  EXPECT_EQ(errorFor({wire::encodeTileJob(tileJob(1, 0, kCausticTile, 4, kDirectAndCaustics))}),
+  EXPECT_EQ(errorFor({wire::encode(tileJob(1, 0, kCausticTile, 4, kDirectAndCaustics))}),
             "tile of pass 4 needs a photon map this rank has not received");
 }
 
 TEST(SlaveHandlers, AMapNeverKeptIsAnError) {
-  EXPECT_EQ(errorFor({wire::encodePhotonMapAgain({3, 1})}),
+  EXPECT_EQ(errorFor({wire::encode(wire::PhotonMapAgainMessage{3, 1})}),
             "pass 3 reuses the photon map of pass 1, which this rank does not keep");
 }
 
 TEST(SlaveHandlers, RadiiForAMapNeverReceivedAreAnError) {
-  EXPECT_EQ(errorFor({wire::encodePhotonRadiiJob({5, 0, 100})}),
+  EXPECT_EQ(errorFor({wire::encode(wire::PhotonRadiiJobMessage{5, 0, 100})}),
             "radii job for the photon map of pass 5, which this rank has not received");
-  EXPECT_EQ(errorFor({wire::encodePhotonRadii({5, {1.0f}})}),
+  EXPECT_EQ(errorFor({wire::encode(wire::PhotonRadiiMessage{5, {1.0f}})}),
             "radii for the photon map of pass 5, which this rank has not received");
 }
 
@@ -322,9 +323,9 @@ TEST(SlaveHandlers, MessagesOnlyRankZeroReceivesAreIgnored) {
   SlaveUnderTest slave;
   slave.broadcast(test::smallScene());
   ASSERT_TRUE(slave.ready());
-  slave.send(wire::encodeReady({0.1, 1}));
-  slave.send(wire::encodeProgress({1, 2, {}}));
-  slave.send(wire::encodeEcho({1, ""}));
+  slave.send(wire::encode(wire::ReadyMessage{0.1, 1}));
+  slave.send(wire::encode(wire::ProgressMessage{1, 2, {}}));
+  slave.send(wire::encode(wire::EchoMessage{1, ""}));
   ASSERT_TRUE(slave.next(Type::Echo));
   const std::vector<Type> end = slave.shutDown();
   EXPECT_EQ(std::count(end.begin(), end.end(), Type::Error), 0);

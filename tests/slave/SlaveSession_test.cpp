@@ -18,7 +18,7 @@ TEST(SlaveSession, SaysReadyWithItsThreadsOnceTheSceneIsBuilt) {
   slave.broadcast(test::smallScene());
   const std::optional<wire::Message> ready = slave.next(Type::Ready);
   ASSERT_TRUE(ready);
-  EXPECT_EQ(wire::decodeReady(*ready).threads, 1);
+  EXPECT_EQ(wire::decode<wire::ReadyMessage>(*ready).threads, 1);
   EXPECT_EQ(slave.seen().front(), Type::Ready);  // nothing before it
 }
 
@@ -43,7 +43,7 @@ TEST(SlaveSession, AMalformedMessageIsReportedToRankZero) {
   slave.send({'n', 'o', 't', ' ', 'a', ' ', 'm', 'e', 's', 's', 'a', 'g', 'e'});
   const std::optional<wire::Message> error = slave.next(Type::Error);
   ASSERT_TRUE(error);
-  EXPECT_FALSE(wire::decodeError(*error).text.empty());
+  EXPECT_FALSE(wire::decode<wire::ErrorMessage>(*error).text.empty());
   EXPECT_EQ(slave.shutDown().back(), Type::Shutdown);
   EXPECT_EQ(slave.join().exitCode, 1);
 }
@@ -64,7 +64,7 @@ TEST(SlaveSession, ASceneItCannotBuildIsReportedAndTheShutdownAwaited) {
   slave.broadcastBytes(wire::encodeMessage(Type::Scene, {1, 2, 3}));
   const std::optional<wire::Message> error = slave.next(Type::Error);
   ASSERT_TRUE(error);
-  EXPECT_EQ(wire::decodeError(*error).text.rfind("cannot build the scene: ", 0), 0u);
+  EXPECT_EQ(wire::decode<wire::ErrorMessage>(*error).text.rfind("cannot build the scene: ", 0), 0u);
   EXPECT_EQ(slave.count(Type::Ready), 0u);
   EXPECT_EQ(slave.shutDown().back(), Type::Shutdown);
   EXPECT_EQ(slave.join().exitCode, 1);
@@ -74,7 +74,7 @@ TEST(SlaveSession, ASceneItCannotBuildIsReportedAndTheShutdownAwaited) {
 // ends without a word.
 TEST(SlaveSession, AnErrorBroadcastInsteadOfASceneEndsItQuietly) {
   SlaveUnderTest slave;
-  slave.broadcastBytes(wire::encodeError({"bad.yaml:2:3: no"}));
+  slave.broadcastBytes(wire::encode(wire::ErrorMessage{"bad.yaml:2:3: no"}));
   const SlaveEnd how = slave.join();
   EXPECT_EQ(how.exitCode, 1);
   EXPECT_FALSE(how.masterLost);

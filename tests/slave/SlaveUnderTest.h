@@ -60,9 +60,9 @@ class SlaveUnderTest {
   // Ends a slave still running: an error instead of a scene if none was sent (the slave then
   // leaves at once), else a Shutdown.
   ~SlaveUnderTest() {
-    if (!broadcast_) broadcastBytes(wire::encodeError({"the test sent no scene"}));
+    if (!broadcast_) broadcastBytes(wire::encode(wire::ErrorMessage{"the test sent no scene"}));
     if (thread_.joinable()) {
-      master().send(1, wire::encodeShutdown());
+      master().send(1, wire::encode(wire::ShutdownMessage{}));
       thread_.join();
     }
   }
@@ -97,7 +97,7 @@ class SlaveUnderTest {
   // Shuts the slave down; the messages it sent until its acknowledgement (the last of them).
   std::vector<wire::MessageType> shutDown() {
     const size_t before = seen_.size();
-    send(wire::encodeShutdown());
+    send(wire::encode(wire::ShutdownMessage{}));
     next(wire::MessageType::Shutdown);
     return {seen_.begin() + static_cast<long>(before), seen_.end()};
   }

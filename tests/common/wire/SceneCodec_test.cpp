@@ -295,13 +295,15 @@ TEST(SceneCodec, DefaultSceneRoundTrips) {
   expectSameScene(sent, roundTrip(sent));
 }
 
-// The codec names every field in structured bindings, so a new field breaks its build; these
-// sizes catch what the bindings cannot see, such as a field that the test above never sets.
+// Each field list (common/wire/SceneCodec.h) names every field in a structured binding, so a new
+// field breaks its build; these sizes catch what the bindings cannot see: a field that the test
+// above never sets, or one whose type changed, which changes the wire form without a word.
 TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
 #if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
   const char* update =
-      "a SceneDescription struct changed: update common/wire/SceneCodec.cpp (write and read), "
-      "fullScene() and expectSameScene() in this file, then the size here";
+      "a SceneDescription struct changed: update its field list in common/wire/SceneCodec.h "
+      "(and kVersion if its wire form changed), fullScene() and expectSameScene() in this file, "
+      "then the size here";
   EXPECT_EQ(sizeof(FileLoc), 40u) << update;
   EXPECT_EQ(sizeof(CameraDesc), 96u) << update;
   EXPECT_EQ(sizeof(Attenuation), 12u) << update;
@@ -484,7 +486,7 @@ TEST(SceneCodec, HugeCorruptedCountThrowsWithoutAllocating) {
 
 TEST(SceneCodec, SceneMessageIsCheckedLikeAnyOther) {
   std::vector<uint8_t> bytes = encodeScene(fullScene());
-  EXPECT_THROW(decodeTileJob(decodeMessage(bytes)), WireError);
+  EXPECT_THROW(decode<TileJobMessage>(decodeMessage(bytes)), WireError);
   bytes[kHeaderSize + 10] ^= 0x20;
   EXPECT_THROW(decodeMessage(bytes), WireError);
 }

@@ -102,9 +102,9 @@ TEST(StreamBytesPerSecond, IsTheResultMessagesOfEveryTileAsDisplayBytes) {
   wire::TileResultMessage m;
   m.result.rect = {0, 0, kTile, kTile};
   m.result.pixels.assign(static_cast<size_t>(kTile) * kTile, Color(0.25f));
-  EXPECT_EQ(tileResultBytes(kTile * kTile), wire::encodeTileResult(m).size());
+  EXPECT_EQ(tileResultBytes(kTile * kTile), wire::encode(m).size());
   m.displayExposure = 1.0f;
-  EXPECT_EQ(tileResultBytes(kTile * kTile, true), wire::encodeTileResult(m).size());
+  EXPECT_EQ(tileResultBytes(kTile * kTile, true), wire::encode(m).size());
   EXPECT_NEAR(streamBytesPerSecond(kSize, kSize, kTile, 30.0), 30 * perFrame, 1e-6);
 }
 

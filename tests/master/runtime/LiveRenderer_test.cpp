@@ -646,7 +646,7 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
   slave.ready();
   wire::PhotonShareMessage late{77, 0, 5, {}, 0.1, {}};
   late.photons.resize(5);
-  slave.send(wire::encodePhotonShare(late));
+  slave.send(wire::encode(late));
   std::atomic<bool> stop{false};
   std::thread slaveThread([&] {
     bool lost = false;

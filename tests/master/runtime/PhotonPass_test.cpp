@@ -79,17 +79,17 @@ TEST(PhotonPass, ASlaveFindsItsShareOfTheRadiiAndGetsThemAll) {
     const auto mapMessage = slave.waitFor(wire::MessageType::PhotonMap);
     const auto jobMessage = slave.waitFor(wire::MessageType::PhotonRadiiJob);
     if (!mapMessage || !jobMessage) return;
-    const PhotonMap its(wire::decodePhotonMap(*mapMessage).photons);
-    job = wire::decodePhotonRadiiJob(*jobMessage);
+    const PhotonMap its(wire::decode<wire::PhotonMapMessage>(*mapMessage).photons);
+    job = wire::decode<wire::PhotonRadiiJobMessage>(*jobMessage);
     // A share of another pass first, with radii that would spoil the gather: ignored.
-    slave.send(wire::encodePhotonRadiiShare(
-        {job.pass + 1, job.first, std::vector<float>(job.count, 9.0f)}));
-    slave.send(wire::encodePhotonRadiiShare(
-        {job.pass, job.first,
-         photonRadiiShare(its, c.settings.k, c.settings.radius, c.settings.automaticK, job.first,
-                          job.count, 1)}));
+    slave.send(wire::encode(wire::PhotonRadiiShareMessage{job.pass + 1, job.first,
+                                                          std::vector<float>(job.count, 9.0f)}));
+    slave.send(wire::encode(wire::PhotonRadiiShareMessage{
+        job.pass, job.first,
+        photonRadiiShare(its, c.settings.k, c.settings.radius, c.settings.automaticK, job.first,
+                         job.count, 1)}));
     if (const auto all = slave.waitFor(wire::MessageType::PhotonRadii)) {
-      received = wire::decodePhotonRadii(*all).radii;
+      received = wire::decode<wire::PhotonRadiiMessage>(*all).radii;
     }
   });
   WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
@@ -216,7 +216,7 @@ TEST(PhotonPass, ADroppedPassTellsTheSlavesFindingRadiiToStop) {
     movedAt = std::chrono::steady_clock::now();
     cancel = true;
     if (const auto message = slave.waitFor(wire::MessageType::PhotonCancel, 30.0)) {
-      cancelled = wire::decodePhotonCancel(*message).pass;
+      cancelled = wire::decode<wire::PhotonCancelMessage>(*message).pass;
     }
   });
   WorkDispatcher dispatcher(c.scene, &network.endpoint(0), patientLink(60.0));
@@ -249,7 +249,7 @@ TEST(PhotonPass, ARealSlaveStopsFindingTheRadiiOfADroppedPassAndSendsNothing) {
   Transport& master = job.master();
   ASSERT_TRUE(job.ready());
   master.send(1, wire::encodePhotonMap(kPass, settings, photons));
-  master.send(1, wire::encodePhotonRadiiJob({kPass, 0, photons.size()}));
+  master.send(1, wire::encode(wire::PhotonRadiiJobMessage{kPass, 0, photons.size()}));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // map built, radii begun
   const test::CancelledPass c = test::cancelPassAndShutDown(master, kPass, 60.0);
   EXPECT_EQ(job.join(), 0);

@@ -210,7 +210,7 @@ TEST(WorkDispatcher, AnUnexpectedMessageNamesTheRank) {
   const Scene scene(smallScene());
   TwoRanks job(scene);
   job.start([](ScriptedSlave& s, std::atomic<bool>&) {
-    s.send(wire::encodePhotonJob({1, 0, 10, 10}));  // a master's message, from a slave
+    s.send(wire::encode(wire::PhotonJobMessage{1, 0, 10, 10}));  // a master's message, from a slave
   });
   WorkDispatcher dispatcher(scene, &job.master(), options(false, 60.0, 60.0).distribution);
   try {
@@ -235,10 +235,10 @@ TEST(WorkDispatcher, APhotonShareAfterRetirementIsIgnored) {
     const auto photonJob = s.waitFor(wire::MessageType::PhotonJob);
     std::this_thread::sleep_for(std::chrono::milliseconds(1200));
     if (photonJob) {
-      const wire::PhotonJobMessage asked = wire::decodePhotonJob(*photonJob);
+      const wire::PhotonJobMessage asked = wire::decode<wire::PhotonJobMessage>(*photonJob);
       wire::PhotonShareMessage late{asked.pass, asked.first, asked.count, {}, 0.1, {}};
       late.photons.resize(static_cast<size_t>(asked.count));  // would spoil the image if used
-      s.send(wire::encodePhotonShare(late));
+      s.send(wire::encode(late));
     }
     while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   });
@@ -295,7 +295,7 @@ TEST(WorkDispatcher, ACancelledPhotonPassTellsTheSlavesStillTracingToStop) {
   job.start([&](ScriptedSlave& s, std::atomic<bool>&) {
     if (!s.waitFor(wire::MessageType::PhotonJob)) return;  // takes its share and never answers
     if (const auto cancel = s.waitFor(wire::MessageType::PhotonCancel)) {
-      cancelledPass = wire::decodePhotonCancel(*cancel).pass;
+      cancelledPass = wire::decode<wire::PhotonCancelMessage>(*cancel).pass;
       cancelReceived = true;
     }
   });
@@ -341,7 +341,7 @@ TEST(WorkDispatcher, ARealSlaveStopsTracingACancelledShareAndSendsNothingForIt) 
   ASSERT_TRUE(job.ready());
   // 20 M photons on one thread take about 10 s to trace (3.9 s for 8 M, measured).
   constexpr uint64_t kPhotons = 20'000'000;
-  master.send(1, wire::encodePhotonJob({3, 0, kPhotons, kPhotons}));
+  master.send(1, wire::encode(wire::PhotonJobMessage{3, 0, kPhotons, kPhotons}));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   const test::CancelledPass c = test::cancelPassAndShutDown(master, 3, 20.0);
   EXPECT_EQ(job.join(), 0);
@@ -370,7 +370,7 @@ TEST(WorkDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
       if (!incoming) continue;
       const wire::Message message = wire::decodeMessage(incoming->bytes);
       if (message.type != wire::MessageType::TileResult) continue;
-      tilesOf.push_back(wire::decodeTileResult(message).frame);
+      tilesOf.push_back(wire::decode<wire::TileResultMessage>(message).frame);
       if (tilesOf.back() == frame) return true;
     }
     return false;
@@ -378,19 +378,20 @@ TEST(WorkDispatcher, ARealSlaveStopsTheTileOfAFrameAViewEnds) {
   ASSERT_TRUE(job.ready());
   // Frame 1: the whole 64×48 image at 16384 spp as one tile, seconds of work on one thread.
   RenderView heavy{d.camera, d.render.width, d.render.height, 16384};
-  master.send(1, wire::encodeView({1, 1, heavy}));
-  master.send(1, wire::encodeTileJob({1, 0, {0, 0, d.render.width, d.render.height}, 0}));
+  master.send(1, wire::encode(wire::ViewMessage{1, 1, heavy}));
+  master.send(1,
+              wire::encode(wire::TileJobMessage{1, 0, {0, 0, d.render.width, d.render.height}, 0}));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   // Frame 2 ends frame 1 (liveFrom 2); its one small tile.
   RenderView light = heavy;
   light.samplesPerPixel = 1;
-  master.send(1, wire::encodeView({2, 2, light}));
+  master.send(1, wire::encode(wire::ViewMessage{2, 2, light}));
   const auto switched = std::chrono::steady_clock::now();
-  master.send(1, wire::encodeTileJob({2, 0, {0, 0, 8, 8}, 0}));
+  master.send(1, wire::encode(wire::TileJobMessage{2, 0, {0, 0, 8, 8}, 0}));
   ASSERT_TRUE(waitForTileOf(2, 30.0));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - switched).count();
-  master.send(1, wire::encodeShutdown());
+  master.send(1, wire::encode(wire::ShutdownMessage{}));
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   waitForTileOf(1, 0.5);  // a frame-1 tile sent late would show here
   EXPECT_EQ(job.join(), 0);
