@@ -80,6 +80,18 @@ void MasterSession::start(bool keepEnvironment) {
   dispatcher_ = std::make_unique<WorkDispatcher>(*scene_, transport_, options_.distribution);
 }
 
+int MasterSession::runToEnd(const std::function<int()>& work, std::ostream& out) {
+  int exitCode = 0;
+  try {
+    exitCode = work();
+  } catch (const std::exception& e) {
+    err_ << "prism: error: " << e.what() << "\n";
+    exitCode = 1;
+  }
+  out.flush();
+  return finish(exitCode);
+}
+
 int MasterSession::finish(int exitCode) {
   if (finished_) return exitCode;
   finished_ = true;

@@ -76,6 +76,9 @@ class MasterSession {
   // would wait for it forever). Rank 0 interrupted by mpiexec's SIGTERM leaves at once
   // instead, before the SIGKILL that follows. Returns exitCode.
   int finish(int exitCode);
+  // The command's work (it returns the exit code), then finish(): an exception it throws is
+  // reported ("prism: error: ...") and ends the run with exit code 1.
+  int runToEnd(const std::function<int()>& work, std::ostream& out);
 
  private:
   Transport* transport_;

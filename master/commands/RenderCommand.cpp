@@ -149,15 +149,7 @@ int runRender(const RenderOptions& options, std::ostream& out, std::ostream& err
       options.outputPath.empty() ? defaultOutputPath(options.scenePath) : options.outputPath;
   MasterSession run(session, options, err);
   if (!run.load([&] { checkOutputs(options, output); })) return 1;
-  int exitCode = 0;
-  try {
-    exitCode = renderAndWrite(run, output, start, out, err);
-  } catch (const std::exception& e) {
-    err << "prism: error: " << e.what() << "\n";
-    exitCode = 1;
-  }
-  out.flush();
-  return run.finish(exitCode);
+  return run.runToEnd([&] { return renderAndWrite(run, output, start, out, err); }, out);
 }
 
 }  // namespace prism

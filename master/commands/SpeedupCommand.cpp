@@ -346,15 +346,12 @@ int runSpeedup(const SpeedupOptions& options, std::ostream& out, std::ostream& e
     }
   };
   if (!run.load(checkFolder)) return 1;
-  int exitCode = 0;
-  try {
-    measureSpeedup(run, options, files, chartWriter, report, out, err);
-  } catch (const std::exception& e) {
-    err << "prism: error: " << e.what() << "\n";
-    exitCode = 1;
-  }
-  out.flush();
-  return run.finish(exitCode);
+  return run.runToEnd(
+      [&] {
+        measureSpeedup(run, options, files, chartWriter, report, out, err);
+        return 0;
+      },
+      out);
 }
 
 }  // namespace prism

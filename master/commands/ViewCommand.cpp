@@ -24,16 +24,12 @@ int runView(const ViewOptions& options, std::ostream& out, std::ostream& err, Tr
     }
   };
   if (!run.load(checkArguments)) return 1;  // --caustics, --photons too
-  int exitCode = 0;
-  try {
-    run.start(true);  // the window shows the scene's sky
-    exitCode = viewer(run, options, out, err);
-  } catch (const std::exception& e) {
-    err << "prism: error: " << e.what() << "\n";
-    exitCode = 1;
-  }
-  out.flush();
-  return run.finish(exitCode);
+  return run.runToEnd(
+      [&] {
+        run.start(true);  // the window shows the scene's sky
+        return viewer(run, options, out, err);
+      },
+      out);
 }
 
 }  // namespace prism
