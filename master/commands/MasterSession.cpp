@@ -101,9 +101,11 @@ int MasterSession::finish(int exitCode) {
     dispatcher_->stop();
     try {
       dispatcher_->join();
-    } catch (const std::exception& e) {  // a render thread's failure the command did not see
-      err_ << "prism: error: " << e.what() << "\n";
-      exitCode = exitCode != 0 ? exitCode : 1;
+    } catch (const std::exception& e) {
+      if (exitCode == 0) {  // a render thread's failure the command did not see
+        err_ << "prism: error: " << e.what() << "\n";
+        exitCode = 1;
+      }
     }
   }
   err_.flush();
