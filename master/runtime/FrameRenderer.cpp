@@ -6,8 +6,8 @@
 #include <thread>
 
 #include "master/runtime/Framebuffer.h"
-#include "master/runtime/WorkDispatcher.h"
 #include "master/runtime/TilePlan.h"
+#include "master/runtime/WorkDispatcher.h"
 
 namespace prism {
 namespace {
@@ -23,7 +23,7 @@ class FrameAssembly final : public FrameListener {
     framebuffer_.insert(tile);
   }
 
-  // Only after the dispatcher's threads have stopped.
+  // Only once the frame has ended (WorkDispatcher::endFrame): no tile is accepted into it then.
   Framebuffer& framebuffer() { return framebuffer_; }
   const std::vector<double>& tileSeconds() const { return tileSeconds_; }
 

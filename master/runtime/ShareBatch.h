@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "master/runtime/ShareWork.h"
-#include "master/runtime/WorkDispatcher.h"
 #include "master/runtime/TileScheduler.h"
+#include "master/runtime/WorkDispatcher.h"
 
 namespace prism {
 
