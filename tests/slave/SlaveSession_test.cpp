@@ -91,8 +91,11 @@ TEST(SlaveSession, NoSceneWithinTheMasterTimeoutEndsIt) {
 // Rank 0 says nothing for longer than masterTimeoutSeconds: the slave gives up on it (and
 // does not wait for a Shutdown that will not come).
 TEST(SlaveSession, ARankZeroSilentPastTheTimeoutIsGivenUp) {
+  // Read before the slave starts: its wait for the scene is bounded by the same 0.3 s, and
+  // reading the scene's files (a mesh, a sky) can take longer than that on a slow build.
+  const SceneDescription scene = test::smallScene();
   SlaveUnderTest slave(test::slaveOptions(0.3));
-  slave.broadcast(test::smallScene());
+  slave.broadcast(scene);
   ASSERT_TRUE(slave.ready());
   const SlaveEnd how = slave.join();
   EXPECT_EQ(how.exitCode, 1);
