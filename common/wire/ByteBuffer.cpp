@@ -68,24 +68,6 @@ void ByteWriter::writeU8s(const std::vector<uint8_t>& v) {
   bytes_.insert(bytes_.end(), v.begin(), v.end());
 }
 
-template <typename T, typename WriteOne>
-void ByteWriter::writeArray(const std::vector<T>& v, WriteOne writeOne) {
-  writeCount(v.size());
-  if constexpr (kWireOrderIsNative) {
-    appendRaw(v.data(), v.size() * sizeof(T));
-  } else {
-    for (T e : v) writeOne(e);
-  }
-}
-
-void ByteWriter::writeU32s(const std::vector<uint32_t>& v) {
-  writeArray(v, [this](uint32_t e) { writeU32(e); });
-}
-
-void ByteWriter::writeF32s(const std::vector<float>& v) {
-  writeArray(v, [this](float e) { writeF32(e); });
-}
-
 void ByteReader::readRaw(void* out, size_t size) {
   need(size);
   if (size == 0) return;  // out may be null then, which memcpy must not see
@@ -173,14 +155,6 @@ std::vector<T> ByteReader::readArray(ReadOne readOne) {
 
 std::vector<Vec3> ByteReader::readVec3s() {
   return readArray<Vec3>([this] { return readVec3(); });
-}
-
-std::vector<uint32_t> ByteReader::readU32s() {
-  return readArray<uint32_t>([this] { return readU32(); });
-}
-
-std::vector<float> ByteReader::readF32s() {
-  return readArray<float>([this] { return readF32(); });
 }
 
 std::vector<uint8_t> ByteReader::readU8s() {

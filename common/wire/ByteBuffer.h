@@ -40,19 +40,10 @@ class ByteWriter {
   void writeVec3(const Vec3& v);           // also Color, which is the same type
   void writeCount(size_t n) { writeU64(n); }
   void writeVec3s(const std::vector<Vec3>& v);
-  void writeU32s(const std::vector<uint32_t>& v);
-  void writeF32s(const std::vector<float>& v);
   void writeU8s(const std::vector<uint8_t>& v);
   // Bytes as they are in memory: only for values whose memory is their wire form
   // (kWireOrderIsNative, no padding).
   void writeRaw(const void* data, size_t size) { appendRaw(data, size); }
-
-  // A u64 count, then writeOne(*this, element) for each element.
-  template <typename T, typename WriteOne>
-  void writeSequence(const std::vector<T>& items, WriteOne writeOne) {
-    writeCount(items.size());
-    for (const T& item : items) writeOne(*this, item);
-  }
 
   const std::vector<uint8_t>& bytes() const { return bytes_; }
   std::vector<uint8_t> take() { return std::move(bytes_); }
@@ -60,9 +51,6 @@ class ByteWriter {
  private:
   void writeLittleEndian(uint64_t v, int byteCount);
   void appendRaw(const void* data, size_t size);  // bytes as they are in memory
-  // A count, then the elements: copied in one go where memory is wire order, else one by one.
-  template <typename T, typename WriteOne>
-  void writeArray(const std::vector<T>& v, WriteOne writeOne);
 
   std::vector<uint8_t> bytes_;
 };
@@ -86,21 +74,9 @@ class ByteReader {
   // fit in what is left, so a corrupted count is refused before anything is allocated.
   size_t readCount(size_t minElementBytes);
   std::vector<Vec3> readVec3s();
-  std::vector<uint32_t> readU32s();
-  std::vector<float> readF32s();
   std::vector<uint8_t> readU8s();
   // size bytes into out as they are (see ByteWriter::writeRaw).
   void readRaw(void* out, size_t size);
-
-  // Reads what writeSequence wrote. Nothing is reserved up front: the vector grows only as
-  // elements actually decode, so its memory stays proportional to the message.
-  template <typename T, typename ReadOne>
-  std::vector<T> readSequence(ReadOne readOne) {
-    const size_t count = readCount(1);
-    std::vector<T> items;
-    for (size_t i = 0; i < count; ++i) items.push_back(readOne(*this));
-    return items;
-  }
 
   size_t offset() const { return offset_; }
   size_t remaining() const { return size_ - offset_; }
