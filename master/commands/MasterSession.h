@@ -63,7 +63,6 @@ class MasterSession {
   // Throws on failure; finish() still ends the slaves.
   void start(bool keepEnvironment = false);
 
-  Transport* transport() const { return transport_; }
   const RenderOptions& options() const { return options_; }
   const SceneDescription& description() const { return description_; }
   const Scene& scene() const { return *scene_; }

@@ -59,7 +59,6 @@ class SlaveLink {
   Transport* transport() const { return cluster_; }
   int ranks() const { return rankCount_; }
   bool hasSlaves() const { return ranks() > 1; }
-  const DistributionOptions& options() const { return options_; }
 
   // The roster: one rank's record, or every rank's, as they are now.
   RankStats rank(int r) const;

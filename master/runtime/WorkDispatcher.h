@@ -83,7 +83,6 @@ class WorkDispatcher {
 
   const Scene& scene() const { return scene_; }
   SlaveLink& link() { return link_; }
-  const DistributionOptions& options() const { return options_; }
   int localThreads() const { return pool_.threadCount(); }
   // Live ranks' render threads (a slave's from its Ready, else rank 0's count in its place).
   int liveThreads();
