@@ -13,6 +13,8 @@ class CameraController {
 
   const CameraDesc& camera() const { return camera_; }
   void reset() { camera_ = home_; }
+  // Where the viewer resumes a view that moved from home.
+  void setCamera(const CameraDesc& camera) { camera_ = camera; }
 
   // Moves position and look-at together, in steps of moveFraction × distance: along the view
   // direction (forward), the image's right vector, and the camera's up vector.

@@ -8,12 +8,12 @@
 
 namespace prism {
 
-FrameView::FrameView(const FrameAccumulator& frame, float exposure, QWidget* parent)
+FrameView::FrameView(const DisplayFrame& frame, QWidget* parent)
     : QWidget(parent),
       frame_(frame),
-      encoder_(exposure),
-      display_(frame.image().width, frame.image().height, QImage::Format_RGB888) {
-  display_.fill(Qt::black);
+      // The frame's bytes, not a copy: their buffer keeps its size and place for the frame's life.
+      display_(frame.bytes().data(), frame.width(), frame.height(), frame.width() * 3,
+               QImage::Format_RGB888) {
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(160, 90);
   connect(&timer_, &QTimer::timeout, this, &FrameView::refresh);
@@ -38,25 +38,9 @@ void FrameView::setShowHelp(bool show) {
   update();
 }
 
-void FrameView::convert(const TileRect& r) {
-  const ImageRgb& image = frame_.image();
-  for (int y = r.y; y < r.y + r.height; ++y) {
-    uchar* line = display_.scanLine(y);
-    for (int x = r.x; x < r.x + r.width; ++x) {
-      const Color& c = image.at(x, y);
-      line[3 * x + 0] = encoder_(c.r);
-      line[3 * x + 1] = encoder_(c.g);
-      line[3 * x + 2] = encoder_(c.b);
-    }
-  }
-}
-
 void FrameView::refresh() {
   if (!changed_) return;
   changed_ = false;
-  // The accumulator belongs to the main thread, like this widget: no lock needed.
-  const TileRect dirty = const_cast<FrameAccumulator&>(frame_).takeDirty();
-  if (dirty.width > 0) convert(dirty);
   update();
 }
 
@@ -99,7 +83,7 @@ void FrameView::paintEvent(QPaintEvent*) {
   if (overlayShown_) {
     paintOverlay(painter);
     if (showHelp_) paintHelp(painter);
-    emit painted(frame_.pass().viewId, frame_.completedPass());
+    emit painted(frame_.pass().viewId, frame_.state().completedPass);
     return;
   }
   const QRect target = imageRect();
@@ -107,14 +91,14 @@ void FrameView::paintEvent(QPaintEvent*) {
   if (showTiles_) {
     const double sx = static_cast<double>(target.width()) / display_.width();
     const double sy = static_cast<double>(target.height()) / display_.height();
-    for (const FrameAccumulator::InFlight& t : frame_.inFlight()) {
+    for (const DisplayTile& t : frame_.state().inFlight) {
       painter.setPen(QPen(rankColor(t.rank), 2));
       painter.drawRect(QRectF(target.x() + t.rect.x * sx + 1, target.y() + t.rect.y * sy + 1,
                               t.rect.width * sx - 2, t.rect.height * sy - 2));
     }
   }
   if (showHelp_) paintHelp(painter);
-  emit painted(frame_.pass().viewId, frame_.completedPass());
+  emit painted(frame_.pass().viewId, frame_.state().completedPass);
 }
 
 void FrameView::paintHelp(QPainter& painter) {

@@ -1,6 +1,5 @@
-// The live image. Tiles go into the FrameAccumulator as they arrive; this widget repaints on
-// a timer (60 Hz at most, and only when something changed), converting just the changed
-// rectangle to display bytes, so a burst of small tiles costs one repaint. Draws the tiles in
+// The live image: the display bytes of the window's DisplayFrame, repainted on a timer (60 Hz
+// at most, and only when something changed), so a burst of news costs one repaint. Draws the tiles in
 // flight outlined in their rank's colour (toggleable) and the help overlay. A light-space debug
 // image (the caustic maps of R, P, C) can be shown instead of the frame, which keeps rendering
 // underneath.
@@ -10,8 +9,7 @@
 #include <QTimer>
 #include <QWidget>
 
-#include "gui/FrameAccumulator.h"
-#include "image/ToneMap.h"
+#include "master/runtime/DisplayFrame.h"
 
 class QPainter;
 
@@ -21,7 +19,7 @@ class FrameView : public QWidget {
   Q_OBJECT
 
  public:
-  FrameView(const FrameAccumulator& frame, float exposure, QWidget* parent = nullptr);
+  explicit FrameView(const DisplayFrame& frame, QWidget* parent = nullptr);
 
   void setShowTiles(bool show);
   bool showTiles() const { return showTiles_; }
@@ -60,12 +58,10 @@ class FrameView : public QWidget {
 
  private:
   void refresh();
-  void convert(const TileRect& r);
   void paintOverlay(QPainter& painter);
   void paintHelp(QPainter& painter);
 
-  const FrameAccumulator& frame_;
-  DisplayEncoder encoder_;
+  const DisplayFrame& frame_;
   QImage display_;
   QTimer timer_;
   bool changed_ = false;

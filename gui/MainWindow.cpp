@@ -35,24 +35,21 @@ constexpr float kZoomPerStep = 0.9f;
 constexpr int kMapPollMilliseconds = 30;
 }  // namespace
 
-MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
-                       ViewRequest requestView, CausticMapSource causticMaps, QWidget* parent)
+MainWindow::MainWindow(LiveSource& source, QWidget* parent)
     : QMainWindow(parent),
-      exposure_(scene.render.exposure),
-      requestView_(std::move(requestView)),
-      camera_(scene.camera),
-      frame_(scene.render.width, scene.render.height),
-      causticMaps_(std::move(causticMaps)) {
+      source_(source),
+      exposure_(source.start().exposure),
+      camera_(source.start().home),
+      settings_(source.start().view),
+      frame_(source.start().width, source.start().height) {
+  const ViewerStart& start = source.start();
   mapPoll_ = new QTimer(this);
   mapPoll_->setInterval(kMapPollMilliseconds);
   connect(mapPoll_, &QTimer::timeout, this, [this] { updateLightSpace(); });
-  setWindowTitle("Prism — " + sceneName);
-  settings_.camera = scene.camera;
-  settings_.samplesPerPixel = scene.render.samplesPerPixel;
-  settings_.caustics = scene.caustics.method;
-  settings_.photonsPerPass = scene.caustics.photons;
+  setWindowTitle("Prism — " + QString::fromStdString(start.sceneName));
+  camera_.setCamera(settings_.camera);  // a resumed view may have moved from the scene's
 
-  view_ = new FrameView(frame_, exposure_, this);
+  view_ = new FrameView(frame_, this);
   stats_ = new StatsPanel(this);
   connect(view_, &FrameView::dragged, this, [this](int dx, int dy) {
     camera_.orbit(-kOrbitDegreesPerPixel * static_cast<float>(dx),
@@ -78,6 +75,10 @@ MainWindow::MainWindow(const SceneDescription& scene, const QString& sceneName,
   statusBar()->addWidget(status_, 1);
   buildMenus();
   view_->setFocus();
+  if (!start.causticMapsRefusal.empty()) {
+    refuseCausticMaps(QString::fromStdString(start.causticMapsRefusal));
+  }
+  lightSpaceRefusal_ = QString::fromStdString(start.lightSpaceRefusal);
   updateStatusBar();
 }
 
@@ -225,8 +226,8 @@ void MainWindow::refuseCausticMaps(const QString& why) {
 void MainWindow::showLightSpace(LightSpaceMap which) {
   lightSpace_ = which;
   checkDebugButton();
-  if (!causticMaps_) {
-    view_->setOverlay({}, "caustic maps are not available in this window · n: back to the image");
+  if (!lightSpaceRefusal_.isEmpty()) {
+    view_->setOverlay({}, lightSpaceRefusal_ + " · n: back to the image");
     return;
   }
   if (!causticMapsRefusal_.isEmpty()) {
@@ -238,7 +239,7 @@ void MainWindow::showLightSpace(LightSpaceMap which) {
 }
 
 void MainWindow::updateLightSpace() {
-  if (!lightSpace_ || !causticMaps_) return mapPoll_->stop();
+  if (!lightSpace_ || !lightSpaceRefusal_.isEmpty()) return mapPoll_->stop();
   if (pendingMaps_.valid() &&
       pendingMaps_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
     readyMaps_ = pendingMaps_.get();
@@ -253,7 +254,7 @@ void MainWindow::updateLightSpace() {
   }
   if (!pendingMaps_.valid()) {  // one build at a time; a stale one finishes first
     pendingBlur_ = blur;
-    pendingMaps_ = std::async(std::launch::async, causticMaps_, blur);
+    pendingMaps_ = std::async(std::launch::async, [this, blur] { return source_.causticMaps(blur); });
   }
   if (!mapPoll_->isActive()) {
     view_->setOverlay({}, "building the caustic maps…");
@@ -332,12 +333,18 @@ void MainWindow::fitToScreen(const QSize& preferred) {
 }
 
 void MainWindow::startRendering() {
-  requestView_(settings_);
+  if (source_.start().resume) {
+    takeNews();  // what has accumulated: the source sends every pixel first
+    return;
+  }
+  ++settings_.tag;
+  source_.setView(settings_);
 }
 
 void MainWindow::viewChanged() {
   settings_.camera = camera_.camera();
-  requestView_(settings_);
+  ++settings_.tag;
+  source_.setView(settings_);
 }
 
 void MainWindow::setDebugView(DebugView view) {
@@ -358,8 +365,13 @@ MainWindow::~MainWindow() {
   if (pendingMaps_.valid()) pendingMaps_.wait();  // a build in flight uses the renderer
 }
 
-void MainWindow::saveImage(const QString& path) const {
-  writeImage(frame_.image(), path.toStdString(), exposure_);
+void MainWindow::saveImage(const QString& path) {
+  const std::string file = path.toStdString();
+  if (path.endsWith(".png", Qt::CaseInsensitive)) {
+    writeDisplayPng(file, frame_.width(), frame_.height(), frame_.bytes());
+  } else {
+    writeImage(source_.fullImage(), file, exposure_);
+  }
 }
 
 QString MainWindow::loadSpeedupCsv(const QString& path) {
@@ -434,45 +446,48 @@ void MainWindow::keyPressEvent(QKeyEvent* event) {
   }
 }
 
-void MainWindow::onPassStarted(const PassInfo& pass) {
-  if (pass.viewId != frame_.pass().viewId) fullPassesDone_ = 0;
-  frame_.beginPass(pass);
+void MainWindow::takeNews() {
+  DisplayNews news = source_.take();
+  const bool newView = news.pass.viewId != frame_.pass().viewId;
+  frame_.apply(news);
+  if (newView) fullPassesDone_ = 0;
   view_->markChanged();
+  for (const DisplayPass& pass : news.completed) emit passComplete(pass);
+  // Passes of the view asked for last: those a script waits for.
+  if (news.started && news.pass.viewTag == settings_.tag &&
+      news.fullPassesDone > fullPassesDone_) {
+    fullPassesDone_ = news.fullPassesDone;
+    emit fullPassDone(fullPassesDone_);
+  }
+  if (news.stats) {
+    stats_->showStats(*news.stats);
+    emit statsShown(*news.stats);
+  }
   updateStatusBar();
 }
 
-void MainWindow::onTileAssigned(uint32_t frame, uint32_t tile, int rank) {
-  if (frame_.assign(frame, tile, rank)) view_->markChanged();
-}
-
-void MainWindow::onTileFinished(uint32_t frame, std::shared_ptr<const TileResult> tile, int) {
-  if (frame_.addTile(frame, *tile)) view_->markChanged();
-}
-
-void MainWindow::onPassFinished(uint32_t frame, double) {
-  if (frame != frame_.frame()) return;
-  updateStatusBar();
-  emit passComplete(frame_.pass());
-  if (frame_.pass().pass >= 1) emit fullPassDone(++fullPassesDone_);
-}
-
-void MainWindow::onStats(const LiveStats& stats) {
-  stats_->showStats(stats);
+void MainWindow::sourceEnded(const QString& why) {
+  ended_ = why;
+  setWindowTitle(windowTitle() + " (ended)");
   updateStatusBar();
 }
 
 void MainWindow::updateStatusBar() {
-  const PassInfo& p = frame_.pass();
+  if (!ended_.isEmpty()) {
+    status_->setText(ended_ + " · the last frame stays · q: quit");
+    return;
+  }
+  const DisplayPass& p = frame_.pass();
   const QString what =
       p.pass == 0
           ? QString("moving, %1 resolution, 1 spp").arg(QString::fromStdString(p.scale.text()))
-          : QString("pass %1 (%2 spp each)").arg(p.pass).arg(p.view ? p.view->samplesPerPixel : 0);
+          : QString("pass %1 (%2 spp each)").arg(p.pass).arg(p.samplesPerPixel);
   status_->setText(QString("frame %1 · %2 · tiles %3/%4 · %5 spp averaged · h: keys")
                        .arg(p.frame)
                        .arg(what)
-                       .arg(frame_.tilesDone())
-                       .arg(p.tiles.size())
-                       .arg(fullPassesDone_ * settings_.samplesPerPixel));
+                       .arg(frame_.state().tilesDone)
+                       .arg(p.tiles)
+                       .arg(frame_.state().fullPassesDone * p.samplesPerPixel));
 }
 
 }  // namespace prism

@@ -1,7 +1,9 @@
 // The viewer window: the live frame in the middle, a side panel with the render controls and
 // the statistics, menus for saving the image and loading a speedup table, and the keys listed
-// in gui/HelpText.h. Every camera or setting change asks the renderer for a new view, which
-// starts a new frame; tiles of the old one are ignored when they arrive.
+// in gui/HelpText.h. It drives a LiveSource (master/runtime/LiveSource.h): the renderer in this
+// process, or a job over a connection, the same way. Every camera or setting change asks the
+// source for a new view; the source's news (display bytes of what changed, the pass on show,
+// statistics) is taken whenever the source wakes the window.
 #pragma once
 
 #include <QMainWindow>
@@ -10,9 +12,9 @@
 #include <optional>
 
 #include "gui/CameraController.h"
-#include "gui/FrameAccumulator.h"
 #include "gui/LightSpaceImage.h"
-#include "master/runtime/LiveRenderer.h"
+#include "master/runtime/DisplayFrame.h"
+#include "master/runtime/LiveSource.h"
 
 class QSpinBox;
 class QRadioButton;
@@ -31,16 +33,11 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  using ViewRequest = std::function<void(const ViewSettings&)>;
-  // The scene's caustic maps with the blur on or off (LiveRenderer::causticMaps); called on a
-  // worker thread, so it may take a while.
-  using CausticMapSource = std::function<std::shared_ptr<const CausticMapEstimator>(bool blur)>;
-
-  MainWindow(const SceneDescription& scene, const QString& sceneName, ViewRequest requestView,
-             CausticMapSource causticMaps = {}, QWidget* parent = nullptr);
+  explicit MainWindow(LiveSource& source, QWidget* parent = nullptr);
   ~MainWindow() override;
 
-  // Asks for the first view (the scene's camera); call once the renderer runs.
+  // Asks for the first view (the scene's camera), unless the source resumes one; call once the
+  // source runs.
   void startRendering();
 
   // Sizes the window to `preferred` where the screen it opens on has room, else to the room
@@ -48,10 +45,15 @@ class MainWindow : public QMainWindow {
   // The frame keeps its aspect ratio inside whatever the view gets (FrameView::imageRect).
   void fitToScreen(const QSize& preferred);
 
-  // Saves the current image (PNG tone-mapped, EXR linear); throws std::runtime_error.
-  void saveImage(const QString& path) const;
+  // Saves the current image: a PNG as the display bytes shown, any other format from the
+  // source's full-precision image (EXR linear). Throws std::runtime_error.
+  void saveImage(const QString& path);
   // Loads a speedup CSV into the chart; returns an error message, empty on success.
   QString loadSpeedupCsv(const QString& path);
+
+  // Every view asked for from now on renders at most this many full passes
+  // (--exit-after-passes: the image saved is exactly that many).
+  void limitPasses(int passes) { settings_.maxPasses = passes; }
 
   CameraController& cameraController() { return camera_; }
   // Sends the current camera and settings as a new view.
@@ -74,24 +76,30 @@ class MainWindow : public QMainWindow {
   std::optional<LightSpaceMap> lightSpaceShown() const { return lightSpace_; }
 
   const ViewSettings& viewSettings() const { return settings_; }
-  const FrameAccumulator& frame() const { return frame_; }
+  const DisplayFrame& frame() const { return frame_; }
   FrameView* frameView() const { return view_; }
   StatsPanel* statsPanel() const { return stats_; }
   int fullPassesDone() const { return fullPassesDone_; }
   uint64_t viewId() const { return frame_.pass().viewId; }
+  // The tag of the latest view asked for (ViewSettings::tag); passes carry it.
+  uint64_t requestedTag() const { return settings_.tag; }
+  // Why the source ended by itself ("": it has not): the job ended or the connection was lost.
+  const QString& endedBecause() const { return ended_; }
 
  public slots:
-  void onPassStarted(const prism::PassInfo& pass);
-  void onTileAssigned(uint32_t frame, uint32_t tile, int rank);
-  void onTileFinished(uint32_t frame, std::shared_ptr<const prism::TileResult> tile, int rank);
-  void onPassFinished(uint32_t frame, double seconds);
-  void onStats(const prism::LiveStats& stats);
+  // Takes the source's news into the frame; the source's wake() queues it.
+  void takeNews();
+  // The source ended by itself: says so in the title and the status bar; the last frame stays.
+  void sourceEnded(const QString& why);
 
  signals:
-  // A full-resolution pass of the current view is complete (count since the view started).
+  // A full-resolution pass of the view asked for last is complete (count since that view
+  // started).
   void fullPassDone(int passes);
   // Every tile of this pass is in the frame shown (a view's first frame: now on screen whole).
-  void passComplete(const prism::PassInfo& pass);
+  void passComplete(const prism::DisplayPass& pass);
+  // Statistics arrived.
+  void statsShown(const prism::LiveStats& stats);
 
  protected:
   void keyPressEvent(QKeyEvent* event) override;
@@ -105,11 +113,11 @@ class MainWindow : public QMainWindow {
   void updateLightSpace();
   void updateStatusBar();
 
+  LiveSource& source_;
   float exposure_;
-  ViewRequest requestView_;
   CameraController camera_;
   ViewSettings settings_;
-  FrameAccumulator frame_;
+  DisplayFrame frame_;
   FrameView* view_;
   StatsPanel* stats_;
   QSpinBox* spp_;
@@ -126,9 +134,10 @@ class MainWindow : public QMainWindow {
   QAction* tilesAction_;
   QLabel* status_;
   int fullPassesDone_ = 0;
+  QString ended_;
 
-  CausticMapSource causticMaps_;
   QString causticMapsRefusal_;  // empty: they may be built
+  QString lightSpaceRefusal_;   // empty: the light-space images can be shown
   std::optional<LightSpaceMap> lightSpace_;
   std::future<std::shared_ptr<const CausticMapEstimator>> pendingMaps_;  // being built
   bool pendingBlur_ = true;

@@ -19,10 +19,9 @@
 
 #include "gui/FrameView.h"
 #include "gui/MainWindow.h"
-#include "gui/RenderBridge.h"
 #include "gui/StatsPanel.h"
 #include "image/ImageIo.h"
-#include "master/commands/MasterSession.h"
+#include "master/commands/RenderOptions.h"
 #include "util/Percentile.h"
 #include "util/PhysicalMemory.h"
 #include "util/Stopwatch.h"
@@ -69,7 +68,7 @@ class MoveBenchmark : public QObject {
     }
   }
 
-  void onPassComplete(const PassInfo& pass) {
+  void onPassComplete(const DisplayPass& pass) {
     const auto now = SteadyClock::now();
     if (!started_) {
       if (pass.pass >= 1) {  // the first full image is on screen: start moving
@@ -80,15 +79,15 @@ class MoveBenchmark : public QObject {
       }
       return;
     }
-    if (done_ || !pass.view) return;
+    if (done_) return;
     // Which move's camera this frame shows (the newest frame renders the newest view).
     std::optional<SteadyClock::time_point> requested;
     for (const Request& r : requests_) {
-      if (sameCamera(r.camera, pass.view->camera)) requested = r.at;
+      if (sameCamera(r.camera, pass.camera)) requested = r.at;
     }
     if (!requested) return;  // the view from before the first move
     const bool moving = timer_.isActive();
-    const bool lastView = sameCamera(pass.view->camera, requests_.back().camera);
+    const bool lastView = sameCamera(pass.camera, requests_.back().camera);
     // Frames while moving: all until the last move, then the ones still showing moves. A move's
     // latency runs to its view's first frame: a later pass of the same view (the camera rested
     // between moves) refines what is already on screen.
@@ -127,12 +126,12 @@ class MoveBenchmark : public QObject {
     for (const auto& [fraction, step] : reduced) {
       steps += (steps.empty() ? "" : ", ") + step.first.text() + ": " + std::to_string(step.second);
     }
-    const ImageRgb& image = window_.frame().image();
+    const DisplayFrame& image = window_.frame();
     char line[256];
     std::snprintf(line, sizeof line,
                   "realtime  %.1f frames/s at %dx%d, frame time median %.1f ms, p95 %.1f ms, %d "
                   "frames at full resolution\n",
-                  fps, image.width, image.height, 1e3 * percentile(frameTimes, 0.5),
+                  fps, image.width(), image.height(), 1e3 * percentile(frameTimes, 0.5),
                   1e3 * percentile(frameTimes, 0.95), full);
     out_ << "benchmark  " << moves_ << " camera moves, one every " << intervalMs_ << " ms, "
          << std::chrono::duration<double>(lastMove_ - firstMove_).count() << " s\n"
@@ -195,47 +194,27 @@ void printSummary(const LiveStats& s, std::ostream& out) {
 
 }  // namespace
 
-int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& out,
+int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& out,
               std::ostream& err) {
-  const SceneDescription& description = session.description();
   if (!haveDisplay()) {
     err << "prism: error: no display: set DISPLAY (or run under xvfb-run), or set "
            "QT_QPA_PLATFORM=offscreen to render without a window\n";
     return 1;
+  }
+  if (!options.savePath.empty()) {
+    std::string why;
+    if (!isWritableImagePath(options.savePath, &why)) {
+      err << "prism: error: " << why << "\n";
+      return 1;
+    }
   }
   static int argc = 1;
   static char name[] = "prism";
   static char* argv[] = {name, nullptr};
   QApplication app(argc, argv);
 
-  LiveOptions live;
-  live.distribution = options.render.distribution;
-  live.previewScale = options.previewScale;
-  live.maxPasses = options.maxPasses;
-  live.frameTimeSeconds = options.frameTimeMilliseconds / 1000.0;
-  live.pipeline = options.pipeline;
-  live.memoryLimit = memoryLimitOrPhysical(options.render.memoryLimit);
-  LiveRenderer renderer(session.dispatcher(), live);
-  RenderBridge bridge;
-  MainWindow window(
-      description, QFileInfo(QString::fromStdString(options.render.scenePath)).fileName(),
-      [&renderer](const ViewSettings& v) { renderer.setView(v); },
-      [&renderer](bool blur) { return renderer.causticMaps(blur); });
-  if (const std::optional<std::string>& why = renderer.causticMapsRefusal()) {
-    window.refuseCausticMaps(QString::fromStdString(*why));
-  }
-  // Queued: the bridge emits on the coordinator thread, the window lives on this one.
-  QObject::connect(&bridge, &RenderBridge::passStartedSignal, &window, &MainWindow::onPassStarted,
-                   Qt::QueuedConnection);
-  QObject::connect(&bridge, &RenderBridge::tileAssignedSignal, &window, &MainWindow::onTileAssigned,
-                   Qt::QueuedConnection);
-  QObject::connect(&bridge, &RenderBridge::tileFinishedSignal, &window, &MainWindow::onTileFinished,
-                   Qt::QueuedConnection);
-  QObject::connect(&bridge, &RenderBridge::passFinishedSignal, &window, &MainWindow::onPassFinished,
-                   Qt::QueuedConnection);
-  QObject::connect(&bridge, &RenderBridge::statsUpdatedSignal, &window, &MainWindow::onStats,
-                   Qt::QueuedConnection);
-
+  MainWindow window(source);
+  if (options.exitAfterPasses > 0) window.limitPasses(options.exitAfterPasses);
   if (!options.speedupCsv.empty()) {
     const QString error = window.loadSpeedupCsv(QString::fromStdString(options.speedupCsv));
     if (!error.isEmpty()) {
@@ -243,14 +222,22 @@ int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& 
       return 1;
     }
   }
-  // Kept at the moment the viewer decides to quit: tiles of the next pass may still be
-  // delivered before the event loop ends.
-  std::optional<ImageRgb> finalImage;
+  // Saved at the moment the viewer decides to quit (the view renders no more passes).
+  bool saved = false;
+  std::string saveError;
+  const auto save = [&] {
+    if (saved || options.savePath.empty()) return;
+    saved = true;
+    try {
+      window.saveImage(QString::fromStdString(options.savePath));
+    } catch (const std::exception& e) {
+      saveError = e.what();
+    }
+  };
   if (options.exitAfterPasses > 0) {
     QObject::connect(&window, &MainWindow::fullPassDone, &window, [&](int passes) {
-      if (finalImage || window.viewId() != 1 || passes < options.exitAfterPasses) return;
-      finalImage = window.frame().image();
-      renderer.stop();
+      if (saved || passes < options.exitAfterPasses) return;
+      save();
       window.close();
     });
   }
@@ -276,11 +263,24 @@ int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& 
     benchmark = std::make_unique<MoveBenchmark>(window, options.benchmarkMoves,
                                                 options.benchmarkMoveMilliseconds, out);
   }
+  // A script's window (it quits by itself) leaves when the source ends; a person's stays, and
+  // says why.
+  const bool scripted =
+      options.exitAfterPasses > 0 || options.benchmarkMoves > 0 || !options.screenshotPath.empty();
+  std::string endedBecause;
 
   std::exception_ptr failure;
   std::thread coordinator([&] {
     try {
-      renderer.run(bridge);
+      // One queued take at a time: the source wakes once per take.
+      endedBecause = source.run(
+          [&window] { QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection); });
+      if (!endedBecause.empty()) {
+        const QString why = QString::fromStdString(endedBecause);
+        QMetaObject::invokeMethod(&window, [&window, why] { window.sourceEnded(why); },
+                                  Qt::QueuedConnection);
+        if (scripted) QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
+      }
     } catch (...) {
       failure = std::current_exception();
       QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
@@ -290,15 +290,24 @@ int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& 
   window.show();
   window.startRendering();
   app.exec();
-  renderer.stop();
+  save();  // --save without --exit-after-passes: what was on show when the window closed
+  source.stop();
   coordinator.join();
-  if (failure) std::rethrow_exception(failure);  // runView reports it
-  if (!options.savePath.empty()) {
-    writeImage(finalImage ? *finalImage : window.frame().image(), options.savePath,
-               description.render.exposure);
-    out << "written    " << options.savePath << "\n";
+  if (failure) std::rethrow_exception(failure);  // the command reports it
+  if (!saveError.empty()) {
+    err << "prism: error: " << saveError << "\n";
+    return 1;
   }
-  printSummary(renderer.stats(), out);
+  if (!options.savePath.empty()) {
+    out << "written    " << options.savePath << "\n"
+        << "view       " << cameraOptionsText(window.viewSettings().camera)
+        << " (prism render options for this view)\n";
+  }
+  printSummary(source.stats(), out);
+  if (!endedBecause.empty()) {
+    err << "prism: error: " << endedBecause << "\n";
+    return 1;
+  }
   return 0;
 }
 

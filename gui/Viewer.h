@@ -1,5 +1,7 @@
-// `prism view` on rank 0: the Qt application, the window, and LiveRenderer on its coordinator
-// thread (the one thread that calls MPI). Matches ViewerRunner (master/commands/ViewCommand.h).
+// The viewer window on a live source (`prism view` on rank 0: LiveRenderer on the coordinator
+// thread, the one that calls MPI; `prism connect`: a job's over a connection): the Qt
+// application, the window and the source's run() on a thread of its own. Matches ViewerRunner
+// (master/commands/ViewCommand.h).
 #pragma once
 
 #include <iosfwd>
@@ -8,7 +10,7 @@
 
 namespace prism {
 
-int runViewer(MasterSession& session, const ViewOptions& options, std::ostream& out,
+int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& out,
               std::ostream& err);
 
 }  // namespace prism

@@ -14,11 +14,12 @@
 namespace prism {
 
 // What the module exports. kViewerModuleVersion guards against a module of another build.
-inline constexpr int kViewerModuleVersion = 2;  // 2: runViewer takes the MasterSession
+// 2: runViewer takes the MasterSession. 3: it takes a LiveSource and the ViewerOptions.
+inline constexpr int kViewerModuleVersion = 3;
 
 struct ViewerModuleApi {
   int version;
-  int (*runViewer)(MasterSession& session, const ViewOptions& options, std::ostream& out,
+  int (*runViewer)(LiveSource& source, const ViewerOptions& options, std::ostream& out,
                    std::ostream& err);
   void (*writeChartImage)(const Chart& chart, const std::string& pngPath);
 };

@@ -32,8 +32,8 @@ const ViewerModuleApi& viewerModule() {
 }  // namespace
 
 ViewerRunner lazyViewerRunner() {
-  return [](MasterSession& session, const ViewOptions& options, std::ostream& out,
-            std::ostream& err) { return viewerModule().runViewer(session, options, out, err); };
+  return [](LiveSource& source, const ViewerOptions& options, std::ostream& out,
+            std::ostream& err) { return viewerModule().runViewer(source, options, out, err); };
 }
 
 ChartWriter lazyChartWriter() {

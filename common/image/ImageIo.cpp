@@ -111,8 +111,11 @@ bool isWritableImagePath(const std::string& path, std::string* why) {
   return false;
 }
 
-void writeImage(const ImageRgb& image, const std::string& path, float exposure,
-                const ImageMetadata& metadata) {
+namespace {
+
+// Writes through a temporary file beside path (write(temporary) fills it), renamed on success.
+template <class Write>
+void writeThroughTemporary(const std::string& path, Write write) {
   const fs::path target(path);
   // Keep the extension on the temporary name: OpenImageIO picks the format from it.
   std::string name = ".";  // appended piecewise: GCC 12 warns (-Wrestrict) about "." + a + b
@@ -121,19 +124,7 @@ void writeImage(const ImageRgb& image, const std::string& path, float exposure,
   name += target.extension().string();
   const fs::path temporary = target.parent_path() / name;
   try {
-    switch (formatOf(path)) {
-      case Format::kPng: {
-        const std::vector<uint8_t> bytes = displayBytes(image, exposure);
-        writePng(temporary.string(), image.width, image.height, bytes.data(), metadata);
-        break;
-      }
-      case Format::kExr:
-        writeExr(temporary.string(), image, metadata);
-        break;
-      case Format::kOther:
-        writeWithOpenImageIo(image, path, temporary.string(), exposure, metadata);
-        break;
-    }
+    write(temporary.string());
   } catch (const std::exception& e) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
@@ -148,6 +139,41 @@ void writeImage(const ImageRgb& image, const std::string& path, float exposure,
     fs::remove(temporary, error);
     throw std::runtime_error("cannot write '" + path + "': " + error.message());
   }
+}
+
+}  // namespace
+
+void writeImage(const ImageRgb& image, const std::string& path, float exposure,
+                const ImageMetadata& metadata) {
+  writeThroughTemporary(path, [&](const std::string& temporary) {
+    switch (formatOf(path)) {
+      case Format::kPng: {
+        const std::vector<uint8_t> bytes = displayBytes(image, exposure);
+        writePng(temporary, image.width, image.height, bytes.data(), metadata);
+        break;
+      }
+      case Format::kExr:
+        writeExr(temporary, image, metadata);
+        break;
+      case Format::kOther:
+        writeWithOpenImageIo(image, path, temporary, exposure, metadata);
+        break;
+    }
+  });
+}
+
+void writeDisplayPng(const std::string& path, int width, int height,
+                     const std::vector<uint8_t>& rgb) {
+  if (formatOf(path) != Format::kPng) {
+    throw std::runtime_error("cannot write '" + path + "': display bytes are written as PNG only");
+  }
+  if (rgb.size() != static_cast<size_t>(width) * height * 3) {
+    throw std::runtime_error("cannot write '" + path + "': the bytes are not " +
+                             std::to_string(width) + "x" + std::to_string(height) + " RGB");
+  }
+  writeThroughTemporary(path, [&](const std::string& temporary) {
+    writePng(temporary, width, height, rgb.data(), {});
+  });
 }
 
 std::string readImageText(const std::string& path, const std::string& name) {

@@ -6,6 +6,7 @@
 
 #include <string>
 #include <utility>
+#include <cstdint>
 #include <vector>
 
 #include "image/ImageRgb.h"
@@ -19,6 +20,11 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 // failed or interrupted write never leaves a half-written file. Throws std::runtime_error.
 void writeImage(const ImageRgb& image, const std::string& path, float exposure = 1.0f,
                 const ImageMetadata& metadata = {});
+
+// Writes display bytes (R, G, B per pixel, sRGB-encoded, rows from the top) as a PNG, the same
+// way: what a viewer shows, saved as it shows it. Throws std::runtime_error.
+void writeDisplayPng(const std::string& path, int width, int height,
+                     const std::vector<uint8_t>& rgb);
 
 // A text attribute of an image file written with metadata; "" when the file has none of that
 // name or cannot be read.

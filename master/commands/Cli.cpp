@@ -1,13 +1,14 @@
 #include "master/commands/Cli.h"
 
 #include <CLI/CLI.hpp>
-#include <cctype>
 #include <iostream>
+#include <tuple>
 #include <memory>
 
 #include "master/commands/RenderCommand.h"
 #include "master/commands/SpeedupCommand.h"
 #include "master/commands/SweepCommand.h"
+#include "master/commands/ViewerCli.h"
 #include "master/runtime/ScheduleNames.h"
 #include "scene/SettingLimits.h"
 #include "scene/SettingNames.h"
@@ -80,6 +81,16 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
   render->add_option("--seed", o.seed, "Seed of the per-pixel random streams");
   render->add_option("--exposure", o.exposure, "Radiance multiplier before PNG tone mapping")
       ->check(CLI::PositiveNumber);
+  for (auto [flags, target, help] :
+       {std::tuple{"--camera-position", &o.cameraPosition, "Camera position X,Y,Z (overrides the scene)"},
+        std::tuple{"--look-at", &o.lookAt,
+                   "Camera look-at point X,Y,Z (overrides the scene; the viewer prints both "
+                   "for the view it saves)"}}) {
+    render
+        ->add_option_function<std::string>(
+            flags, [target](const std::string& text) { *target = parseVec3(text); }, help)
+        ->option_text("X,Y,Z");
+  }
   addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
            "Ray/triangle intersector: moller_trumbore (default), plane_inside or watertight");
   render
@@ -211,7 +222,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
 void addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* view = app.add_subcommand(
       "view",
-      "Render a scene live in a Qt window (rank 0 only; other ranks render tiles).\n"
+      "Render a scene live in a Qt window (rank 0 only; other ranks render tiles), or serve\n"
+      "it (--serve) to `prism connect` on another machine.\n"
       "Keys: W/A/S/D move, Q/E down/up, arrows rotate, drag orbits, wheel zooms, r resets,\n"
       "N normals, n image, R/P/C caustic-map casters/receivers/irradiance, b caustic-map\n"
       "blur, q quits, h or F1 shows every key. See docs/viewer.md.");
@@ -234,39 +246,8 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
                    "Full-resolution passes of --spp samples averaged while the camera is still "
                    "(default 64)")
       ->check(CLI::Range(1, 1 << 20));
-  view->add_option("--speedup-csv", o.speedupCsv,
-                   "Speedup table (columns p,seconds,speedup,efficiency) to chart at start")
-      ->check(CLI::ExistingFile);
-  view->add_option("--exit-after-passes", o.exitAfterPasses,
-                   "Quit once this many full passes of the starting view are done (scripts)")
-      ->check(CLI::Range(1, 1 << 20));
-  view->add_option("--save", o.savePath,
-                   "Save the image here (.png or .exr) when the viewer quits");
-  view->add_option("--screenshot", o.screenshotPath,
-                   "Save a picture of the whole window (.png) after --screenshot-after, then quit");
-  view->add_option("--keys", o.keys,
-                   "Type these keys into the window at start, in order, as if pressed (scripts "
-                   "and screenshots), e.g. --keys C for the caustic map or --keys bC")
-      ->check([](const std::string& keys) {
-        for (const char c : keys) {
-          if (!std::isalpha(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '=') {
-            return std::string("only letters and + - = can be typed, not '") + c + "'";
-          }
-        }
-        return std::string();
-      });
-  view->add_option("--screenshot-after", o.screenshotSeconds,
-                   "Seconds after start for --screenshot (default 2)")
-      ->check(CLI::Range(0.0, 3600.0));
-  view->add_option("--benchmark-moves", o.benchmarkMoves,
-                   "Once the first full image is shown, orbit the camera N times, one move every "
-                   "--benchmark-interval ms; print the frame rate and frame times while moving "
-                   "(a 'realtime' line for scripts) and the time to full resolution, then quit")
-      ->check(CLI::Range(1, 100000));
-  view->add_option("--benchmark-interval", o.benchmarkMoveMilliseconds,
-                   "Milliseconds between --benchmark-moves moves (default 10, a mouse drag's "
-                   "event rate)")
-      ->check(CLI::Range(1.0, 10000.0));
+  addViewerWindowOptions(view, o.window);
+  addServeOptions(view, o.serve);
 }
 
 void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
@@ -429,8 +410,10 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
   auto viewOptions = std::make_shared<ViewOptions>();
   auto speedupOptions = std::make_shared<SpeedupOptions>();
   auto sweepOptions = std::make_shared<SweepOptions>();
+  auto connectOptions = std::make_shared<ConnectCommandOptions>();
   addRenderCommand(app, *renderOptions);
   addViewCommand(app, *viewOptions);
+  addConnectCommand(app, *connectOptions);
   addSpeedupCommand(app, *speedupOptions);
   addSweepCommand(app, *sweepOptions);
 
@@ -464,6 +447,10 @@ ParsedCommand parseCommandLine(int argc, char** argv, bool quiet, const ViewerRu
     parsed.memoryLimit = viewOptions->render.memoryLimit;
     parsed.runMaster = [viewOptions, viewer](Transport* session) {
       return runView(*viewOptions, std::cout, std::cerr, session, viewer);
+    };
+  } else if (app.get_subcommand("connect")->parsed()) {
+    parsed.runMaster = [connectOptions, viewer](Transport* session) {
+      return runConnect(*connectOptions, std::cout, std::cerr, session, viewer);
     };
   } else if (app.get_subcommand("speedup")->parsed()) {
     parsed.distribution = speedupOptions->render.distribution;

@@ -22,6 +22,7 @@ SceneDescription loadSceneWithOverrides(const RenderOptions& options) {
   SceneDescription description = loadScene(options.scenePath, limit);
   applyOverrides(options, description.render);
   applyOverrides(options, description.caustics);
+  applyOverrides(options, description.camera);
   validate(description);
   checkRenderFits(description.render, limit);
   checkTilesFit(description.render, options.distribution.tileSize, limit);

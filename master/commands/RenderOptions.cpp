@@ -1,6 +1,45 @@
 #include "master/commands/RenderOptions.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
 namespace prism {
+
+void applyOverrides(const RenderOptions& o, CameraDesc& camera) {
+  if (o.cameraPosition) camera.position = *o.cameraPosition;
+  if (o.lookAt) camera.lookAt = *o.lookAt;
+  if ((o.cameraPosition || o.lookAt) && camera.position == camera.lookAt) {
+    throw std::invalid_argument(
+        "the camera's position and look-at point are the same point, so there is no view "
+        "direction (--camera-position, --look-at)");
+  }
+}
+
+Vec3 parseVec3(const std::string& text) {
+  float v[3];
+  const char* at = text.c_str();
+  for (int i = 0; i < 3; ++i) {
+    char* end = nullptr;
+    v[i] = std::strtof(at, &end);
+    const char expected = i < 2 ? ',' : '\0';
+    if (end == at || *end != expected || !std::isfinite(v[i])) {
+      throw std::invalid_argument("'" + text + "' is not three numbers X,Y,Z");
+    }
+    at = end + 1;
+  }
+  return {v[0], v[1], v[2]};
+}
+
+std::string cameraOptionsText(const CameraDesc& camera) {
+  char text[160];
+  const Vec3& p = camera.position;
+  const Vec3& l = camera.lookAt;
+  std::snprintf(text, sizeof text, "--camera-position %.9g,%.9g,%.9g --look-at %.9g,%.9g,%.9g",
+                p.x, p.y, p.z, l.x, l.y, l.z);
+  return text;
+}
 
 void applyOverrides(const RenderOptions& o, RenderSettings& s) {
   if (o.width) s.width = *o.width;

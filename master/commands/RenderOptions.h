@@ -21,6 +21,8 @@ struct RenderOptions {
   std::optional<uint64_t> seed;
   std::optional<float> exposure;
   std::optional<TriangleTest> triangleTest;
+  // The camera's position and look-at point (what the viewer prints for the view it saved).
+  std::optional<Vec3> cameraPosition, lookAt;
   // Caustics: override the scene's `caustics` section.
   std::optional<CausticMethod> causticMethod;
   std::optional<uint64_t> photons;
@@ -46,5 +48,13 @@ struct RenderOptions {
 // Applies the overrides the user gave to the scene's own settings.
 void applyOverrides(const RenderOptions& options, RenderSettings& settings);
 void applyOverrides(const RenderOptions& options, CausticSettings& caustics);
+void applyOverrides(const RenderOptions& options, CameraDesc& camera);
+
+// "X,Y,Z" as three floats (each as printed with 9 significant digits comes back exactly).
+// Throws std::invalid_argument.
+Vec3 parseVec3(const std::string& text);
+// The options that render this camera's view: "--camera-position X,Y,Z --look-at X,Y,Z", each
+// number printed so that it reads back as the same float.
+std::string cameraOptionsText(const CameraDesc& camera);
 
 }  // namespace prism

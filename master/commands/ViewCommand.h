@@ -9,6 +9,8 @@
 #include <string>
 
 #include "master/commands/RenderCommand.h"
+#include "master/commands/ViewerOptions.h"
+#include "master/remote/ServeOptions.h"
 #include "scene/Scene.h"
 
 namespace prism {
@@ -19,23 +21,16 @@ struct ViewOptions {
   int maxPasses = 64;    // full-resolution passes before the view stops refining
   double frameTimeMilliseconds = 1000.0 / 30;  // target for frames while moving; 0: none
   bool pipeline = true;    // queue the next frame before the current one's last tiles return
-  std::string speedupCsv;  // loaded into the statistics panel at start
-  // For scripts, tests and benchmarks (the window still opens):
-  int exitAfterPasses = 0;         // quit when this many full passes of the first view are done
-  std::string savePath;            // save the image here when quitting
-  std::string screenshotPath;      // grab the whole window here ...
-  double screenshotSeconds = 2.0;  // ... this long after start, then quit
-  int benchmarkMoves = 0;          // move the camera this often, print frame rates, quit
-  double benchmarkMoveMilliseconds = 10.0;  // one move per this interval (a mouse drag's rate)
-  std::string keys;  // typed into the window at start, in order (letters, + - =)
+  ViewerOptions window;  // what the window does besides showing
+  ServeOptions serve;    // --serve: no window here; a viewer connects
 };
 
 class Transport;
-class MasterSession;
+class LiveSource;
 
-// Runs the viewer on rank 0 over the run's session (its scene, and the dispatcher it renders
-// with); returns the process exit code.
-using ViewerRunner = std::function<int(MasterSession& session, const ViewOptions& options,
+// Runs the viewer window on a live source (in this process, or a job's over a connection);
+// returns the process exit code.
+using ViewerRunner = std::function<int(LiveSource& source, const ViewerOptions& options,
                                        std::ostream& out, std::ostream& err)>;
 
 // Rank 0 loads and broadcasts the scene and runs `viewer`; other ranks are slaves exactly as

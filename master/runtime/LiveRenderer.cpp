@@ -134,6 +134,7 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
   PassInfo info;
   info.frame = plan.frame;
   info.viewId = plan.viewId;
+  info.viewTag = plan.view.tag;
   info.pass = index;
   info.scale = plan.scale;
   info.firstOfView = plan.firstOfView;
@@ -166,7 +167,9 @@ PassInfo LiveRenderer::beginPassLocked(const PassPlan& plan,
 }
 
 bool LiveRenderer::mayStartLocked() const {
-  const bool refine = lastIndex_ >= 0 && lastIndex_ < options_.maxPasses;
+  const int maxPasses =
+      view_.maxPasses > 0 ? std::min(view_.maxPasses, options_.maxPasses) : options_.maxPasses;
+  const bool refine = lastIndex_ >= 0 && lastIndex_ < maxPasses;
   if (!pendingView_ && !refine) return false;  // nothing to render
   size_t open = 0;
   const Pass* newest = nullptr;

@@ -103,11 +103,17 @@ struct ViewSettings {
   CausticMethod caustics = CausticMethod::None;  // photon map: one photon pass per full pass
   uint64_t photonsPerPass = 0;                   // photon budget; 0: the scene's
   bool causticMapBlur = true;                    // caustic map: the scene's blur, or none
+  // The viewer's own number for the request, carried to the passes that render it
+  // (PassInfo::viewTag): a viewer over a connection knows its views by it.
+  uint64_t tag = 0;
+  // Full-resolution passes of this view at most (≤ LiveOptions::maxPasses); 0: the renderer's.
+  int maxPasses = 0;
 };
 
 struct PassInfo {
   uint32_t frame = 0;   // wire frame id, unique per pass
-  uint64_t viewId = 0;  // increases with every setView()
+  uint64_t viewId = 0;   // increases with every setView()
+  uint64_t viewTag = 0;  // the ViewSettings::tag of the view
   int pass = 0;         // 0: a frame while moving that is not averaged (reduced, or 1 spp)
   FrameScale scale;     // the pass's share of each side of the display (full resolution: 1)
   // The first frame of its view: shown when complete, never mixed with the view before.

@@ -258,6 +258,7 @@ int layerOf(const std::string& folder) {
       {"gui", 15},
       {"master/commands", 14},
       {"master/analysis", 13},
+      {"master/remote", 13},
       {"master/runtime", 12},
       {"slave", 12},
       {"common/wire", 10},

@@ -1,4 +1,4 @@
-#include "gui/FrameAccumulator.h"
+#include "master/runtime/FrameAccumulator.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,291 @@
+#include "master/remote/ViewServer.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <exception>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "master/remote/AccessToken.h"
+#include "master/remote/ConnectionFile.h"
+#include "util/InterruptSignal.h"
+
+namespace prism {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kMaxPending = 16;             // connections not yet past their Hello
+constexpr double kHelloSeconds = 5.0;          // for a new connection to say Hello
+constexpr view::Limits kHelloLimits{4096, 4096};  // a Hello is a token and a name
+constexpr int kPollMilliseconds = 100;         // how often interrupts and deadlines are checked
+constexpr size_t kLoggedRefusals = 5;          // refusals named in the log; the rest counted
+
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// The source's wake() from the coordinator thread: one byte into a pipe the poll loop watches.
+class WakePipe {
+ public:
+  WakePipe() {
+    if (::pipe2(fds_, O_NONBLOCK | O_CLOEXEC) != 0) {
+      throw std::runtime_error("cannot make the server's wake-up pipe");
+    }
+  }
+  ~WakePipe() {
+    ::close(fds_[0]);
+    ::close(fds_[1]);
+  }
+  void wake() {
+    const char byte = 1;
+    [[maybe_unused]] const ssize_t n = ::write(fds_[1], &byte, 1);  // full: a wake is pending
+  }
+  // Empties the pipe; returns whether anything was in it.
+  bool drain() {
+    char buffer[64];
+    bool woken = false;
+    while (::read(fds_[0], buffer, sizeof buffer) > 0) woken = true;
+    return woken;
+  }
+  int fd() const { return fds_[0]; }
+
+ private:
+  int fds_[2];
+};
+
+// Answers a connection that is being dropped, without waiting for it.
+void tryToSay(const Socket& socket, const std::vector<uint8_t>& message) {
+  try {
+    sendAll(socket, message, 0.2);
+  } catch (const std::exception&) {
+  }
+}
+
+}  // namespace
+
+struct ViewServer::Pending {
+  Socket socket;
+  MessageReader reader{kHelloLimits};
+  Clock::time_point since = Clock::now();
+};
+
+struct ViewServer::Client {
+  Socket socket;
+  MessageReader reader{view::kClientToServer};
+  OutBuffer out;
+  Clock::time_point lastHeard = Clock::now();
+  Clock::time_point lastProgress = Clock::now();  // of writing, while out was not empty
+  bool wantsWhole = true;                          // the next news has every pixel
+  std::string name;
+};
+
+ViewServer::ViewServer(LiveSource& source, const ServeOptions& options, std::ostream& log)
+    : source_(source), options_(options), log_(log) {
+  const Endpoint asked = parseEndpoint(options.address);
+  if (!isLoopbackHost(asked.host) && !options.allowNetwork) {
+    throw std::runtime_error(
+        "--serve " + options.address +
+        " would listen beyond this machine: add --allow-network to mean it (anyone who reaches "
+        "the port may try the token), or serve on 127.0.0.1 and reach it through `ssh -L`");
+  }
+  listener_ = listenTcp(asked, &endpoint_);
+  token_ = newAccessToken();
+  if (!options.connectionFile.empty()) {
+    writeConnectionFile(options.connectionFile, {endpoint_, token_, view::kVersion});
+  }
+}
+
+std::string ViewServer::run() {
+  WakePipe wakePipe;
+  std::atomic<bool> finished{false};
+  std::exception_ptr failure;
+  std::string endedBy;
+  std::thread coordinator([&] {
+    try {
+      endedBy = source_.run([&wakePipe] { wakePipe.wake(); });
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    finished = true;
+    wakePipe.wake();
+  });
+  ViewSettings current = source_.start().view;
+  source_.setView(current);  // renders without a viewer: a viewer that comes finds the passes
+
+  log_ << "serving    " << endpoint_.text()
+       << (options_.connectionFile.empty() ? "" : ", connection file " + options_.connectionFile)
+       << "\n";
+  log_.flush();
+
+  std::vector<std::unique_ptr<Pending>> pending;
+  std::unique_ptr<Client> client;
+  bool newsWaiting = false;
+  std::string reason;
+  const auto refuse = [&](const Socket& socket, const std::string& why) {
+    tryToSay(socket, view::encode(view::RefusedMessage{why}));
+    if (refused_++ < kLoggedRefusals) log_ << "refused    a connection: " << why << "\n";
+  };
+  const auto dropClient = [&](const std::string& why) {
+    log_ << "viewer     " << client->name << " left: " << why << "\n";
+    log_.flush();
+    client.reset();
+    if (options_.exitWithClient) reason = "the viewer left (--exit-with-client)";
+  };
+
+  while (reason.empty()) {
+    std::vector<pollfd> fds{{listener_.fd(), POLLIN, 0}, {wakePipe.fd(), POLLIN, 0}};
+    for (const auto& p : pending) fds.push_back({p->socket.fd(), POLLIN, 0});
+    if (client) {
+      const bool wantsToWrite = !client->out.empty() || newsWaiting || client->wantsWhole;
+      fds.push_back({client->socket.fd(), static_cast<short>(POLLIN | (wantsToWrite ? POLLOUT : 0)), 0});
+    }
+    ::poll(fds.data(), fds.size(), kPollMilliseconds);
+
+    if (interruptRequested()) {
+      reason = std::string("the job was interrupted (") + interruptSignalName() + ")";
+      break;
+    }
+    if (stopRequested_) {
+      reason = "the job was stopped";
+      break;
+    }
+    if (wakePipe.drain()) newsWaiting = true;
+    if (finished) {
+      reason = failure ? "the job failed" : endedBy.empty() ? "the job ended" : endedBy;
+      break;
+    }
+
+    // New connections wait for their Hello, a bounded number at a time.
+    while (Socket s = acceptConnection(listener_)) {
+      if (pending.size() >= kMaxPending) {
+        refuse(s, "too many connections at once");
+        continue;
+      }
+      pending.push_back(std::make_unique<Pending>());
+      pending.back()->socket = std::move(s);
+    }
+    for (size_t i = 0; i < pending.size();) {
+      Pending& p = *pending[i];
+      bool drop = false;
+      std::vector<view::Message> messages;
+      try {
+        const bool open = p.reader.readFrom(p.socket, messages);
+        if (messages.empty()) {
+          if (!open) {
+            drop = true;
+            ++refused_;
+          } else if (since(p.since) > kHelloSeconds) {
+            refuse(p.socket, "no Hello within " + std::to_string(kHelloSeconds) + " s");
+            drop = true;
+          }
+        } else {
+          drop = true;
+          const view::Message& first = messages.front();
+          if (first.type != view::MessageType::Hello) {
+            refuse(p.socket, "the first message must be Hello");
+          } else if (const view::HelloMessage hello = view::decode<view::HelloMessage>(first);
+                     !tokenMatches(hello.token, token_)) {
+            refuse(p.socket, "wrong token");
+          } else if (client) {
+            refuse(p.socket, "another viewer (" + client->name +
+                                 ") is connected to this job; it serves one at a time");
+          } else {
+            client = std::make_unique<Client>();
+            client->socket = std::move(p.socket);
+            client->name = hello.client.empty() ? "a viewer" : hello.client;
+            ViewerStart start = source_.start();
+            start.view = current;
+            start.resume = true;
+            client->out.put(view::encode(view::WelcomeMessage{start}));
+            log_ << "viewer     " << client->name << " connected\n";
+            log_.flush();
+          }
+        }
+      } catch (const std::exception& e) {
+        refuse(p.socket, e.what());  // garbage, another version, an oversized length
+        drop = true;
+      }
+      if (drop) {
+        pending.erase(pending.begin() + static_cast<std::ptrdiff_t>(i));
+      } else {
+        ++i;
+      }
+    }
+
+    if (!client) continue;
+    try {
+      std::vector<view::Message> messages;
+      if (!client->reader.readFrom(client->socket, messages)) {
+        dropClient("it closed the connection");
+        continue;
+      }
+      bool bye = false;
+      for (const view::Message& m : messages) {
+        client->lastHeard = Clock::now();
+        switch (m.type) {
+          case view::MessageType::SetView:
+            current = view::decode<ViewSettings>(m);
+            source_.setView(current);
+            break;
+          case view::MessageType::FullImageRequest: {
+            const auto request = view::decode<view::FullImageRequestMessage>(m);
+            client->out.put(view::encode(view::FullImageMessage{request.request, source_.fullImage()}));
+            break;
+          }
+          case view::MessageType::Ping:
+            break;
+          case view::MessageType::Bye:
+            bye = true;
+            break;
+          default:
+            throw wire::WireError(std::string("a viewer does not send ") +
+                                  view::messageTypeName(m.type));
+        }
+      }
+      if (bye) {
+        dropClient("it said goodbye");
+        continue;
+      }
+      if (client->out.empty() && (newsWaiting || client->wantsWhole)) {
+        // The newest news, merged since the last; taken only when the last has left.
+        client->out.put(view::encode(source_.take(client->wantsWhole)));
+        client->wantsWhole = false;
+        newsWaiting = false;
+        client->lastProgress = Clock::now();
+      }
+      if (!client->out.empty()) {
+        if (client->out.writeTo(client->socket) > 0) client->lastProgress = Clock::now();
+        if (!client->out.empty() && since(client->lastProgress) > options_.clientTimeoutSeconds) {
+          dropClient("it stopped reading");
+          continue;
+        }
+      }
+      if (since(client->lastHeard) > options_.clientTimeoutSeconds) {
+        dropClient("silent for " + std::to_string(options_.clientTimeoutSeconds) + " s");
+      }
+    } catch (const std::exception& e) {
+      dropClient(e.what());
+    }
+  }
+
+  if (client) tryToSay(client->socket, view::encode(view::JobEndedMessage{reason}));
+  source_.stop();
+  coordinator.join();
+  if (!options_.connectionFile.empty()) ::unlink(options_.connectionFile.c_str());
+  if (refused_ > kLoggedRefusals) {
+    log_ << "refused    " << refused_ << " connections in all\n";
+  }
+  log_ << "served     until " << reason << "\n";
+  log_.flush();
+  if (failure) std::rethrow_exception(failure);
+  return reason;
+}
+
+}  // namespace prism

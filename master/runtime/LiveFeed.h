@@ -1,0 +1,62 @@
+// The live renderer's news for one viewer: a LiveListener that accumulates the passes' tiles
+// (FrameAccumulator, full precision), and at take() hands over what changed as display bytes on
+// a NewsBoard, merged since the last take. The coordinator never waits for the viewer: it only
+// records, and a viewer that takes rarely gets the newest picture. Thread-safe: the coordinator
+// feeds it while the viewer's thread (the window's, or a connection's) takes.
+#pragma once
+
+#include <functional>
+#include <mutex>
+
+#include "image/ImageRgb.h"
+#include "image/ToneMap.h"
+#include "master/runtime/FrameAccumulator.h"
+#include "master/runtime/LiveRenderer.h"
+#include "master/runtime/NewsBoard.h"
+
+namespace prism {
+
+// What a viewer needs of a PassInfo.
+DisplayPass displayPass(const PassInfo& pass);
+
+class LiveFeed final : public LiveListener {
+ public:
+  LiveFeed(int width, int height, float exposure);
+
+  // Called when news arrives and the last was taken (so once per take at most), on the
+  // coordinator thread: it should only wake whoever takes. Set it before the renderer runs.
+  void setWake(std::function<void()> wake) { wake_ = std::move(wake); }
+
+  // Everything since the last take(), merged; `whole`: with every pixel (a viewer that just
+  // came, or came back).
+  DisplayNews take(bool whole = false);
+  // The image on show at full precision (linear radiance, what an EXR save writes).
+  ImageRgb image();
+
+  // LiveListener: the coordinator's calls.
+  void passStarted(const PassInfo& pass) override;
+  void tileAssigned(uint32_t frame, uint32_t tile, int rank) override;
+  void tileFinished(uint32_t frame, std::shared_ptr<const TileResult> tile, int rank) override;
+  void passFinished(uint32_t frame, double seconds) override;
+  void statsUpdated(const LiveStats& stats) override;
+
+ private:
+  // Something changed: returns whether to wake the viewer (the first news since its take).
+  bool noteLocked();
+  void wakeIf(bool wake) {
+    if (wake && wake_) wake_();
+  }
+  // Encodes the accumulator's changed rectangle onto the board.
+  void encodeDirtyLocked();
+
+  std::mutex mutex_;
+  FrameAccumulator frame_;
+  DisplayEncoder encoder_;
+  NewsBoard board_;
+  int fullPassesDone_ = 0;
+  bool started_ = false;
+  bool waiting_ = false;  // news since the last take
+  std::function<void()> wake_;
+};
+
+}  // namespace prism
