@@ -1,5 +1,5 @@
-// The window against the real renderer: LiveRenderer on its own coordinator thread, tiles
-// through RenderBridge's queued signals, as `prism view` runs it.
+// The window against the real renderer: LocalLiveSource on its own coordinator thread, news
+// taken on the source's wake-ups, as `prism view` runs it.
 #include "gui/MainWindow.h"
 
 #include <gtest/gtest.h>
@@ -21,11 +21,12 @@
 #include <thread>
 
 #include "gui/FrameView.h"
-#include "gui/RenderBridge.h"
+#include "gui/ScriptedSource.h"
 #include "gui/StatsPanel.h"
 #include "image/ToneMap.h"
 #include "master/runtime/CausticPasses.h"
 #include "master/runtime/FrameRenderer.h"
+#include "master/runtime/LocalLiveSource.h"
 #include "master/runtime/ResourceCheck.h"
 #include "parse/SceneLoader.h"
 
@@ -49,34 +50,24 @@ class LiveWindow {
              const MemoryLimit& memoryLimit = {})
       : description_(load(scenePath, width, height, spp)),
         scene_(description_),
-        renderer_(scene_, options(maxPasses, memoryLimit)),
-        window_(
-            description_, "test", [this](const ViewSettings& v) { renderer_.setView(v); },
-            [this](bool blur) { return renderer_.causticMaps(blur); }) {
-    QObject::connect(&bridge_, &RenderBridge::passStartedSignal, &window_,
-                     &MainWindow::onPassStarted, Qt::QueuedConnection);
-    QObject::connect(&bridge_, &RenderBridge::tileAssignedSignal, &window_,
-                     &MainWindow::onTileAssigned, Qt::QueuedConnection);
-    QObject::connect(&bridge_, &RenderBridge::tileFinishedSignal, &window_,
-                     &MainWindow::onTileFinished, Qt::QueuedConnection);
-    QObject::connect(&bridge_, &RenderBridge::passFinishedSignal, &window_,
-                     &MainWindow::onPassFinished, Qt::QueuedConnection);
-    QObject::connect(&bridge_, &RenderBridge::statsUpdatedSignal, &window_, &MainWindow::onStats,
-                     Qt::QueuedConnection);
-    if (const std::optional<std::string>& why = renderer_.causticMapsRefusal()) {
-      window_.refuseCausticMaps(QString::fromStdString(*why));  // as runViewer does
-    }
-    coordinator_ = std::thread([this] { renderer_.run(bridge_); });
+        source_(scene_, options(maxPasses, memoryLimit), description_, "test"),
+        window_(source_) {
+    coordinator_ = std::thread([this] {
+      source_.run([this] {
+        QMetaObject::invokeMethod(&window_, "takeNews", Qt::QueuedConnection);
+      });
+    });
     window_.show();
     window_.startRendering();
   }
   ~LiveWindow() {
-    renderer_.stop();
+    source_.stop();
     coordinator_.join();
   }
 
   MainWindow& window() { return window_; }
-  LiveRenderer& renderer() { return renderer_; }
+  LiveRenderer& renderer() { return source_.renderer(); }
+  LocalLiveSource& source() { return source_; }
   const Scene& scene() const { return scene_; }
   const SceneDescription& description() const { return description_; }
 
@@ -104,8 +95,7 @@ class LiveWindow {
 
   SceneDescription description_;
   Scene scene_;
-  LiveRenderer renderer_;
-  RenderBridge bridge_;
+  LocalLiveSource source_;
   MainWindow window_;
   std::thread coordinator_;
 };
@@ -118,13 +108,22 @@ TEST(MainWindow, ShowsTheFrameTheRendererProduced) {
   ASSERT_TRUE(live.waitForFullPasses(1));
   // Pass 1 uses the scene's seed and spp: exactly the image `prism render` makes, the default
   // scene's caustic map included.
-  const ImageRgb& shown = live.window().frame().image();
+  const ImageRgb shown = live.source().fullImage();
   const ImageRgb expected = renderWithCaustics(live.scene(), FrameOptions{}).image;
   ASSERT_NE(expected.pixels, renderFrame(live.scene(), FrameOptions{}).image.pixels)
       << "the default scene's caustic is missing";
   ASSERT_EQ(shown.pixels.size(), expected.pixels.size());
   for (size_t i = 0; i < shown.pixels.size(); ++i) {
     ASSERT_EQ(shown.pixels[i], expected.pixels[i]) << "pixel " << i;
+  }
+  // The window's frame holds them as display bytes.
+  const DisplayEncoder encode(live.description().render.exposure);
+  const std::vector<uint8_t>& bytes = live.window().frame().bytes();
+  for (size_t i = 0; i < expected.pixels.size(); ++i) {
+    const Color& c = expected.pixels[i];
+    ASSERT_EQ(bytes[3 * i], encode(c.r)) << "pixel " << i;
+    ASSERT_EQ(bytes[3 * i + 1], encode(c.g)) << "pixel " << i;
+    ASSERT_EQ(bytes[3 * i + 2], encode(c.b)) << "pixel " << i;
   }
 
   // The widget, at the image's size and without outlines, shows those pixels tone-mapped.
@@ -135,7 +134,6 @@ TEST(MainWindow, ShowsTheFrameTheRendererProduced) {
   QTest::qWait(60);  // a repaint tick
   const QImage grabbed = view->grab().toImage().convertToFormat(QImage::Format_RGB888);
   ASSERT_EQ(grabbed.size(), QSize(96, 54));
-  const DisplayEncoder encode(live.description().render.exposure);
   int mismatches = 0;
   for (int y = 0; y < 54; ++y) {
     for (int x = 0; x < 96; ++x) {
@@ -164,7 +162,7 @@ TEST(MainWindow, KeysMoveTheCameraAndStartANewFrame) {
   EXPECT_NEAR(glm::length(moved - step * forward), 0.0f, 1e-4f);
   ASSERT_TRUE(waitUntil([&] { return w.viewId() == viewBefore + 1; }));
   EXPECT_GT(w.frame().frame(), frameBefore);
-  EXPECT_EQ(w.frame().pass().view->camera.position, w.viewSettings().camera.position);
+  EXPECT_EQ(w.frame().pass().camera.position, w.viewSettings().camera.position);
 
   QTest::keyClick(w.frameView(), Qt::Key_Left);  // turns: the look-at point moves
   EXPECT_NE(w.viewSettings().camera.lookAt, home.lookAt + step * forward);
@@ -173,7 +171,7 @@ TEST(MainWindow, KeysMoveTheCameraAndStartANewFrame) {
   EXPECT_EQ(w.viewSettings().camera.lookAt, home.lookAt);
   // Views asked for faster than passes start are coalesced: the renderer goes to the latest.
   ASSERT_TRUE(waitUntil([&] {
-    return w.viewId() > viewBefore + 1 && w.frame().pass().view->camera.lookAt == home.lookAt;
+    return w.viewId() > viewBefore + 1 && w.frame().pass().camera.lookAt == home.lookAt;
   }));
 
   QTest::keyClicks(w.frameView(), "h");
@@ -193,14 +191,22 @@ TEST(MainWindow, NormalsViewShowsTheNormalAndBack) {
   const uint64_t normalsView = w.viewId() + 1;
   ASSERT_TRUE(waitUntil([&] { return w.viewId() == normalsView && w.frame().passComplete(); }));
   // Every pixel sees the plane y = 0 from above: normal (0, 1, 0) shows as (0.5, 1, 0.5).
-  for (const Color& c : w.frame().image().pixels) ASSERT_EQ(c, Color(0.5f, 1.0f, 0.5f));
+  for (const Color& c : live.source().fullImage().pixels) ASSERT_EQ(c, Color(0.5f, 1.0f, 0.5f));
+  const DisplayEncoder encode(live.description().render.exposure);
+  const std::vector<uint8_t>& bytes = w.frame().bytes();
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    ASSERT_EQ(bytes[i], encode(0.5f));
+    ASSERT_EQ(bytes[i + 1], encode(1.0f));
+    ASSERT_EQ(bytes[i + 2], encode(0.5f));
+  }
   QTest::keyClicks(w.frameView(), "n");
   EXPECT_EQ(w.viewSettings().debugView, DebugView::Image);
 }
 
 TEST(MainWindow, OpensWithinTheScreenAndAtThePreferredSizeWhereItFits) {
   const SceneDescription d = loadScene(kPlaneScene);
-  MainWindow window(d, "test", [](const ViewSettings&) {});
+  ScriptedSource source(d);
+  MainWindow window(source);
   const QScreen* screen = window.screen();
   ASSERT_NE(screen, nullptr);
   const QRect area = screen->availableGeometry();
@@ -225,7 +231,8 @@ TEST(MainWindow, OpensWithinTheScreenAndAtThePreferredSizeWhereItFits) {
 // frame rate with four-digit frame counts) still fit beside the frame.
 TEST(MainWindow, TheSidePanelFitsWithoutScrollingSideways) {
   const SceneDescription d = loadScene(kPlaneScene);
-  MainWindow window(d, "test", [](const ViewSettings&) {});
+  ScriptedSource source(d);
+  MainWindow window(source);
   window.resize(1228, 720);
   window.show();
   LiveStats s;
@@ -275,29 +282,49 @@ TEST(MainWindow, TheSidePanelFitsWithoutScrollingSideways) {
   showAndCheck();
 }
 
-TEST(MainWindow, StaleTilesAreIgnored) {
-  SceneDescription d = loadScene(kPlaneScene);
-  std::vector<ViewSettings> requested;
-  MainWindow w(d, "test", [&](const ViewSettings& v) { requested.push_back(v); });
-  PassInfo p;
-  p.frame = 5;
-  p.viewId = 2;
-  p.pass = 1;
-  auto view = std::make_shared<RenderView>();
-  view->width = d.render.width;
-  view->height = d.render.height;
-  p.view = view;
-  p.tiles = {{0, 0, d.render.width, d.render.height}};
-  w.onPassStarted(p);
-  auto tile = std::make_shared<TileResult>();
-  tile->rect = p.tiles[0];
-  tile->pixels.assign(static_cast<size_t>(tile->rect.pixelCount()), Color(1.0f));
-  w.onTileFinished(4, tile, 1);  // a frame the window has moved on from
-  EXPECT_EQ(w.frame().image().at(0, 0), Color(0.0f));
-  EXPECT_EQ(w.frame().staleTiles(), 1u);
-  w.onTileFinished(5, tile, 1);
-  EXPECT_EQ(w.frame().image().at(0, 0), Color(1.0f));
-  EXPECT_TRUE(requested.empty());  // nothing asked the renderer for a view
+// News the window has not taken yet is merged: one take shows the pixels of every patch posted
+// and hears of every pass completed meanwhile, in order.
+TEST(MainWindow, NewsPostedBeforeATakeIsMergedIntoOne) {
+  const SceneDescription d = loadScene(kPlaneScene);
+  ScriptedSource source(d);
+  MainWindow w(source);
+  std::vector<int> completed;
+  QObject::connect(&w, &MainWindow::passComplete,
+                   [&](const DisplayPass& pass) { completed.push_back(pass.pass); });
+  int fullPasses = 0;
+  QObject::connect(&w, &MainWindow::fullPassDone, [&](int passes) { fullPasses = passes; });
+  w.startRendering();
+  ASSERT_EQ(source.requested.size(), 1u);
+  const uint64_t tag = source.requested[0].tag;
+  for (int pass = 1; pass <= 2; ++pass) {
+    DisplayNews news;
+    news.started = true;
+    news.width = d.render.width;
+    news.height = d.render.height;
+    news.pass.viewId = 1;
+    news.pass.viewTag = tag;
+    news.pass.pass = pass;
+    news.pass.tiles = 1;
+    news.tilesDone = 1;
+    news.fullPassesDone = pass;
+    news.completed = {news.pass};
+    news.patch = {pass - 1, 0, 1, 1};  // pixel (0, 0), then (1, 0)
+    news.patchBytes = {static_cast<uint8_t>(10 * pass), 0, 0};
+    source.post(news);
+  }
+  w.takeNews();
+  const std::vector<uint8_t>& bytes = w.frame().bytes();
+  EXPECT_EQ(bytes[0], 10);
+  EXPECT_EQ(bytes[3], 20);
+  EXPECT_EQ(completed, (std::vector<int>{1, 2}));
+  EXPECT_EQ(fullPasses, 2);
+  EXPECT_EQ(w.frame().pass().pass, 2);
+  EXPECT_EQ(source.requested.size(), 1u);  // taking asked for no view
+
+  DisplayNews wrongSize;
+  wrongSize.width = d.render.width + 1;
+  wrongSize.height = d.render.height;
+  EXPECT_THROW(source.post(wrongSize), std::invalid_argument);
 }
 
 TEST(MainWindow, StatsPanelReceivesPerRankNumbers) {
@@ -353,7 +380,7 @@ TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
   EXPECT_EQ(photons->value(), 20000);
   EXPECT_EQ(w.viewSettings().caustics, CausticMethod::PhotonMap);
   ASSERT_TRUE(live.waitForFullPasses(1));
-  EXPECT_NE(w.frame().pass().light, nullptr);
+  EXPECT_EQ(w.frame().pass().caustics, CausticMethod::PhotonMap);
   ASSERT_TRUE(waitUntil([&] {
     return w.statsPanel()->summaryText().contains("photons/s (20000 per pass)");
   })) << w.statsPanel()->summaryText().toStdString();
@@ -365,7 +392,7 @@ TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
   ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 1; }));
   EXPECT_GT(w.frame().frame(), frame);
   ASSERT_TRUE(live.waitForFullPasses(1));
-  EXPECT_EQ(w.frame().pass().light, nullptr);
+  EXPECT_EQ(w.frame().pass().caustics, CausticMethod::None);
   ASSERT_TRUE(waitUntil([&] { return !w.statsPanel()->summaryText().contains("photons/s"); }));
 
   photons->setValue(5000);  // without photon mapping: nothing to re-render
@@ -421,8 +448,7 @@ TEST(MainWindow, CausticMapSwitchBlurKeyAndLightSpaceViews) {
   EXPECT_EQ(w.viewSettings().caustics, CausticMethod::CausticMap);
   ASSERT_TRUE(waitUntil([&] { return w.viewId() == view + 1; }));
   ASSERT_TRUE(live.waitForFullPasses(1));
-  ASSERT_NE(w.frame().pass().light, nullptr);
-  EXPECT_EQ(w.frame().pass().light->source, CausticSource::CausticMap);
+  EXPECT_EQ(w.frame().pass().caustics, CausticMethod::CausticMap);
   ASSERT_TRUE(waitUntil([&] {
     return w.statsPanel()->summaryText().contains("caustic map  512x512 x 1 view(s), blur on");
   })) << w.statsPanel()->summaryText().toStdString();
@@ -501,7 +527,8 @@ TEST(MainWindow, CausticMapsThatCannotFitAreRefusedWithTheReason) {
 
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {
   SceneDescription d = loadScene(kPlaneScene);
-  MainWindow w(d, "test", [](const ViewSettings&) {});
+  ScriptedSource source(d);
+  MainWindow w(source);
   EXPECT_TRUE(w.loadSpeedupCsv("/no/such.csv").contains("cannot open"));
   EXPECT_TRUE(w.loadSpeedupCsv(PRISM_SOURCE_DIR "/docs/speedup-default.csv").isEmpty());
   EXPECT_EQ(w.statsPanel()->csvSpeedup()->count(), 2);
