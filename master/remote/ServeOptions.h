@@ -12,6 +12,7 @@ struct ServeOptions {
   // Listening beyond the loopback addresses must be asked for twice: by the address and by this.
   bool allowNetwork = false;
   double clientTimeoutSeconds = 10.0;  // a viewer silent, or not reading, this long is dropped
+  double helloTimeoutSeconds = 5.0;    // a new connection must show its token within this
 
   bool serving() const { return !address.empty(); }
 };

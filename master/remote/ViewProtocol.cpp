@@ -83,12 +83,7 @@ namespace {
 
 using wire::WireError;
 
-constexpr size_t kSizeOffset = 8, kChecksumOffset = 16;
 constexpr int kZstdLevel = 1;  // docs/viewer.md: level 1 keeps a frame's compression near 1 ms
-
-void putLittleEndian(uint8_t* at, uint64_t v) {
-  for (int i = 0; i < 8; ++i) at[i] = static_cast<uint8_t>(v >> (8 * i));
-}
 
 std::vector<uint8_t> compress(const std::vector<uint8_t>& raw) {
   std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
@@ -195,23 +190,24 @@ Message decodeMessage(const uint8_t* data, size_t size, const Limits& limits) {
   return openPayload(header, data + kHeaderSize, limits);
 }
 
+std::vector<uint8_t> encodePayload(MessageType type, std::vector<uint8_t> payload) {
+  if (isCompressed(type)) payload = compress(payload);
+  wire::ByteWriter w;
+  w.writeU32(kMagic);
+  w.writeU16(kVersion);
+  w.writeU16(static_cast<uint16_t>(type));
+  w.writeU64(payload.size());
+  w.writeU64(wire::fnv1a64(payload.data(), payload.size()));
+  std::vector<uint8_t> bytes = w.take();
+  bytes.insert(bytes.end(), payload.begin(), payload.end());
+  return bytes;
+}
+
 template <ViewMessage T>
 std::vector<uint8_t> encode(const T& value) {
   wire::ByteWriter fields;
   wire::writeFields(fields, value);
-  std::vector<uint8_t> payload = fields.take();
-  if (MessageTraits<T>::kCompressed) payload = compress(payload);
-  wire::ByteWriter w;
-  w.writeU32(kMagic);
-  w.writeU16(kVersion);
-  w.writeU16(static_cast<uint16_t>(MessageTraits<T>::kType));
-  w.writeU64(0);
-  w.writeU64(0);
-  std::vector<uint8_t> bytes = w.take();
-  bytes.insert(bytes.end(), payload.begin(), payload.end());
-  putLittleEndian(bytes.data() + kSizeOffset, payload.size());
-  putLittleEndian(bytes.data() + kChecksumOffset, wire::fnv1a64(payload.data(), payload.size()));
-  return bytes;
+  return encodePayload(MessageTraits<T>::kType, fields.take());
 }
 
 template <ViewMessage T>

@@ -132,6 +132,10 @@ PRISM_VIEW_MESSAGES(PRISM_VIEW_TRAITS)
 template <class T>
 concept ViewMessage = requires { MessageTraits<T>::kType; };
 
+// The whole message (envelope included) around a payload of encoded fields, compressed when the
+// type's messages are (fuzzing and tests build messages of any content with it).
+std::vector<uint8_t> encodePayload(MessageType type, std::vector<uint8_t> fields);
+
 // The whole message (envelope included) that carries value.
 template <ViewMessage T>
 std::vector<uint8_t> encode(const T& value);

@@ -22,7 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr size_t kMaxPending = 16;             // connections not yet past their Hello
-constexpr double kHelloSeconds = 5.0;          // for a new connection to say Hello
 constexpr view::Limits kHelloLimits{4096, 4096};  // a Hello is a token and a name
 constexpr int kPollMilliseconds = 100;         // how often interrupts and deadlines are checked
 constexpr size_t kLoggedRefusals = 5;          // refusals named in the log; the rest counted
@@ -181,8 +180,8 @@ std::string ViewServer::run() {
           if (!open) {
             drop = true;
             ++refused_;
-          } else if (since(p.since) > kHelloSeconds) {
-            refuse(p.socket, "no Hello within " + std::to_string(kHelloSeconds) + " s");
+          } else if (since(p.since) > options_.helloTimeoutSeconds) {
+            refuse(p.socket, "no token within the time allowed");
             drop = true;
           }
         } else {

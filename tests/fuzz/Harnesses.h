@@ -33,6 +33,9 @@ Outcome fuzzObj(const uint8_t* data, size_t size);
 // valid envelope whose type the first byte chooses (the checksum would otherwise stop nearly
 // every mutation before the payload decoders).
 Outcome fuzzWire(const uint8_t* data, size_t size);
+// Viewer protocol messages (master/remote/ViewProtocol.h): the bytes as a whole message, and the
+// bytes after the first as the fields of a message whose type the first byte chooses.
+Outcome fuzzView(const uint8_t* data, size_t size);
 
 struct Harness {
   const char* name;  // the folder under tests/fuzz/corpus/ and tests/fuzz/regressions/
@@ -41,7 +44,8 @@ struct Harness {
 
 inline const std::vector<Harness>& harnesses() {
   static const std::vector<Harness> all = {
-      {"yaml_scene", fuzzYamlScene}, {"nff", fuzzNff}, {"obj", fuzzObj}, {"wire", fuzzWire}};
+      {"yaml_scene", fuzzYamlScene}, {"nff", fuzzNff}, {"obj", fuzzObj}, {"wire", fuzzWire},
+      {"view", fuzzView}};
   return all;
 }
 
