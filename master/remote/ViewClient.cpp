@@ -13,7 +13,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kPingSeconds = 1.0;
 constexpr int kPollMilliseconds = 100;
-constexpr view::Limits kWelcomeLimits{1 << 20, 1 << 20};
 
 std::string defaultClientName() {
   char host[256] = "";
@@ -22,27 +21,28 @@ std::string defaultClientName() {
   return std::string("prism connect, ") + (user ? user : "someone") + "@" + host;
 }
 
-// Waits for one whole message, at most `seconds`.
-view::Message receiveOne(const Socket& socket, const view::Limits& limits, double seconds) {
-  MessageReader reader(limits);
-  std::vector<view::Message> messages;
+// Waits for at least one whole message, at most `seconds`; the messages that came with it
+// are kept in `got` too.
+void receiveSome(const Socket& socket, MessageReader& reader, std::vector<view::Message>& got,
+                 double seconds) {
   const auto start = Clock::now();
-  while (messages.empty()) {
+  while (got.empty()) {
     const double left = seconds - std::chrono::duration<double>(Clock::now() - start).count();
-    if (left <= 0) throw std::runtime_error("the job did not answer within " + std::to_string(seconds) + " s");
+    if (left <= 0) {
+      throw std::runtime_error("the job did not answer within " + std::to_string(seconds) + " s");
+    }
     pollfd p{socket.fd(), POLLIN, 0};
     ::poll(&p, 1, static_cast<int>(left * 1000) + 1);
-    if (!reader.readFrom(socket, messages) && messages.empty()) {
+    if (!reader.readFrom(socket, got) && got.empty()) {
       throw std::runtime_error("the job closed the connection without an answer");
     }
   }
-  return std::move(messages.front());
 }
 
 }  // namespace
 
 ViewClient::ViewClient(const ConnectionInfo& job, const ConnectOptions& options)
-    : options_(options), board_(1, 1) {
+    : options_(options), reader_(view::kServerToClient), board_(1, 1) {
   if (job.protocol != 0 && job.protocol != view::kVersion) {
     throw std::runtime_error("the job speaks viewer protocol " + std::to_string(job.protocol) +
                              ", this Prism speaks " + std::to_string(view::kVersion) +
@@ -51,13 +51,13 @@ ViewClient::ViewClient(const ConnectionInfo& job, const ConnectOptions& options)
   socket_ = connectTcp(job.endpoint, options.connectSeconds);
   const std::string name = options.clientName.empty() ? defaultClientName() : options.clientName;
   sendAll(socket_, view::encode(view::HelloMessage{job.token, name}), options.connectSeconds);
-  view::Message answer = [&] {
-    try {
-      return receiveOne(socket_, kWelcomeLimits, options.connectSeconds);
-    } catch (const wire::WireError& e) {
-      throw std::runtime_error(std::string("the job's answer is not a viewer's: ") + e.what());
-    }
-  }();
+  try {
+    receiveSome(socket_, reader_, early_, options.connectSeconds);
+  } catch (const wire::WireError& e) {
+    throw std::runtime_error(std::string("the job's answer is not a viewer's: ") + e.what());
+  }
+  const view::Message answer = std::move(early_.front());
+  early_.erase(early_.begin());  // news that came right behind it waits for run()
   if (answer.type == view::MessageType::Refused) {
     throw std::runtime_error("the job refused the connection: " +
                              view::decode<view::RefusedMessage>(answer).reason);
@@ -136,9 +136,9 @@ void ViewClient::received(view::Message&& message, const std::function<void()>& 
 }
 
 std::string ViewClient::run(std::function<void()> wake) {
-  MessageReader reader(view::kServerToClient);
   auto lastPing = Clock::now();
   std::string why;
+  std::vector<view::Message> messages = std::move(early_);
   for (;;) {
     {
       std::lock_guard lock(mutex_);
@@ -149,15 +149,15 @@ std::string ViewClient::run(std::function<void()> wake) {
       }
     }
     pollfd p{socket_.fd(), POLLIN, 0};
-    ::poll(&p, 1, kPollMilliseconds);
-    std::vector<view::Message> messages;
+    if (messages.empty()) ::poll(&p, 1, kPollMilliseconds);
     bool open;
     try {
-      open = reader.readFrom(socket_, messages);
+      open = reader_.readFrom(socket_, messages);
       for (view::Message& m : messages) {
         bytesReceived_ += view::kHeaderSize + m.payload.size();
         received(std::move(m), wake);
       }
+      messages.clear();
     } catch (const std::exception& e) {
       why = std::string("the connection to the job failed: ") + e.what();
       break;

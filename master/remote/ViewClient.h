@@ -48,6 +48,8 @@ class ViewClient final : public LiveSource {
 
   ConnectOptions options_;
   Socket socket_;
+  MessageReader reader_;
+  std::vector<view::Message> early_;  // what came behind the Welcome, for run()
   ViewerStart start_;
   std::mutex sendMutex_;
 

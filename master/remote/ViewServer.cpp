@@ -161,11 +161,13 @@ std::string ViewServer::run() {
       break;
     }
 
-    // New connections wait for their Hello, a bounded number at a time.
+    // New connections wait for their Hello, a bounded number at a time: when that many wait,
+    // the oldest goes, so a flood of silent connections delays the right viewer but never
+    // locks it out.
     while (Socket s = acceptConnection(listener_)) {
       if (pending.size() >= kMaxPending) {
-        refuse(s, "too many connections at once");
-        continue;
+        refuse(pending.front()->socket, "too many connections at once");
+        pending.erase(pending.begin());
       }
       pending.push_back(std::make_unique<Pending>());
       pending.back()->socket = std::move(s);
