@@ -54,6 +54,8 @@ class MainWindow : public QMainWindow {
   // Every view asked for from now on renders at most this many full passes
   // (--exit-after-passes: the image saved is exactly that many).
   void limitPasses(int passes) { settings_.maxPasses = passes; }
+  // Every view asked for from now on asks the renderer for this frame-time target.
+  void setFrameTime(double seconds) { settings_.frameTimeSeconds = seconds; }
 
   CameraController& cameraController() { return camera_; }
   // Sends the current camera and settings as a new view.

@@ -215,6 +215,7 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
 
   MainWindow window(source);
   if (options.exitAfterPasses > 0) window.limitPasses(options.exitAfterPasses);
+  if (options.frameTimeMilliseconds >= 0.0) window.setFrameTime(options.frameTimeMilliseconds / 1e3);
   if (!options.speedupCsv.empty()) {
     const QString error = window.loadSpeedupCsv(QString::fromStdString(options.speedupCsv));
     if (!error.isEmpty()) {

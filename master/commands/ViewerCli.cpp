@@ -86,6 +86,11 @@ CLI::App* addConnectCommand(CLI::App& app, ConnectCommandOptions& o) {
   connect->add_option("--timeout", o.timeoutSeconds,
                       "Seconds to wait for the job to answer (default 10)")
       ->check(CLI::Range(0.1, 600.0));
+  connect
+      ->add_option("--frame-time", o.window.frameTimeMilliseconds,
+                   "Ask the job for this frame time while the camera moves, in ms (default: the "
+                   "job's --frame-time); 0: no target, always full resolution")
+      ->check(CLI::Range(0.0, 60000.0));
   addViewerWindowOptions(connect, o.window);
   return connect;
 }

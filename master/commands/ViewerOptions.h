@@ -18,6 +18,9 @@ struct ViewerOptions {
   int benchmarkMoves = 0;          // move the camera this often, print frame rates, quit
   double benchmarkMoveMilliseconds = 10.0;  // one move per this interval (a mouse drag's rate)
   std::string keys;  // typed into the window at start, in order (letters, + - =)
+  // The renderer's target for frames while moving, asked for with every view (`prism connect
+  // --frame-time`); negative: the job's own.
+  double frameTimeMilliseconds = -1.0;
 };
 
 }  // namespace prism

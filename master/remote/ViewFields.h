@@ -15,11 +15,12 @@ template <>
 struct Fields<ViewSettings> {
   static void fields(auto& self, auto&& visit) {
     auto& [camera, samplesPerPixel, debugView, caustics, photonsPerPass, causticMapBlur, tag,
-           maxPasses] = self;
+           maxPasses, frameTimeSeconds] = self;
     visit(camera, samplesPerPixel, debugView, caustics, photonsPerPass,
-          flag(causticMapBlur, "caustic-map blur flag"), tag, maxPasses);
+          flag(causticMapBlur, "caustic-map blur flag"), tag, maxPasses, frameTimeSeconds);
   }
-  // Samples per pixel 1 to 65536, passes 0 to 1 << 20, photons at most 1 << 32.
+  // Samples per pixel 1 to 65536, passes 0 to 1 << 20, photons at most 1 << 32, a frame time
+  // below an hour (negative: unchanged).
   static void check(const ViewSettings& view);
 };
 

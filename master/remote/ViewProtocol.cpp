@@ -28,6 +28,9 @@ void Fields<ViewSettings>::check(const ViewSettings& view) {
   if (view.maxPasses < 0 || view.maxPasses > (1 << 20)) {
     throw WireError("invalid pass limit " + std::to_string(view.maxPasses));
   }
+  if (!(view.frameTimeSeconds < 3600.0)) {  // NaN too
+    throw WireError("invalid frame time " + std::to_string(view.frameTimeSeconds));
+  }
   if (view.photonsPerPass > (uint64_t{1} << 32)) {
     throw WireError("invalid photon budget " + std::to_string(view.photonsPerPass));
   }

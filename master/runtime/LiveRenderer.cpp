@@ -194,6 +194,7 @@ std::optional<LiveRenderer::PassPlan> LiveRenderer::nextPassLocked() {
   if (pendingView_) {
     view_ = *pendingView_;
     pendingView_.reset();
+    if (view_.frameTimeSeconds >= 0.0) governor_.setTargetSeconds(view_.frameTimeSeconds);
     ++viewId_;
     viewSince_ = pendingSince_;
     live_.passesDone = 0;
@@ -378,7 +379,7 @@ LiveStats LiveRenderer::statsLocked(double elapsedSeconds, std::vector<RankStats
   double sum = 0.0;
   for (double t : times) sum += t;
   f.framesPerSecond = sum > 0.0 ? static_cast<double>(times.size()) / sum : 0.0;
-  s.frameTimeTargetSeconds = options_.frameTimeSeconds;
+  s.frameTimeTargetSeconds = governor_.targetSeconds();
   return s;
 }
 

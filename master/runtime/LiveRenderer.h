@@ -108,6 +108,9 @@ struct ViewSettings {
   uint64_t tag = 0;
   // Full-resolution passes of this view at most (≤ LiveOptions::maxPasses); 0: the renderer's.
   int maxPasses = 0;
+  // The target for frames while moving from this view on (LiveOptions::frameTimeSeconds);
+  // negative: leave it as it is.
+  double frameTimeSeconds = -1.0;
 };
 
 struct PassInfo {

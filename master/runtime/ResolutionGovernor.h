@@ -41,6 +41,8 @@ class ResolutionGovernor {
   double fixedSeconds() const { return fixed_; }
 
   double targetSeconds() const { return target_; }
+  // A new target (a viewer asked for another frame time); the frames measured still count.
+  void setTargetSeconds(double seconds) { target_ = seconds; }
 
  private:
   static constexpr size_t kWindow = 8;  // recent frames kept

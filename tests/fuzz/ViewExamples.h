@@ -55,6 +55,7 @@ inline std::vector<std::pair<std::string, std::vector<uint8_t>>> viewExamples() 
   view.debugView = DebugView::Normals;
   view.causticMapBlur = false;
   view.photonsPerPass = 50000;
+  view.frameTimeSeconds = 0.02;
   FullImageMessage image;
   image.request = 4;
   image.image = ImageRgb(3, 2);
