@@ -334,7 +334,9 @@ void MainWindow::fitToScreen(const QSize& preferred) {
 
 void MainWindow::startRendering() {
   if (source_.start().resume) {
-    takeNews();  // what has accumulated: the source sends every pixel first
+    // What has accumulated (the source sends every pixel first), queued behind the keys a
+    // script typed, so that their views are asked for before any pass is counted.
+    QMetaObject::invokeMethod(this, &MainWindow::takeNews, Qt::QueuedConnection);
     return;
   }
   ++settings_.tag;

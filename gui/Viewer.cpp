@@ -168,9 +168,11 @@ class MoveBenchmark : public QObject {
   SteadyClock::time_point firstMove_, lastMove_;
 };
 
-void printSummary(const LiveStats& s, std::ostream& out) {
-  out << "viewer     " << s.passesDone << " full passes of the last view, frame " << s.frame
-      << "\n";
+// shown: what the window showed last (its passes are counted there, not by the statistics,
+// which a connection brings a little later).
+void printSummary(const DisplayFrame& shown, const LiveStats& s, std::ostream& out) {
+  out << "viewer     " << shown.state().fullPassesDone << " full passes of the last view, frame "
+      << shown.frame() << "\n";
   const PhotonLiveStats& p = s.photons;
   if (p.method == CausticMethod::PhotonMap && p.passes > 0) {
     out << "photons    " << p.passes << " passes of " << p.photonsPerPass
@@ -239,7 +241,7 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
     QObject::connect(&window, &MainWindow::fullPassDone, &window, [&](int passes) {
       if (saved || passes < options.exitAfterPasses) return;
       save();
-      window.close();
+      QMetaObject::invokeMethod(&window, &QWidget::close, Qt::QueuedConnection);  // in the loop
     });
   }
   if (!options.screenshotPath.empty()) {
@@ -304,7 +306,7 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
         << "view       " << cameraOptionsText(window.viewSettings().camera)
         << " (prism render options for this view)\n";
   }
-  printSummary(source.stats(), out);
+  printSummary(window.frame(), source.stats(), out);
   if (!endedBecause.empty()) {
     err << "prism: error: " << endedBecause << "\n";
     return 1;
