@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
-#include <tuple>
 #include <memory>
 
 #include "master/commands/RenderCommand.h"
@@ -81,16 +80,17 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
   render->add_option("--seed", o.seed, "Seed of the per-pixel random streams");
   render->add_option("--exposure", o.exposure, "Radiance multiplier before PNG tone mapping")
       ->check(CLI::PositiveNumber);
-  for (auto [flags, target, help] :
-       {std::tuple{"--camera-position", &o.cameraPosition, "Camera position X,Y,Z (overrides the scene)"},
-        std::tuple{"--look-at", &o.lookAt,
-                   "Camera look-at point X,Y,Z (overrides the scene; the viewer prints both "
-                   "for the view it saves)"}}) {
+  const auto addPoint = [render](const std::string& flags, std::optional<Vec3>* target,
+                                 const std::string& help) {
     render
         ->add_option_function<std::string>(
             flags, [target](const std::string& text) { *target = parseVec3(text); }, help)
         ->option_text("X,Y,Z");
-  }
+  };
+  addPoint("--camera-position", &o.cameraPosition, "Camera position X,Y,Z (overrides the scene)");
+  addPoint("--look-at", &o.lookAt,
+           "Camera look-at point X,Y,Z (overrides the scene; the viewer prints both for the view "
+           "it saves)");
   addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
            "Ray/triangle intersector: moller_trumbore (default), plane_inside or watertight");
   render

@@ -2,7 +2,9 @@
 # A real, single-node Slurm for one test: starts munged, slurmctld and slurmd from Debian's
 # packages (slurm-wlm, munge) in a temporary folder, without systemd, then renders a scene with
 # `srun -n 3 --mpi=pmix prism render` and with an `sbatch` job script, and checks that both
-# images are bit-identical to a single-process render (pixel hashes). Every daemon it started
+# images are bit-identical to a single-process render (pixel hashes); then an `sbatch` job
+# serves its live session (`prism view --serve`) and an offscreen `prism connect` moves the
+# camera and saves an EXR that must equal `prism render` of that view. Every daemon it started
 # is stopped by its pid when it ends, whether it passed or not; on failure it prints the logs.
 #   slurm_render.sh PRISM PIXEL_HASH SCENE [PRISM RENDER OPTIONS...]
 # Needs root: munged must run as the munge user and slurmd as root (it starts job steps as the
@@ -226,5 +228,46 @@ got=$(hash_of "$work/sbatch.exr")
 echo "sbatch      $got"
 [[ $got == "$reference" ]] || fail "the batch job's image differs from the single-process render"
 
+# --- a served job: the job script of docs/distributed.md that serves its live session instead
+# of showing it. An offscreen viewer on "the desk" (this machine) connects with the connection
+# file, moves the camera, saves an EXR of one pass and leaves; the job ends with it
+# (--exit-with-client). The EXR must be bit-identical to `prism render` of the view it moved to.
+cat >"$work/serve.sh" <<EOF
+#!/bin/bash
+#SBATCH --job-name=prism-serve
+#SBATCH --ntasks=2
+#SBATCH --cpus-per-task=1
+#SBATCH --overcommit
+#SBATCH --time=5
+#SBATCH --output=$work/serve.out
+srun --mpi=pmix "$prism" view "$scene" ${render_options[*]} --threads "\$SLURM_CPUS_PER_TASK" \\
+  --serve 127.0.0.1:0 --connection-file "$work/job.connection" --exit-with-client
+EOF
+serve_job=$(sbatch --parsable --chdir="$work" "$work/serve.sh" 2>"$work/serve.sbatch.err") ||
+  fail "sbatch refused the serving job: $(cat "$work/serve.sbatch.err")"
+connection_written() { [[ -f $work/job.connection ]]; }
+wait_for 120 "the serving job's connection file" connection_written
+[[ $(stat -c %a "$work/job.connection") == 600 ]] ||
+  fail "the connection file is not private (mode $(stat -c %a "$work/job.connection"))"
+QT_QPA_PLATFORM=offscreen timeout 120 "$prism" connect "$work/job.connection" --keys wd \
+  --exit-after-passes 1 --save "$work/desk.exr" >"$work/desk.out" 2>&1 ||
+  fail "the viewer failed (exit $?): $(cat "$work/desk.out" "$work/serve.out" 2>/dev/null)"
+job_gone() { [[ -z $(squeue -h -j "$serve_job" 2>/dev/null) ]]; }
+wait_for 60 "the serving job ending after its viewer left" job_gone
+grep -q "served     until the viewer left (--exit-with-client)" "$work/serve.out" ||
+  fail "the serving job did not end with its viewer: $(cat "$work/serve.out")"
+view_options=$(sed -n 's/^view       \(--camera-position [^ ]* --look-at [^ ]*\).*/\1/p' \
+  "$work/desk.out")
+[[ -n $view_options ]] || fail "the viewer did not print its view: $(cat "$work/desk.out")"
+# shellcheck disable=SC2086  # the view options are two option-value pairs
+timeout 120 "$prism" render "$scene" "${render_options[@]}" $view_options -q \
+  -o "$work/desk-reference.exr" || fail "the render of the viewer's view failed"
+got=$(hash_of "$work/desk.exr")
+echo "served      $got"
+[[ $got == "$(hash_of "$work/desk-reference.exr")" ]] ||
+  fail "the viewer's EXR differs from prism render of the same view"
+[[ $got != "$reference" ]] || fail "the viewer's keys did not move the camera"
+
 passed=1
-echo "PASSED: srun and sbatch images are bit-identical to the single-process render"
+echo "PASSED: srun and sbatch images are bit-identical to the single-process render, and a"
+echo "served job's viewer saved prism render's pixels of the view it moved to"
