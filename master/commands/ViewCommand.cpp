@@ -1,5 +1,6 @@
 #include "master/commands/ViewCommand.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <ostream>
 
@@ -37,7 +38,15 @@ int serve(LocalLiveSource& source, const ViewOptions& options, std::ostream& out
         << " with PRISM_TOKEN or --token-file)\n";
   }
   server.run();
-  out << "viewer     " << source.stats().passesDone << " full passes of the last view\n";
+  const LiveStats stats = source.stats();
+  const FrameTimeStats& frames = stats.frameTimes;
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "rendered   %.1f frames/s over its last %d frames (median %.1f ms, p95 %.1f ms), "
+                "%d full passes of the last view\n",
+                frames.framesPerSecond, frames.frames, 1e3 * frames.medianSeconds,
+                1e3 * frames.p95Seconds, stats.passesDone);
+  out << line;
   return interruptRequested() ? kInterruptedExitCode : 0;
 }
 

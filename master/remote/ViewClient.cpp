@@ -102,6 +102,7 @@ void ViewClient::received(view::Message&& message, const std::function<void()>& 
   switch (message.type) {
     case view::MessageType::News: {
       DisplayNews news = view::decode<DisplayNews>(message);
+      send(view::encode(view::NewsReceivedMessage{++newsReceived_}));
       bool first;
       {
         std::lock_guard lock(mutex_);

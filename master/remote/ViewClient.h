@@ -63,6 +63,7 @@ class ViewClient final : public LiveSource {
   uint32_t nextRequest_ = 1;
   std::optional<view::FullImageMessage> image_;
   std::atomic<uint64_t> bytesReceived_{0};
+  uint64_t newsReceived_ = 0;  // run()'s thread only
 };
 
 }  // namespace prism

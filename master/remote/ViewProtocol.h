@@ -28,7 +28,8 @@ inline constexpr uint16_t kVersion = 1;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
-// Client to server: Hello (first, with the token), SetView, FullImageRequest, Ping, Bye.
+// Client to server: Hello (first, with the token), SetView, FullImageRequest, Ping, Bye,
+// NewsReceived.
 // Server to client: Welcome or Refused (the answer to Hello), News, FullImage, JobEnded.
 struct HelloMessage {
   std::string token;
@@ -62,6 +63,13 @@ struct JobEndedMessage {
   std::string reason;
   PRISM_WIRE_FIELDS(reason)
 };
+// The viewer has received this many News messages in all. The job sends the next news only
+// while fewer than two are unacknowledged, so news waits merged on the job's board rather than
+// in buffers along a slow link: what arrives is the newest picture.
+struct NewsReceivedMessage {
+  uint64_t count = 0;
+  PRISM_WIRE_FIELDS(count)
+};
 
 #define PRISM_VIEW_MESSAGES(X)                           \
   X(Hello, 1, HelloMessage, false)                       \
@@ -73,7 +81,8 @@ struct JobEndedMessage {
   X(FullImage, 7, FullImageMessage, true)                \
   X(Ping, 8, PingMessage, false)                         \
   X(Bye, 9, ByeMessage, false)                           \
-  X(JobEnded, 10, JobEndedMessage, false)
+  X(JobEnded, 10, JobEndedMessage, false)                \
+  X(NewsReceived, 11, NewsReceivedMessage, false)
 
 enum class MessageType : uint16_t {
 #define PRISM_VIEW_ENUMERATOR(name, number, Type, compressed) name = number,

@@ -25,6 +25,7 @@ constexpr size_t kMaxPending = 16;             // connections not yet past their
 constexpr view::Limits kHelloLimits{4096, 4096};  // a Hello is a token and a name
 constexpr int kPollMilliseconds = 100;         // how often interrupts and deadlines are checked
 constexpr size_t kLoggedRefusals = 5;          // refusals named in the log; the rest counted
+constexpr uint64_t kNewsInFlight = 2;          // news sent and not yet acknowledged, at most
 
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -82,6 +83,9 @@ struct ViewServer::Client {
   Clock::time_point lastHeard = Clock::now();
   Clock::time_point lastProgress = Clock::now();  // of writing, while out was not empty
   bool wantsWhole = true;                          // the next news has every pixel
+  uint64_t newsSent = 0;
+  uint64_t newsAcknowledged = 0;
+  Clock::time_point lastAcknowledged = Clock::now();
   std::string name;
 };
 
@@ -242,6 +246,15 @@ std::string ViewServer::run() {
           }
           case view::MessageType::Ping:
             break;
+          case view::MessageType::NewsReceived: {
+            const uint64_t count = view::decode<view::NewsReceivedMessage>(m).count;
+            if (count > client->newsSent || count < client->newsAcknowledged) {
+              throw wire::WireError("acknowledged news it was not sent");
+            }
+            client->newsAcknowledged = count;
+            client->lastAcknowledged = Clock::now();
+            break;
+          }
           case view::MessageType::Bye:
             bye = true;
             break;
@@ -254,12 +267,22 @@ std::string ViewServer::run() {
         dropClient("it said goodbye");
         continue;
       }
-      if (client->out.empty() && (newsWaiting || client->wantsWhole)) {
-        // The newest news, merged since the last; taken only when the last has left.
+      const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
+      if (client->out.empty() && mayTake && (newsWaiting || client->wantsWhole)) {
+        // The newest news, merged since the last; taken only when the last has left and the
+        // viewer has nearly caught up.
         client->out.put(view::encode(source_.take(client->wantsWhole)));
+        if (client->newsSent == client->newsAcknowledged) {
+          client->lastAcknowledged = Clock::now();  // the wait for an answer starts now
+        }
+        ++client->newsSent;
         client->wantsWhole = false;
         newsWaiting = false;
         client->lastProgress = Clock::now();
+      }
+      if (!mayTake && since(client->lastAcknowledged) > options_.clientTimeoutSeconds) {
+        dropClient("it stopped reading");
+        continue;
       }
       if (!client->out.empty()) {
         if (client->out.writeTo(client->socket) > 0) client->lastProgress = Clock::now();

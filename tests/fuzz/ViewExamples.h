@@ -69,7 +69,8 @@ inline std::vector<std::pair<std::string, std::vector<uint8_t>>> viewExamples() 
           {"full-image", encode(image)},
           {"ping", encode(PingMessage{})},
           {"bye", encode(ByeMessage{})},
-          {"job-ended", encode(JobEndedMessage{"the job was interrupted (SIGINT)"})}};
+          {"job-ended", encode(JobEndedMessage{"the job was interrupted (SIGINT)"})},
+          {"news-received", encode(NewsReceivedMessage{12})}};
 }
 
 }  // namespace prism::fuzz

@@ -39,7 +39,7 @@ Outcome fuzzView(const uint8_t* data, size_t size) {
   }
   if (size == 0) return accepted ? Outcome::Accepted : Outcome::Rejected;
   // The bytes after the first as the fields of a message of the type the first byte chooses
-  // (0 and 11..15 are unknown and must be refused), in a valid envelope (compressed where the
+  // (0 and 12..15 are unknown and must be refused), in a valid envelope (compressed where the
   // type is), so that mutations reach the field decoders past the checksum.
   const auto type = static_cast<MessageType>(data[0] % 16);
   try {

@@ -341,7 +341,7 @@ TEST(ViewServer, AViewerThatStopsReadingIsDroppedWhileTheJobRendersOn) {
   ::setsockopt(s.fd(), SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
   sendAll(s, view::encode(view::HelloMessage{job.info().token, "stalled"}), 5.0);
   std::atomic<bool> pinging{true};
-  std::thread pinger([&] {  // alive, but never reads
+  std::thread pinger([&] {  // alive, but never reads (so never acknowledges news either)
     while (pinging) {
       try {
         sendAll(s, view::encode(view::PingMessage{}), 1.0);
@@ -358,6 +358,40 @@ TEST(ViewServer, AViewerThatStopsReadingIsDroppedWhileTheJobRendersOn) {
   EXPECT_GT(job.source().stats().frame, frameBefore);  // the job rendered on meanwhile
   const std::string log = job.finish();
   EXPECT_NE(log.find("stalled left: it stopped reading"), std::string::npos) << log;
+}
+
+// News is not queued for a viewer: while two are unacknowledged the job sends nothing more,
+// however many frames it renders; the news waits merged on its board.
+TEST(ViewServer, AtMostTwoNewsAreInFlightUntilTheViewerAcknowledges) {
+  ServedJob job;
+  Socket s = connectTcp(job.info().endpoint, 5.0);
+  sendAll(s, view::encode(view::HelloMessage{job.info().token, "slow"}), 5.0);
+  MessageReader reader(view::kServerToClient);
+  std::vector<view::Message> got;
+  const auto news = [&] {
+    size_t n = 0;
+    for (const view::Message& m : got) n += m.type == view::MessageType::News;
+    return n;
+  };
+  ASSERT_TRUE(waitUntil([&] {
+    reader.readFrom(s, got);
+    return news() == 2;
+  }, 10.0));
+  const uint32_t frame = job.source().stats().frame;
+  ASSERT_TRUE(waitUntil([&] {
+    sendAll(s, view::encode(view::PingMessage{}), 1.0);  // alive
+    reader.readFrom(s, got);
+    return job.source().stats().frame > frame + 5;  // the job rendered on meanwhile
+  }, 10.0));
+  EXPECT_EQ(news(), 2u);
+  // Acknowledged: the newest news comes, one message however much happened.
+  sendAll(s, view::encode(view::NewsReceivedMessage{2}), 1.0);
+  ASSERT_TRUE(waitUntil([&] {
+    reader.readFrom(s, got);
+    return news() >= 3;
+  }, 10.0));
+  const DisplayNews latest = view::decode<DisplayNews>(got.back());
+  EXPECT_GT(latest.pass.frame, frame);
 }
 
 TEST(ViewServer, AHundredConnectionAttemptsInASecondLeaveTheJobReachable) {
