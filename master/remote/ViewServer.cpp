@@ -146,7 +146,11 @@ std::string ViewServer::run() {
     std::vector<pollfd> fds{{listener_.fd(), POLLIN, 0}, {wakePipe.fd(), POLLIN, 0}};
     for (const auto& p : pending) fds.push_back({p->socket.fd(), POLLIN, 0});
     if (client) {
-      const bool wantsToWrite = !client->out.empty() || newsWaiting || client->wantsWhole;
+      // Writable matters only with bytes to write, or news it may take now (else poll would
+      // return at once, again and again, while the viewer has not acknowledged).
+      const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
+      const bool wantsToWrite =
+          !client->out.empty() || (mayTake && (newsWaiting || client->wantsWhole));
       fds.push_back({client->socket.fd(), static_cast<short>(POLLIN | (wantsToWrite ? POLLOUT : 0)), 0});
     }
     ::poll(fds.data(), fds.size(), kPollMilliseconds);
