@@ -23,7 +23,7 @@ packages=(
   libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
   libnanoflann-dev                                # k-nearest photons (caustics)
   libopenmpi-dev openmpi-bin                      # distribution over MPI
-  libzstd-dev libssl-dev                          # the remote viewer: frames, access token
+  libzstd-dev libsodium-dev                       # the remote viewer: frames, access token
   qtbase5-dev libqt5charts5-dev                   # the viewer (prism view)
   libgtest-dev                                    # tests
   libembree-dev                                   # ray-throughput yardstick (benchmark only)

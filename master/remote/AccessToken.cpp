@@ -1,7 +1,6 @@
 #include "master/remote/AccessToken.h"
 
-#include <openssl/crypto.h>
-#include <openssl/rand.h>
+#include <sodium.h>
 
 #include <array>
 #include <stdexcept>
@@ -12,24 +11,25 @@ constexpr size_t kTokenBytes = 32;  // 256 bits
 }  // namespace
 
 std::string newAccessToken() {
-  std::array<unsigned char, kTokenBytes> random{};
-  if (RAND_bytes(random.data(), static_cast<int>(random.size())) != 1) {
-    throw std::runtime_error("cannot make an access token: OpenSSL's random generator failed");
+  if (sodium_init() < 0) {
+    throw std::runtime_error("cannot make an access token: libsodium did not initialise");
   }
+  std::array<unsigned char, kTokenBytes> random{};
+  randombytes_buf(random.data(), random.size());
   static constexpr char kHex[] = "0123456789abcdef";
   std::string token;
   for (const unsigned char b : random) {
     token += kHex[b >> 4];
     token += kHex[b & 15];
   }
-  OPENSSL_cleanse(random.data(), random.size());
+  sodium_memzero(random.data(), random.size());
   return token;
 }
 
 bool tokenMatches(const std::string& offered, const std::string& expected) {
   // The length is not secret (every token has 64 digits); the digits are.
   if (offered.size() != expected.size() || expected.empty()) return false;
-  return CRYPTO_memcmp(offered.data(), expected.data(), expected.size()) == 0;
+  return sodium_memcmp(offered.data(), expected.data(), expected.size()) == 0;
 }
 
 bool isWellFormedToken(const std::string& text) {
