@@ -79,6 +79,12 @@ MainWindow::MainWindow(LiveSource& source, QWidget* parent)
     refuseCausticMaps(QString::fromStdString(start.causticMapsRefusal));
   }
   lightSpaceRefusal_ = QString::fromStdString(start.lightSpaceRefusal);
+  if (!lightSpaceRefusal_.isEmpty()) {
+    for (QRadioButton* button : {castersButton_, receiversButton_, causticMapViewButton_}) {
+      button->setEnabled(false);
+      button->setToolTip("Not available: " + lightSpaceRefusal_);
+    }
+  }
   updateStatusBar();
 }
 

@@ -63,6 +63,7 @@ ViewClient::ViewClient(const ConnectionInfo& job, const ConnectOptions& options)
                              view::decode<view::RefusedMessage>(answer).reason);
   }
   start_ = view::decode<view::WelcomeMessage>(answer).start;
+  start_.sceneName += " · job at " + job.endpoint.text();
   start_.lightSpaceRefusal =
       "the caustic maps' light-space images are shown only beside the job (`prism view` there)";
   board_ = NewsBoard(start_.width, start_.height);
