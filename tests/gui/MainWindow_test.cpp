@@ -525,6 +525,22 @@ TEST(MainWindow, CausticMapsThatCannotFitAreRefusedWithTheReason) {
   EXPECT_EQ(w.viewId(), view);  // nothing was re-rendered
 }
 
+// Over a connection the light-space images cannot be made: their buttons are disabled with the
+// reason, and the keys show it instead of an image.
+TEST(MainWindow, LightSpaceViewsASourceCannotGiveAreDisabledWithTheReason) {
+  const SceneDescription d = loadScene(kPlaneScene);
+  ScriptedSource source(d, "shown only beside the job");
+  MainWindow w(source);
+  auto* irradiance = w.findChild<QRadioButton*>("debugCausticMap");
+  ASSERT_NE(irradiance, nullptr);
+  EXPECT_FALSE(irradiance->isEnabled());
+  EXPECT_TRUE(irradiance->toolTip().contains("shown only beside the job"));
+  QTest::keyClicks(w.frameView(), "C");
+  EXPECT_TRUE(w.frameView()->overlayCaption().startsWith("shown only beside the job"))
+      << w.frameView()->overlayCaption().toStdString();
+  EXPECT_TRUE(w.frameView()->overlayImage().isNull());
+}
+
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {
   SceneDescription d = loadScene(kPlaneScene);
   ScriptedSource source(d);

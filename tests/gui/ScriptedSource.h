@@ -5,6 +5,7 @@
 #include <functional>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "master/runtime/LiveSource.h"
@@ -15,8 +16,9 @@ namespace prism {
 
 class ScriptedSource final : public LiveSource {
  public:
-  explicit ScriptedSource(const SceneDescription& d)
+  explicit ScriptedSource(const SceneDescription& d, const std::string& lightSpaceRefusal = "")
       : board_(d.render.width, d.render.height) {
+    start_.lightSpaceRefusal = lightSpaceRefusal;
     start_.sceneName = "test";
     start_.width = d.render.width;
     start_.height = d.render.height;

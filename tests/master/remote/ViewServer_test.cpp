@@ -199,7 +199,7 @@ std::string reasonIn(const std::vector<view::Message>& messages) {
 TEST(ViewServer, TheViewerSeesWhatRenderMakesAndSavesItsFullPrecision) {
   ServedJob job;
   Viewer viewer(job.info());
-  EXPECT_EQ(viewer.client().start().sceneName, "default.yaml");
+  EXPECT_EQ(viewer.client().start().sceneName, "default.yaml · job at " + job.info().endpoint.text());
   EXPECT_EQ(viewer.client().start().width, 48);
   EXPECT_TRUE(viewer.client().start().resume);  // the job rendered before anyone came
   ViewSettings view = viewer.client().start().view;
