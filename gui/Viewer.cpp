@@ -277,7 +277,9 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
     try {
       // One queued take at a time: the source wakes once per take.
       endedBecause = source.run(
-          [&window] { QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection); });
+          [&window](bool) {  // a window takes at once, whether urgent or not
+            QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection);
+          });
       if (!endedBecause.empty()) {
         const QString why = QString::fromStdString(endedBecause);
         QMetaObject::invokeMethod(&window, [&window, why] { window.sourceEnded(why); },

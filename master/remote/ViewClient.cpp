@@ -99,7 +99,7 @@ void ViewClient::stop() {
   changed_.notify_all();
 }
 
-void ViewClient::received(view::Message&& message, const std::function<void()>& wake) {
+void ViewClient::received(view::Message&& message, const NewsWake& wake) {
   switch (message.type) {
     case view::MessageType::News: {
       DisplayNews news = view::decode<DisplayNews>(message);
@@ -112,7 +112,7 @@ void ViewClient::received(view::Message&& message, const std::function<void()>& 
         first = !waiting_;
         waiting_ = true;
       }
-      if (first) wake();
+      if (first) wake(true);  // the job chose when to send it
       break;
     }
     case view::MessageType::FullImage: {
@@ -137,7 +137,7 @@ void ViewClient::received(view::Message&& message, const std::function<void()>& 
   }
 }
 
-std::string ViewClient::run(std::function<void()> wake) {
+std::string ViewClient::run(NewsWake wake) {
   auto lastPing = Clock::now();
   std::string why;
   std::vector<view::Message> messages = std::move(early_);

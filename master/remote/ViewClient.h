@@ -32,7 +32,7 @@ class ViewClient final : public LiveSource {
 
   const ViewerStart& start() const override { return start_; }
   void setView(const ViewSettings& view) override;
-  std::string run(std::function<void()> wake) override;
+  std::string run(NewsWake wake) override;
   void stop() override;
   DisplayNews take(bool whole = false) override;
   ImageRgb fullImage() override;
@@ -44,7 +44,7 @@ class ViewClient final : public LiveSource {
 
  private:
   void send(const std::vector<uint8_t>& message);
-  void received(view::Message&& message, const std::function<void()>& wake);
+  void received(view::Message&& message, const NewsWake& wake);
 
   ConnectOptions options_;
   Socket socket_;

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <memory>
@@ -26,12 +27,17 @@ constexpr view::Limits kHelloLimits{4096, 4096};  // a Hello is a token and a na
 constexpr int kPollMilliseconds = 100;         // how often interrupts and deadlines are checked
 constexpr size_t kLoggedRefusals = 5;          // refusals named in the log; the rest counted
 constexpr uint64_t kNewsInFlight = 2;          // news sent and not yet acknowledged, at most
+// News that is not urgent (tiles handed out or finished, statistics) is gathered this long
+// before it is sent: a 60 Hz display shows no more, and each message costs both ends a wake-up
+// that preempts a render thread.
+constexpr double kGatherSeconds = 1.0 / 60;
 
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// The source's wake() from the coordinator thread: one byte into a pipe the poll loop watches.
+// The source's wake() from the coordinator thread: one byte into a pipe the poll loop watches,
+// 'u' for urgent news.
 class WakePipe {
  public:
   WakePipe() {
@@ -43,15 +49,23 @@ class WakePipe {
     ::close(fds_[0]);
     ::close(fds_[1]);
   }
-  void wake() {
-    const char byte = 1;
+  void wake(bool urgent) {
+    const char byte = urgent ? 'u' : 'n';
     [[maybe_unused]] const ssize_t n = ::write(fds_[1], &byte, 1);  // full: a wake is pending
   }
-  // Empties the pipe; returns whether anything was in it.
-  bool drain() {
+  struct Woken {
+    bool any = false;
+    bool urgent = false;
+  };
+  // Empties the pipe; says whether anything, and anything urgent, was in it.
+  Woken drain() {
     char buffer[64];
-    bool woken = false;
-    while (::read(fds_[0], buffer, sizeof buffer) > 0) woken = true;
+    Woken woken;
+    ssize_t n;
+    while ((n = ::read(fds_[0], buffer, sizeof buffer)) > 0) {
+      woken.any = true;
+      for (ssize_t i = 0; i < n; ++i) woken.urgent = woken.urgent || buffer[i] == 'u';
+    }
     return woken;
   }
   int fd() const { return fds_[0]; }
@@ -112,12 +126,12 @@ std::string ViewServer::run() {
   std::string endedBy;
   std::thread coordinator([&] {
     try {
-      endedBy = source_.run([&wakePipe] { wakePipe.wake(); });
+      endedBy = source_.run([&wakePipe](bool urgent) { wakePipe.wake(urgent); });
     } catch (...) {
       failure = std::current_exception();
     }
     finished = true;
-    wakePipe.wake();
+    wakePipe.wake(true);
   });
   ViewSettings current = source_.start().view;
   source_.setView(current);  // renders without a viewer: a viewer that comes finds the passes
@@ -130,6 +144,8 @@ std::string ViewServer::run() {
   std::vector<std::unique_ptr<Pending>> pending;
   std::unique_ptr<Client> client;
   bool newsWaiting = false;
+  bool urgentWaiting = false;
+  Clock::time_point lastTake = Clock::now();
   std::string reason;
   const auto refuse = [&](const Socket& socket, const std::string& why) {
     tryToSay(socket, view::encode(view::RefusedMessage{why}));
@@ -145,15 +161,23 @@ std::string ViewServer::run() {
   while (reason.empty()) {
     std::vector<pollfd> fds{{listener_.fd(), POLLIN, 0}, {wakePipe.fd(), POLLIN, 0}};
     for (const auto& p : pending) fds.push_back({p->socket.fd(), POLLIN, 0});
+    int timeout = kPollMilliseconds;
     if (client) {
       // Writable matters only with bytes to write, or news it may take now (else poll would
-      // return at once, again and again, while the viewer has not acknowledged).
+      // return at once, again and again, while the viewer has not acknowledged or the news is
+      // still being gathered).
       const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
-      const bool wantsToWrite =
-          !client->out.empty() || (mayTake && (newsWaiting || client->wantsWhole));
-      fds.push_back({client->socket.fd(), static_cast<short>(POLLIN | (wantsToWrite ? POLLOUT : 0)), 0});
+      const double gathered = since(lastTake);
+      const bool due = urgentWaiting || client->wantsWhole ||
+                       (newsWaiting && gathered >= kGatherSeconds);
+      if (mayTake && newsWaiting && !due) {
+        timeout = std::min(timeout, 1 + static_cast<int>(1e3 * (kGatherSeconds - gathered)));
+      }
+      const bool wantsToWrite = !client->out.empty() || (mayTake && due);
+      fds.push_back(
+          {client->socket.fd(), static_cast<short>(POLLIN | (wantsToWrite ? POLLOUT : 0)), 0});
     }
-    ::poll(fds.data(), fds.size(), kPollMilliseconds);
+    ::poll(fds.data(), fds.size(), timeout);
 
     if (interruptRequested()) {
       reason = std::string("the job was interrupted (") + interruptSignalName() + ")";
@@ -163,7 +187,9 @@ std::string ViewServer::run() {
       reason = "the job was stopped";
       break;
     }
-    if (wakePipe.drain()) newsWaiting = true;
+    const WakePipe::Woken woken = wakePipe.drain();
+    newsWaiting = newsWaiting || woken.any;
+    urgentWaiting = urgentWaiting || woken.urgent;
     if (finished) {
       reason = failure ? "the job failed" : endedBy.empty() ? "the job ended" : endedBy;
       break;
@@ -272,7 +298,9 @@ std::string ViewServer::run() {
         continue;
       }
       const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
-      if (client->out.empty() && mayTake && (newsWaiting || client->wantsWhole)) {
+      const bool due = urgentWaiting || client->wantsWhole ||
+                       (newsWaiting && since(lastTake) >= kGatherSeconds);
+      if (client->out.empty() && mayTake && due) {
         // The newest news, merged since the last; taken only when the last has left and the
         // viewer has nearly caught up.
         client->out.put(view::encode(source_.take(client->wantsWhole)));
@@ -281,8 +309,8 @@ std::string ViewServer::run() {
         }
         ++client->newsSent;
         client->wantsWhole = false;
-        newsWaiting = false;
-        client->lastProgress = Clock::now();
+        newsWaiting = urgentWaiting = false;
+        lastTake = client->lastProgress = Clock::now();
       }
       if (!mayTake && since(client->lastAcknowledged) > options_.clientTimeoutSeconds) {
         dropClient("it stopped reading");

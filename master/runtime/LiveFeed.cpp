@@ -26,9 +26,10 @@ DisplayPass displayPass(const PassInfo& pass) {
 LiveFeed::LiveFeed(int width, int height, float exposure)
     : frame_(width, height), encoder_(exposure), board_(width, height) {}
 
-bool LiveFeed::noteLocked() {
-  const bool wake = !waiting_;
+bool LiveFeed::noteLocked(bool urgent) {
+  const bool wake = !waiting_ || (urgent && !waitingUrgent_);
   waiting_ = true;
+  waitingUrgent_ = waitingUrgent_ || urgent;
   return wake;
 }
 
@@ -39,27 +40,27 @@ void LiveFeed::passStarted(const PassInfo& pass) {
     if (!started_ || pass.viewId != frame_.pass().viewId) fullPassesDone_ = 0;
     started_ = true;
     frame_.beginPass(pass);
-    wake = noteLocked();
+    wake = noteLocked(true);
   }
-  wakeIf(wake);
+  wakeIf(wake, true);
 }
 
 void LiveFeed::tileAssigned(uint32_t frame, uint32_t tile, int rank) {
   bool wake = false;
   {
     std::lock_guard lock(mutex_);
-    if (frame_.assign(frame, tile, rank)) wake = noteLocked();
+    if (frame_.assign(frame, tile, rank)) wake = noteLocked(false);
   }
-  wakeIf(wake);
+  wakeIf(wake, false);
 }
 
 void LiveFeed::tileFinished(uint32_t frame, std::shared_ptr<const TileResult> tile, int) {
   bool wake = false;
   {
     std::lock_guard lock(mutex_);
-    if (frame_.addTile(frame, *tile)) wake = noteLocked();
+    if (frame_.addTile(frame, *tile)) wake = noteLocked(false);
   }
-  wakeIf(wake);
+  wakeIf(wake, false);
 }
 
 void LiveFeed::passFinished(uint32_t frame, double) {
@@ -70,10 +71,10 @@ void LiveFeed::passFinished(uint32_t frame, double) {
       const DisplayPass pass = displayPass(frame_.pass());
       if (pass.pass >= 1) ++fullPassesDone_;
       board_.passCompleted(pass);
-      wake = noteLocked();
+      wake = noteLocked(true);
     }
   }
-  wakeIf(wake);
+  wakeIf(wake, true);
 }
 
 void LiveFeed::statsUpdated(const LiveStats& stats) {
@@ -81,9 +82,9 @@ void LiveFeed::statsUpdated(const LiveStats& stats) {
   {
     std::lock_guard lock(mutex_);
     board_.setStats(stats);
-    wake = noteLocked();
+    wake = noteLocked(false);
   }
-  wakeIf(wake);
+  wakeIf(wake, false);
 }
 
 void LiveFeed::encodeDirtyLocked() {
@@ -119,7 +120,7 @@ DisplayNews LiveFeed::take(bool whole) {
     }
   }
   board_.setState(state);
-  waiting_ = false;
+  waiting_ = waitingUrgent_ = false;
   return board_.take(whole);
 }
 

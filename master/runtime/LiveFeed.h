@@ -12,6 +12,7 @@
 #include "image/ToneMap.h"
 #include "master/runtime/FrameAccumulator.h"
 #include "master/runtime/LiveRenderer.h"
+#include "master/runtime/LiveSource.h"
 #include "master/runtime/NewsBoard.h"
 
 namespace prism {
@@ -23,9 +24,10 @@ class LiveFeed final : public LiveListener {
  public:
   LiveFeed(int width, int height, float exposure);
 
-  // Called when news arrives and the last was taken (so once per take at most), on the
-  // coordinator thread: it should only wake whoever takes. Set it before the renderer runs.
-  void setWake(std::function<void()> wake) { wake_ = std::move(wake); }
+  // Called when news arrives and the last was taken, and again when urgent news (a pass began
+  // or completed) follows news that was not (so twice per take at most), on the coordinator
+  // thread: it should only wake whoever takes. Set it before the renderer runs.
+  void setWake(NewsWake wake) { wake_ = std::move(wake); }
 
   // Everything since the last take(), merged; `whole`: with every pixel (a viewer that just
   // came, or came back).
@@ -41,10 +43,11 @@ class LiveFeed final : public LiveListener {
   void statsUpdated(const LiveStats& stats) override;
 
  private:
-  // Something changed: returns whether to wake the viewer (the first news since its take).
-  bool noteLocked();
-  void wakeIf(bool wake) {
-    if (wake && wake_) wake_();
+  // Something changed: returns whether to wake the viewer (the first news since its take, or
+  // the first urgent news).
+  bool noteLocked(bool urgent);
+  void wakeIf(bool wake, bool urgent) {
+    if (wake && wake_) wake_(urgent);
   }
   // Encodes the accumulator's changed rectangle onto the board.
   void encodeDirtyLocked();
@@ -55,8 +58,9 @@ class LiveFeed final : public LiveListener {
   NewsBoard board_;
   int fullPassesDone_ = 0;
   bool started_ = false;
-  bool waiting_ = false;  // news since the last take
-  std::function<void()> wake_;
+  bool waiting_ = false;        // news since the last take
+  bool waitingUrgent_ = false;  // urgent news since the last take
+  NewsWake wake_;
 };
 
 }  // namespace prism

@@ -33,6 +33,11 @@ struct ViewerStart {
   std::string lightSpaceRefusal;
 };
 
+// Called when news waits to be taken. urgent: a pass began or completed (a viewer shows that at
+// once); otherwise only tiles' progress or statistics changed (a viewer over a link may gather
+// such news a few milliseconds before it takes).
+using NewsWake = std::function<void(bool urgent)>;
+
 class LiveSource {
  public:
   virtual ~LiveSource() = default;
@@ -40,10 +45,11 @@ class LiveSource {
   virtual const ViewerStart& start() const = 0;
   // Ends the current frame and starts rendering this view. Any thread.
   virtual void setView(const ViewSettings& view) = 0;
-  // Renders (or receives) until stop(), calling wake() whenever news waits to be taken; wake()
-  // should only wake the viewer's thread. Returns "" after stop(), or why the source ended by
+  // Renders (or receives) until stop(), calling wake() whenever news waits to be taken (once,
+  // and once more if urgent news follows, until the next take); wake() should only wake the
+  // viewer's thread. Returns "" after stop(), or why the source ended by
   // itself (the job ended, the connection was lost). Throws when rendering fails.
-  virtual std::string run(std::function<void()> wake) = 0;
+  virtual std::string run(NewsWake wake) = 0;
   // Makes run() return soon. Any thread.
   virtual void stop() = 0;
   // The news since the last take (LiveFeed::take); `whole`: every pixel. Any thread.

@@ -38,7 +38,7 @@ LocalLiveSource::LocalLiveSource(const Scene& scene, const LiveOptions& options,
       feed_(description.render.width, description.render.height, description.render.exposure),
       start_(startOf(description, sceneName, *renderer_)) {}
 
-std::string LocalLiveSource::run(std::function<void()> wake) {
+std::string LocalLiveSource::run(NewsWake wake) {
   feed_.setWake(std::move(wake));
   renderer_->run(feed_);
   return "";

@@ -22,7 +22,7 @@ class LocalLiveSource final : public LiveSource {
 
   const ViewerStart& start() const override { return start_; }
   void setView(const ViewSettings& view) override { renderer_->setView(view); }
-  std::string run(std::function<void()> wake) override;
+  std::string run(NewsWake wake) override;
   void stop() override { renderer_->stop(); }
   DisplayNews take(bool whole = false) override { return feed_.take(whole); }
   ImageRgb fullImage() override { return feed_.image(); }

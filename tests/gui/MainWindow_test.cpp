@@ -53,7 +53,7 @@ class LiveWindow {
         source_(scene_, options(maxPasses, memoryLimit), description_, "test"),
         window_(source_) {
     coordinator_ = std::thread([this] {
-      source_.run([this] {
+      source_.run([this](bool) {
         QMetaObject::invokeMethod(&window_, "takeNews", Qt::QueuedConnection);
       });
     });

@@ -31,7 +31,7 @@ class ScriptedSource final : public LiveSource {
 
   const ViewerStart& start() const override { return start_; }
   void setView(const ViewSettings& view) override { requested.push_back(view); }
-  std::string run(std::function<void()>) override { return ""; }
+  std::string run(NewsWake) override { return ""; }
   void stop() override {}
   DisplayNews take(bool whole) override { return board_.take(whole); }
   ImageRgb fullImage() override { throw std::runtime_error("no full image in this test"); }

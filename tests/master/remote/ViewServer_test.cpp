@@ -113,7 +113,7 @@ class Viewer {
  public:
   explicit Viewer(const ConnectionInfo& job) : client_(job), frame_(client_.start().width, client_.start().height) {
     thread_ = std::thread([this] {
-      ended_ = client_.run([this] {
+      ended_ = client_.run([this](bool) {
         std::lock_guard lock(mutex_);
         woken_ = true;
         changed_.notify_all();

@@ -31,17 +31,23 @@ std::shared_ptr<const TileResult> tileOf(const PassInfo& p, uint32_t index, Colo
   return tile;
 }
 
-// The feed wakes its viewer once per take however much happens, and a take holds everything
-// since the last: the averaged passes as display bytes, the passes completed, the state.
+// The feed wakes its viewer once per take however much happens (once more when a pass begins or
+// ends after other news: urgent), and a take holds everything since the last: the averaged
+// passes as display bytes, the passes completed, the state.
 TEST(LiveFeed, WakesOncePerTakeAndHandsOverTheAveragedPassesAsDisplayBytes) {
   LiveFeed feed(4, 2, 1.0f);
   int wakes = 0;
-  feed.setWake([&] { ++wakes; });
+  int urgent = 0;
+  feed.setWake([&](bool isUrgent) {
+    ++wakes;
+    urgent += isUrgent;
+  });
   const PassInfo one = fullPass(1, 1, 4, 2);
   feed.passStarted(one);
   feed.tileAssigned(1, 0, 0);
   feed.tileAssigned(1, 1, 3);
-  EXPECT_EQ(wakes, 1);
+  EXPECT_EQ(wakes, 1);  // the pass began: urgent
+  EXPECT_EQ(urgent, 1);
   DisplayNews news = feed.take();
   ASSERT_EQ(news.inFlight.size(), 2u);
   EXPECT_EQ(news.inFlight[1].rank, 3);
@@ -54,7 +60,8 @@ TEST(LiveFeed, WakesOncePerTakeAndHandsOverTheAveragedPassesAsDisplayBytes) {
   feed.tileFinished(2, tileOf(two, 0, Color(0.75f)), 0);
   feed.tileFinished(2, tileOf(two, 1, Color(0.75f)), 0);
   feed.passFinished(2, 0.1);
-  EXPECT_EQ(wakes, 2);  // the second since the take, however many calls
+  EXPECT_EQ(wakes, 3);  // a tile, then the pass's end (urgent), however many calls
+  EXPECT_EQ(urgent, 2);
   news = feed.take();
   EXPECT_EQ(news.pass.pass, 2);
   EXPECT_EQ(news.pass.viewTag, 9u);
