@@ -1,6 +1,6 @@
 // The live image: the display bytes of the window's DisplayFrame, repainted on a timer (60 Hz
-// at most, and only when something changed), so a burst of news costs one repaint. Draws the tiles in
-// flight outlined in their rank's colour (toggleable) and the help overlay. A light-space debug
+// at most, and only when something changed), so a burst of news costs one repaint. Draws the tiles
+// in flight outlined in their rank's colour (toggleable) and the help overlay. A light-space debug
 // image (the caustic maps of R, P, C) can be shown instead of the frame, which keeps rendering
 // underneath.
 #pragma once

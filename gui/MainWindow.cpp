@@ -260,7 +260,8 @@ void MainWindow::updateLightSpace() {
   }
   if (!pendingMaps_.valid()) {  // one build at a time; a stale one finishes first
     pendingBlur_ = blur;
-    pendingMaps_ = std::async(std::launch::async, [this, blur] { return source_.causticMaps(blur); });
+    pendingMaps_ =
+        std::async(std::launch::async, [this, blur] { return source_.causticMaps(blur); });
   }
   if (!mapPoll_->isActive()) {
     view_->setOverlay({}, "building the caustic maps…");
@@ -462,8 +463,7 @@ void MainWindow::takeNews() {
   view_->markChanged();
   for (const DisplayPass& pass : news.completed) emit passComplete(pass);
   // Passes of the view asked for last: those a script waits for.
-  if (news.started && news.pass.viewTag == settings_.tag &&
-      news.fullPassesDone > fullPassesDone_) {
+  if (news.started && news.pass.viewTag == settings_.tag && news.fullPassesDone > fullPassesDone_) {
     fullPassesDone_ = news.fullPassesDone;
     emit fullPassDone(fullPassesDone_);
   }

@@ -217,7 +217,8 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
 
   MainWindow window(source);
   if (options.exitAfterPasses > 0) window.limitPasses(options.exitAfterPasses);
-  if (options.frameTimeMilliseconds >= 0.0) window.setFrameTime(options.frameTimeMilliseconds / 1e3);
+  if (options.frameTimeMilliseconds >= 0.0)
+    window.setFrameTime(options.frameTimeMilliseconds / 1e3);
   if (!options.speedupCsv.empty()) {
     const QString error = window.loadSpeedupCsv(QString::fromStdString(options.speedupCsv));
     if (!error.isEmpty()) {
@@ -276,14 +277,13 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
   std::thread coordinator([&] {
     try {
       // One queued take at a time: the source wakes once per take.
-      endedBecause = source.run(
-          [&window](bool) {  // a window takes at once, whether urgent or not
-            QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection);
-          });
+      endedBecause = source.run([&window](bool) {  // a window takes at once, whether urgent or not
+        QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection);
+      });
       if (!endedBecause.empty()) {
         const QString why = QString::fromStdString(endedBecause);
-        QMetaObject::invokeMethod(&window, [&window, why] { window.sourceEnded(why); },
-                                  Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            &window, [&window, why] { window.sourceEnded(why); }, Qt::QueuedConnection);
         if (scripted) QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
       }
     } catch (...) {

@@ -4,9 +4,9 @@
 // OpenImageIO, loaded only when such a file is read or written (OiioModule.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
-#include <cstdint>
 #include <vector>
 
 #include "image/ImageRgb.h"

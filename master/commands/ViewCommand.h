@@ -20,7 +20,7 @@ struct ViewOptions {
   int previewScale = 4;  // frames while moving may drop down to 1/previewScale of each side
   int maxPasses = 64;    // full-resolution passes before the view stops refining
   double frameTimeMilliseconds = 1000.0 / 30;  // target for frames while moving; 0: none
-  bool pipeline = true;    // queue the next frame before the current one's last tiles return
+  bool pipeline = true;  // queue the next frame before the current one's last tiles return
   ViewerOptions window;  // what the window does besides showing
   ServeOptions serve;    // --serve: no window here; a viewer connects
 };

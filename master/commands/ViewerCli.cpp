@@ -83,8 +83,9 @@ CLI::App* addConnectCommand(CLI::App& app, ConnectCommandOptions& o) {
   connect->add_option("--token-file", o.tokenFile,
                       "With HOST:PORT: a file whose first line is the job's token (else "
                       "$PRISM_TOKEN)");
-  connect->add_option("--timeout", o.timeoutSeconds,
-                      "Seconds to wait for the job to answer (default 10)")
+  connect
+      ->add_option("--timeout", o.timeoutSeconds,
+                   "Seconds to wait for the job to answer (default 10)")
       ->check(CLI::Range(0.1, 600.0));
   connect
       ->add_option("--frame-time", o.window.frameTimeMilliseconds,

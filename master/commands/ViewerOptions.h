@@ -12,10 +12,10 @@ struct ViewerOptions {
   // quit when this many full passes of the view asked for last are done (the view renders no
   // more than that)
   int exitAfterPasses = 0;
-  std::string savePath;            // save the image here when quitting (written where the window is)
-  std::string screenshotPath;      // grab the whole window here ...
-  double screenshotSeconds = 2.0;  // ... this long after start, then quit
-  int benchmarkMoves = 0;          // move the camera this often, print frame rates, quit
+  std::string savePath;        // save the image here when quitting (written where the window is)
+  std::string screenshotPath;  // grab the whole window here ...
+  double screenshotSeconds = 2.0;           // ... this long after start, then quit
+  int benchmarkMoves = 0;                   // move the camera this often, print frame rates, quit
   double benchmarkMoveMilliseconds = 10.0;  // one move per this interval (a mouse drag's rate)
   std::string keys;  // typed into the window at start, in order (letters, + - =)
   // The renderer's target for frames while moving, asked for with every view (`prism connect

@@ -49,7 +49,7 @@ void writeConnectionFile(const std::string& path, const ConnectionInfo& info) {
 }
 
 ConnectionInfo readConnectionFile(const std::string& path) {
-  struct stat status{};
+  struct stat status {};
   if (::stat(path.c_str(), &status) != 0) {
     throw std::runtime_error("cannot read connection file " + path + ": " + std::strerror(errno));
   }
@@ -73,7 +73,8 @@ ConnectionInfo readConnectionFile(const std::string& path) {
     const auto number32 = [&](uint32_t limit) {
       uint32_t n = 0;
       const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), n);
-      if (value.empty() || error != std::errc() || end != value.data() + value.size() || n > limit) {
+      if (value.empty() || error != std::errc() || end != value.data() + value.size() ||
+          n > limit) {
         throw std::runtime_error(where + key + " '" + value + "' is not a number up to " +
                                  std::to_string(limit));
       }
@@ -99,9 +100,9 @@ ConnectionInfo readConnectionFile(const std::string& path) {
       throw std::runtime_error(where + "unknown key '" + key + "'");
     }
   }
-  for (const auto& [have, key] : {std::pair{haveHost, "host"}, std::pair{havePort, "port"},
-                                  std::pair{haveToken, "token"},
-                                  std::pair{haveProtocol, "protocol"}}) {
+  for (const auto& [have, key] :
+       {std::pair{haveHost, "host"}, std::pair{havePort, "port"}, std::pair{haveToken, "token"},
+        std::pair{haveProtocol, "protocol"}}) {
     if (!have) throw std::runtime_error("connection file " + path + " has no " + key);
   }
   return info;

@@ -7,7 +7,7 @@ namespace prism {
 
 struct ServeOptions {
   std::string address;  // "HOST:PORT" or "PORT" (127.0.0.1); PORT 0 picks a free port; "": show
-  std::string connectionFile;  // where host, port and token are written (mode 0600)
+  std::string connectionFile;   // where host, port and token are written (mode 0600)
   bool exitWithClient = false;  // end the job when the viewer leaves
   // Listening beyond the loopback addresses must be asked for twice: by the address and by this.
   bool allowNetwork = false;

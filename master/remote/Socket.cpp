@@ -97,9 +97,9 @@ Socket listenTcp(const Endpoint& endpoint, Endpoint* bound) {
     ::getsockname(s.fd(), reinterpret_cast<sockaddr*>(&local), &length);
     if (bound) {
       *bound = endpoint;
-      bound->port = ntohs(local.ss_family == AF_INET6
-                              ? reinterpret_cast<sockaddr_in6*>(&local)->sin6_port
-                              : reinterpret_cast<sockaddr_in*>(&local)->sin_port);
+      bound->port =
+          ntohs(local.ss_family == AF_INET6 ? reinterpret_cast<sockaddr_in6*>(&local)->sin6_port
+                                            : reinterpret_cast<sockaddr_in*>(&local)->sin_port);
     }
     return s;
   }

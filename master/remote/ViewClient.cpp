@@ -203,13 +203,12 @@ ImageRgb ViewClient::fullImage() {
   send(view::encode(view::FullImageRequestMessage{request}));
   std::unique_lock lock(mutex_);
   const bool arrived =
-      changed_.wait_for(lock, std::chrono::duration<double>(options_.requestSeconds), [&] {
-        return (image_ && image_->request == request) || !ended_.empty();
-      });
+      changed_.wait_for(lock, std::chrono::duration<double>(options_.requestSeconds),
+                        [&] { return (image_ && image_->request == request) || !ended_.empty(); });
   if (!arrived || !image_ || image_->request != request) {
-    throw std::runtime_error("no full-precision image from the job" +
-                             (ended_.empty() ? std::string(" within the time allowed")
-                                             : ": " + ended_));
+    throw std::runtime_error(
+        "no full-precision image from the job" +
+        (ended_.empty() ? std::string(" within the time allowed") : ": " + ended_));
   }
   return std::move(image_->image);
 }

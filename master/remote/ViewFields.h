@@ -122,8 +122,8 @@ template <>
 struct Fields<PhotonLiveStats> {
   static void fields(auto& self, auto&& visit) {
     auto& [method, noCasters, photonsPerPass, passes, reused, stored, mapBytes, traceSeconds,
-           buildSeconds, distributeSeconds, radiiSeconds, photonsPerSecond, radius,
-           mapResolution, mapViews, mapBlur, mapBuildSeconds] = self;
+           buildSeconds, distributeSeconds, radiiSeconds, photonsPerSecond, radius, mapResolution,
+           mapViews, mapBlur, mapBuildSeconds] = self;
     visit(method, flag(noCasters, "no-casters flag"), photonsPerPass, passes,
           flag(reused, "reused flag"), stored, mapBytes, traceSeconds, buildSeconds,
           distributeSeconds, radiiSeconds, photonsPerSecond, radius, mapResolution, mapViews,
@@ -142,11 +142,11 @@ struct Fields<LiveStats> {
 template <>
 struct Fields<DisplayNews> {
   static void fields(auto& self, auto&& visit) {
-    auto& [started, pass, tilesDone, completedPass, fullPassesDone, staleTiles, completed,
-           inFlight, width, height, patch, patchBytes, stats] = self;
-    visit(flag(started, "started flag"), pass, tilesDone, completedPass, fullPassesDone,
-          staleTiles, completed, inFlight, width, height, patch.x, patch.y, patch.width,
-          patch.height, subFilteredRows(patchBytes, patch.width), stats);
+    auto& [started, pass, tilesDone, completedPass, fullPassesDone, staleTiles, completed, inFlight,
+           width, height, patch, patchBytes, stats] = self;
+    visit(flag(started, "started flag"), pass, tilesDone, completedPass, fullPassesDone, staleTiles,
+          completed, inFlight, width, height, patch.x, patch.y, patch.width, patch.height,
+          subFilteredRows(patchBytes, patch.width), stats);
   }
   // A frame of 1 to 16384 pixels a side; the patch (if any) inside it with its bytes; at most
   // kMaxCompleted completed passes.

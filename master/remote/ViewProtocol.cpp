@@ -90,7 +90,8 @@ constexpr int kZstdLevel = 1;  // docs/viewer.md: level 1 keeps a frame's compre
 
 std::vector<uint8_t> compress(const std::vector<uint8_t>& raw) {
   std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
-  const size_t size = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), kZstdLevel);
+  const size_t size =
+      ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), kZstdLevel);
   if (ZSTD_isError(size)) {
     throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(size));
   }
@@ -216,8 +217,8 @@ std::vector<uint8_t> encode(const T& value) {
 template <ViewMessage T>
 T decode(const Message& message) {
   if (message.type != MessageTraits<T>::kType) {
-    throw WireError(std::string("expected ") + messageTypeName(MessageTraits<T>::kType) +
-                    ", got " + messageTypeName(message.type));
+    throw WireError(std::string("expected ") + messageTypeName(MessageTraits<T>::kType) + ", got " +
+                    messageTypeName(message.type));
   }
   T value{};
   wire::ByteReader r(message.payload);

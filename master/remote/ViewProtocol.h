@@ -129,17 +129,19 @@ Message decodeMessage(const uint8_t* data, size_t size, const Limits& limits);
 
 template <class T>
 struct MessageTraits {};
-#define PRISM_VIEW_TRAITS(name, number, Type, isCompressed)  \
-  template <>                                                \
-  struct MessageTraits<Type> {                               \
-    static constexpr MessageType kType = MessageType::name;  \
-    static constexpr bool kCompressed = isCompressed;        \
+#define PRISM_VIEW_TRAITS(name, number, Type, isCompressed) \
+  template <>                                               \
+  struct MessageTraits<Type> {                              \
+    static constexpr MessageType kType = MessageType::name; \
+    static constexpr bool kCompressed = isCompressed;       \
   };
 PRISM_VIEW_MESSAGES(PRISM_VIEW_TRAITS)
 #undef PRISM_VIEW_TRAITS
 
 template <class T>
-concept ViewMessage = requires { MessageTraits<T>::kType; };
+concept ViewMessage = requires {
+  MessageTraits<T>::kType;
+};
 
 // The whole message (envelope included) around a payload of encoded fields, compressed when the
 // type's messages are (fuzzing and tests build messages of any content with it).

@@ -22,11 +22,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr size_t kMaxPending = 16;             // connections not yet past their Hello
+constexpr size_t kMaxPending = 16;                // connections not yet past their Hello
 constexpr view::Limits kHelloLimits{4096, 4096};  // a Hello is a token and a name
-constexpr int kPollMilliseconds = 100;         // how often interrupts and deadlines are checked
-constexpr size_t kLoggedRefusals = 5;          // refusals named in the log; the rest counted
-constexpr uint64_t kNewsInFlight = 2;          // news sent and not yet acknowledged, at most
+constexpr int kPollMilliseconds = 100;            // how often interrupts and deadlines are checked
+constexpr size_t kLoggedRefusals = 5;             // refusals named in the log; the rest counted
+constexpr uint64_t kNewsInFlight = 2;             // news sent and not yet acknowledged, at most
 // News that is not urgent (tiles handed out or finished, statistics) is gathered this long
 // before it is sent: a 60 Hz display shows no more, and each message costs both ends a wake-up
 // that preempts a render thread.
@@ -96,7 +96,7 @@ struct ViewServer::Client {
   OutBuffer out;
   Clock::time_point lastHeard = Clock::now();
   Clock::time_point lastProgress = Clock::now();  // of writing, while out was not empty
-  bool wantsWhole = true;                          // the next news has every pixel
+  bool wantsWhole = true;                         // the next news has every pixel
   uint64_t newsSent = 0;
   uint64_t newsAcknowledged = 0;
   Clock::time_point lastAcknowledged = Clock::now();
@@ -168,8 +168,8 @@ std::string ViewServer::run() {
       // still being gathered).
       const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
       const double gathered = since(lastTake);
-      const bool due = urgentWaiting || client->wantsWhole ||
-                       (newsWaiting && gathered >= kGatherSeconds);
+      const bool due =
+          urgentWaiting || client->wantsWhole || (newsWaiting && gathered >= kGatherSeconds);
       if (mayTake && newsWaiting && !due) {
         timeout = std::min(timeout, 1 + static_cast<int>(1e3 * (kGatherSeconds - gathered)));
       }
@@ -271,7 +271,8 @@ std::string ViewServer::run() {
             break;
           case view::MessageType::FullImageRequest: {
             const auto request = view::decode<view::FullImageRequestMessage>(m);
-            client->out.put(view::encode(view::FullImageMessage{request.request, source_.fullImage()}));
+            client->out.put(
+                view::encode(view::FullImageMessage{request.request, source_.fullImage()}));
             break;
           }
           case view::MessageType::Ping:
@@ -298,8 +299,8 @@ std::string ViewServer::run() {
         continue;
       }
       const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
-      const bool due = urgentWaiting || client->wantsWhole ||
-                       (newsWaiting && since(lastTake) >= kGatherSeconds);
+      const bool due =
+          urgentWaiting || client->wantsWhole || (newsWaiting && since(lastTake) >= kGatherSeconds);
       if (client->out.empty() && mayTake && due) {
         // The newest news, merged since the last; taken only when the last has left and the
         // viewer has nearly caught up.

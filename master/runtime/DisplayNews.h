@@ -22,7 +22,7 @@ struct DisplayPass {
   uint32_t frame = 0;
   uint64_t viewId = 0;
   uint64_t viewTag = 0;  // ViewSettings::tag of the view it renders
-  int32_t pass = 0;  // 0: a frame while moving, not averaged
+  int32_t pass = 0;      // 0: a frame while moving, not averaged
   FrameScale scale;
   bool firstOfView = false;
   CameraDesc camera;
@@ -45,9 +45,9 @@ struct DisplayNews {
   bool started = false;  // a pass has begun (until then the rest is empty)
   DisplayPass pass;      // the pass on screen now
   uint32_t tilesDone = 0;
-  int32_t completedPass = -1;   // the highest pass of the view with every tile in (-1: none)
-  int32_t fullPassesDone = 0;   // full-resolution passes of the view completed
-  uint64_t staleTiles = 0;      // tiles of frames no longer shown, since the start
+  int32_t completedPass = -1;          // the highest pass of the view with every tile in (-1: none)
+  int32_t fullPassesDone = 0;          // full-resolution passes of the view completed
+  uint64_t staleTiles = 0;             // tiles of frames no longer shown, since the start
   std::vector<DisplayPass> completed;  // passes completed since the last news, oldest first
   std::vector<DisplayTile> inFlight;
   // The display bytes (R, G, B per pixel, rows from the top) of the rectangle patch of the frame

@@ -114,11 +114,11 @@ struct ViewSettings {
 };
 
 struct PassInfo {
-  uint32_t frame = 0;   // wire frame id, unique per pass
+  uint32_t frame = 0;    // wire frame id, unique per pass
   uint64_t viewId = 0;   // increases with every setView()
   uint64_t viewTag = 0;  // the ViewSettings::tag of the view
-  int pass = 0;         // 0: a frame while moving that is not averaged (reduced, or 1 spp)
-  FrameScale scale;     // the pass's share of each side of the display (full resolution: 1)
+  int pass = 0;          // 0: a frame while moving that is not averaged (reduced, or 1 spp)
+  FrameScale scale;      // the pass's share of each side of the display (full resolution: 1)
   // The first frame of its view: shown when complete, never mixed with the view before.
   bool firstOfView = false;
   std::shared_ptr<const RenderView> view;  // what the pass renders, at its own resolution

@@ -25,15 +25,14 @@ ViewerStart LocalLiveSource::startOf(const SceneDescription& description,
 }
 
 LocalLiveSource::LocalLiveSource(WorkDispatcher& dispatcher, const LiveOptions& options,
-                                 const SceneDescription& description,
-                                 const std::string& sceneName)
+                                 const SceneDescription& description, const std::string& sceneName)
     : renderer_(std::make_unique<LiveRenderer>(dispatcher, options)),
       feed_(description.render.width, description.render.height, description.render.exposure),
       start_(startOf(description, sceneName, *renderer_)) {}
 
 LocalLiveSource::LocalLiveSource(const Scene& scene, const LiveOptions& options,
-                                 const SceneDescription& description,
-                                 const std::string& sceneName, Transport* cluster)
+                                 const SceneDescription& description, const std::string& sceneName,
+                                 Transport* cluster)
     : renderer_(std::make_unique<LiveRenderer>(scene, options, cluster)),
       feed_(description.render.width, description.render.height, description.render.exposure),
       start_(startOf(description, sceneName, *renderer_)) {}

@@ -62,8 +62,8 @@ void writePatch(std::vector<uint8_t>& frame, int width, int height, const Displa
   }
   const size_t row = static_cast<size_t>(r.width) * 3;
   for (int y = 0; y < r.height; ++y) {
-    std::memcpy(&frame[(static_cast<size_t>(r.y + y) * width + r.x) * 3],
-                &news.patchBytes[y * row], row);
+    std::memcpy(&frame[(static_cast<size_t>(r.y + y) * width + r.x) * 3], &news.patchBytes[y * row],
+                row);
   }
 }
 

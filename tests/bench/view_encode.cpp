@@ -40,8 +40,8 @@ int main(int argc, char** argv) {
       news.patchBytes = toDisplayBytes(image.pixels, d.render.exposure);
       const std::string size = std::to_string(width) + "x" + std::to_string(height);
       const double raw = static_cast<double>(news.patchBytes.size());
-      std::printf("%-10s %4d %10s %10.0f %8s %8s %10.1f\n", size.c_str(), spp, "raw", raw, "-",
-                  "-", raw * 30 / 1e6);
+      std::printf("%-10s %4d %10s %10.0f %8s %8s %10.1f\n", size.c_str(), spp, "raw", raw, "-", "-",
+                  raw * 30 / 1e6);
       for (const int level : {-5, -1, 1, 3}) {
         std::vector<uint8_t> packed(ZSTD_compressBound(news.patchBytes.size()));
         size_t bytes = 0;
@@ -50,18 +50,18 @@ int main(int argc, char** argv) {
                                 news.patchBytes.size(), level);
         });
         std::vector<uint8_t> back(news.patchBytes.size());
-        const double dec = medianMs(runs, [&] {
-          ZSTD_decompress(back.data(), back.size(), packed.data(), bytes);
-        });
+        const double dec = medianMs(
+            runs, [&] { ZSTD_decompress(back.data(), back.size(), packed.data(), bytes); });
         const std::string codec = "zstd " + std::to_string(level);
-        std::printf("%-10s %4d %10s %10zu %8.2f %8.2f %10.1f\n", size.c_str(), spp,
-                    codec.c_str(), bytes, enc, dec, bytes * 30 / 1e6);
+        std::printf("%-10s %4d %10s %10zu %8.2f %8.2f %10.1f\n", size.c_str(), spp, codec.c_str(),
+                    bytes, enc, dec, bytes * 30 / 1e6);
       }
       {  // PNG's Sub filter first: each byte minus the same channel of the pixel to its left
         std::vector<uint8_t> sub(news.patchBytes.size());
         for (size_t i = 0; i < sub.size(); ++i) {
           const bool rowStart = (i / 3) % static_cast<size_t>(width) == 0;
-          sub[i] = static_cast<uint8_t>(news.patchBytes[i] - (rowStart ? 0 : news.patchBytes[i - 3]));
+          sub[i] =
+              static_cast<uint8_t>(news.patchBytes[i] - (rowStart ? 0 : news.patchBytes[i - 3]));
         }
         std::vector<uint8_t> packed(ZSTD_compressBound(sub.size()));
         size_t bytes = 0;
@@ -74,8 +74,8 @@ int main(int argc, char** argv) {
       // The message as the job sends it (level 1, fields and envelope included).
       size_t message = 0;
       const double send = medianMs(runs, [&] { message = view::encode(news).size(); });
-      std::printf("%-10s %4d %10s %10zu %8.2f %8s %10.1f\n", size.c_str(), spp, "News msg",
-                  message, send, "-", message * 30 / 1e6);
+      std::printf("%-10s %4d %10s %10zu %8.2f %8s %10.1f\n", size.c_str(), spp, "News msg", message,
+                  send, "-", message * 30 / 1e6);
     }
   }
   return 0;

@@ -43,9 +43,11 @@ struct Harness {
 };
 
 inline const std::vector<Harness>& harnesses() {
-  static const std::vector<Harness> all = {
-      {"yaml_scene", fuzzYamlScene}, {"nff", fuzzNff}, {"obj", fuzzObj}, {"wire", fuzzWire},
-      {"view", fuzzView}};
+  static const std::vector<Harness> all = {{"yaml_scene", fuzzYamlScene},
+                                           {"nff", fuzzNff},
+                                           {"obj", fuzzObj},
+                                           {"wire", fuzzWire},
+                                           {"view", fuzzView}};
   return all;
 }
 

@@ -53,9 +53,8 @@ class LiveWindow {
         source_(scene_, options(maxPasses, memoryLimit), description_, "test"),
         window_(source_) {
     coordinator_ = std::thread([this] {
-      source_.run([this](bool) {
-        QMetaObject::invokeMethod(&window_, "takeNews", Qt::QueuedConnection);
-      });
+      source_.run(
+          [this](bool) { QMetaObject::invokeMethod(&window_, "takeNews", Qt::QueuedConnection); });
     });
     window_.show();
     window_.startRendering();

@@ -42,8 +42,8 @@ TEST_F(RemoteViewer, TwoRanksServeAndTheDeskSavesWhatRenderMakesOfTheViewItMoved
                                    " --exit-with-client");
   });
   ASSERT_TRUE(waitForFile(file)) << "no connection file";
-  const auto desk = runPrism("connect " + file + " --keys wwd --exit-after-passes 1 --save " +
-                             path("desk.exr"));
+  const auto desk =
+      runPrism("connect " + file + " --keys wwd --exit-after-passes 1 --save " + path("desk.exr"));
   server.join();
   ASSERT_EQ(desk.exitCode, 0) << desk.output;
   ASSERT_EQ(job.exitCode, 0) << job.output;
@@ -57,8 +57,8 @@ TEST_F(RemoteViewer, TwoRanksServeAndTheDeskSavesWhatRenderMakesOfTheViewItMoved
   ASSERT_TRUE(std::regex_search(desk.output, view,
                                 std::regex("view       (--camera-position \\S+ --look-at \\S+)")))
       << desk.output;
-  const auto render = runPrism("render " + kScene + kSize + " " + view[1].str() + " -q -o " +
-                               path("render.exr"));
+  const auto render =
+      runPrism("render " + kScene + kSize + " " + view[1].str() + " -q -o " + path("render.exr"));
   ASSERT_EQ(render.exitCode, 0) << render.output;
   const ImageRgb a = readImage(path("desk.exr"));
   const ImageRgb b = readImage(path("render.exr"));
@@ -76,9 +76,8 @@ TEST_F(RemoteViewer, CtrlCEndsTheJobAndTheWindowSaysSo) {
   const std::string pidFile = path("job.pid");
   test::ProcessRun job;
   std::thread server([&] {
-    job = test::runCommand("sh -c 'echo $$ > " + pidFile + "; exec " + PRISM_EXECUTABLE +
-                           " view " + kScene + kSize + " --serve 0 --connection-file " + file +
-                           "'");
+    job = test::runCommand("sh -c 'echo $$ > " + pidFile + "; exec " + PRISM_EXECUTABLE + " view " +
+                           kScene + kSize + " --serve 0 --connection-file " + file + "'");
   });
   ASSERT_TRUE(waitForFile(file));
   test::ProcessRun desk;

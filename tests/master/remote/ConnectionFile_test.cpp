@@ -42,7 +42,7 @@ class ConnectionFile : public testing::Test {
 TEST_F(ConnectionFile, RoundTripsAndIsPrivate) {
   const ConnectionInfo info{{"127.0.0.1", 4050}, newAccessToken(), 1};
   writeConnectionFile(path("job"), info);
-  struct stat status{};
+  struct stat status {};
   ASSERT_EQ(::stat(path("job").c_str(), &status), 0);
   EXPECT_EQ(status.st_mode & 0777, 0600u);
   const ConnectionInfo read = readConnectionFile(path("job"));

@@ -97,8 +97,8 @@ TEST(ViewProtocol, ACompressedPayloadIsBoundedBeforeItIsUnpacked) {
   // Not zstd at all, behind a valid checksum.
   std::vector<uint8_t> notZstd = encode(RefusedMessage{"x"});
   notZstd[6] = static_cast<uint8_t>(MessageType::News);
-  const uint64_t checksum = wire::fnv1a64(notZstd.data() + kHeaderSize,
-                                          notZstd.size() - kHeaderSize);
+  const uint64_t checksum =
+      wire::fnv1a64(notZstd.data() + kHeaderSize, notZstd.size() - kHeaderSize);
   for (int i = 0; i < 8; ++i) notZstd[16 + i] = static_cast<uint8_t>(checksum >> (8 * i));
   EXPECT_EQ(errorOf(notZstd), "payload is not a zstd frame");
 }

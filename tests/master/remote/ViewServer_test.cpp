@@ -16,9 +16,9 @@
 
 #include "image/ToneMap.h"
 #include "master/remote/ViewClient.h"
+#include "master/runtime/CausticPasses.h"
 #include "master/runtime/DisplayFrame.h"
 #include "master/runtime/FrameRenderer.h"
-#include "master/runtime/CausticPasses.h"
 #include "master/runtime/LocalLiveSource.h"
 #include "parse/SceneLoader.h"
 
@@ -111,7 +111,8 @@ class ServedJob {
 // would.
 class Viewer {
  public:
-  explicit Viewer(const ConnectionInfo& job) : client_(job), frame_(client_.start().width, client_.start().height) {
+  explicit Viewer(const ConnectionInfo& job)
+      : client_(job), frame_(client_.start().width, client_.start().height) {
     thread_ = std::thread([this] {
       ended_ = client_.run([this](bool) {
         std::lock_guard lock(mutex_);
@@ -199,7 +200,8 @@ std::string reasonIn(const std::vector<view::Message>& messages) {
 TEST(ViewServer, TheViewerSeesWhatRenderMakesAndSavesItsFullPrecision) {
   ServedJob job;
   Viewer viewer(job.info());
-  EXPECT_EQ(viewer.client().start().sceneName, "default.yaml · job at " + job.info().endpoint.text());
+  EXPECT_EQ(viewer.client().start().sceneName,
+            "default.yaml · job at " + job.info().endpoint.text());
   EXPECT_EQ(viewer.client().start().width, 48);
   EXPECT_TRUE(viewer.client().start().resume);  // the job rendered before anyone came
   ViewSettings view = viewer.client().start().view;
@@ -270,10 +272,12 @@ TEST(ViewServer, AHalfOpenConnectionIsDroppedAndOthersGetInMeanwhile) {
   MessageReader reader(view::kServerToClient);
   std::vector<view::Message> got;
   bool open = true;
-  ASSERT_TRUE(waitUntil([&] {
-    open = reader.readFrom(silent, got);
-    return !open;
-  }, 10.0));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        open = reader.readFrom(silent, got);
+        return !open;
+      },
+      10.0));
   EXPECT_EQ(reasonIn(got), "no token within the time allowed");
 }
 
@@ -302,19 +306,24 @@ TEST(ViewServer, AViewerThatComesBackFindsTheAccumulatedPasses) {
     }));
     shown = viewer.frame().bytes();
   }
-  ASSERT_TRUE(waitUntil([&] {
-    try {
-      Viewer back(job.info());
-      EXPECT_TRUE(back.client().start().resume);
-      EXPECT_EQ(back.client().start().view.tag, 5u);
-      EXPECT_TRUE(back.waitFor([&](const DisplayFrame& f) {
-        return f.state().fullPassesDone == 3 && f.bytes() == shown;
-      }, 10.0)) << back.frame().state().fullPassesDone << " passes shown";
-      return true;
-    } catch (const std::runtime_error&) {
-      return false;  // the job has not noticed the first one leave yet
-    }
-  }, 10.0));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        try {
+          Viewer back(job.info());
+          EXPECT_TRUE(back.client().start().resume);
+          EXPECT_EQ(back.client().start().view.tag, 5u);
+          EXPECT_TRUE(back.waitFor(
+              [&](const DisplayFrame& f) {
+                return f.state().fullPassesDone == 3 && f.bytes() == shown;
+              },
+              10.0))
+              << back.frame().state().fullPassesDone << " passes shown";
+          return true;
+        } catch (const std::runtime_error&) {
+          return false;  // the job has not noticed the first one leave yet
+        }
+      },
+      10.0));
 }
 
 TEST(ViewServer, AViewerKilledMidFrameIsDroppedAndTheNextGetsIn) {
@@ -373,23 +382,29 @@ TEST(ViewServer, AtMostTwoNewsAreInFlightUntilTheViewerAcknowledges) {
     for (const view::Message& m : got) n += m.type == view::MessageType::News;
     return n;
   };
-  ASSERT_TRUE(waitUntil([&] {
-    reader.readFrom(s, got);
-    return news() == 2;
-  }, 10.0));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        reader.readFrom(s, got);
+        return news() == 2;
+      },
+      10.0));
   const uint32_t frame = job.source().stats().frame;
-  ASSERT_TRUE(waitUntil([&] {
-    sendAll(s, view::encode(view::PingMessage{}), 1.0);  // alive
-    reader.readFrom(s, got);
-    return job.source().stats().frame > frame + 5;  // the job rendered on meanwhile
-  }, 10.0));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        sendAll(s, view::encode(view::PingMessage{}), 1.0);  // alive
+        reader.readFrom(s, got);
+        return job.source().stats().frame > frame + 5;  // the job rendered on meanwhile
+      },
+      10.0));
   EXPECT_EQ(news(), 2u);
   // Acknowledged: the newest news comes, one message however much happened.
   sendAll(s, view::encode(view::NewsReceivedMessage{2}), 1.0);
-  ASSERT_TRUE(waitUntil([&] {
-    reader.readFrom(s, got);
-    return news() >= 3;
-  }, 10.0));
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        reader.readFrom(s, got);
+        return news() >= 3;
+      },
+      10.0));
   const DisplayNews latest = view::decode<DisplayNews>(got.back());
   EXPECT_GT(latest.pass.frame, frame);
 }
