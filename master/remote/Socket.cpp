@@ -52,6 +52,13 @@ AddressList resolve(const Endpoint& endpoint, bool passive) {
   return addresses;
 }
 
+// A socket for address a, or an invalid one with the reason in why.
+Socket openSocket(const addrinfo* a, std::string& why) {
+  Socket s(::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol));
+  if (!s.valid()) why = std::strerror(errno);
+  return s;
+}
+
 double secondsFrom(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -80,11 +87,8 @@ Socket listenTcp(const Endpoint& endpoint, Endpoint* bound) {
   const AddressList addresses = resolve(endpoint, true);
   std::string why = "no address";
   for (const addrinfo* a = addresses.list; a; a = a->ai_next) {
-    Socket s(::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol));
-    if (!s.valid()) {
-      why = std::strerror(errno);
-      continue;
-    }
+    Socket s = openSocket(a, why);
+    if (!s.valid()) continue;
     const int on = 1;
     ::setsockopt(s.fd(), SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
     if (::bind(s.fd(), a->ai_addr, a->ai_addrlen) != 0 || ::listen(s.fd(), 64) != 0) {
@@ -117,11 +121,8 @@ Socket connectTcp(const Endpoint& endpoint, double timeoutSeconds) {
   const AddressList addresses = resolve(endpoint, false);
   std::string why = "no address";
   for (const addrinfo* a = addresses.list; a; a = a->ai_next) {
-    Socket s(::socket(a->ai_family, a->ai_socktype | SOCK_CLOEXEC, a->ai_protocol));
-    if (!s.valid()) {
-      why = std::strerror(errno);
-      continue;
-    }
+    Socket s = openSocket(a, why);
+    if (!s.valid()) continue;
     setNonBlocking(s.fd());
     if (::connect(s.fd(), a->ai_addr, a->ai_addrlen) != 0) {
       if (errno != EINPROGRESS) {

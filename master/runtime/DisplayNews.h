@@ -59,6 +59,17 @@ struct DisplayNews {
   std::optional<LiveStats> stats;
 
   bool hasPixels() const { return patch.width > 0 && patch.height > 0; }
+  // Takes other's state: the pass, counts and tiles in flight (not its pixels, completed
+  // passes or statistics).
+  void copyStateFrom(const DisplayNews& other) {
+    started = other.started;
+    pass = other.pass;
+    tilesDone = other.tilesDone;
+    completedPass = other.completedPass;
+    fullPassesDone = other.fullPassesDone;
+    staleTiles = other.staleTiles;
+    inFlight = other.inFlight;
+  }
 };
 
 }  // namespace prism

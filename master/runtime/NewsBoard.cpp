@@ -27,13 +27,7 @@ void NewsBoard::markChanged(const TileRect& r) {
 }
 
 void NewsBoard::setState(const DisplayNews& state) {
-  state_.started = state.started;
-  state_.pass = state.pass;
-  state_.tilesDone = state.tilesDone;
-  state_.completedPass = state.completedPass;
-  state_.fullPassesDone = state.fullPassesDone;
-  state_.staleTiles = state.staleTiles;
-  state_.inFlight = state.inFlight;
+  state_.copyStateFrom(state);
   fresh_ = true;
 }
 
