@@ -7,6 +7,7 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QElapsedTimer>
+#include <QLabel>
 #include <QRadioButton>
 #include <QScreen>
 #include <QScrollArea>
@@ -538,6 +539,22 @@ TEST(MainWindow, LightSpaceViewsASourceCannotGiveAreDisabledWithTheReason) {
   EXPECT_TRUE(w.frameView()->overlayCaption().startsWith("shown only beside the job"))
       << w.frameView()->overlayCaption().toStdString();
   EXPECT_TRUE(w.frameView()->overlayImage().isNull());
+}
+
+// A source that ends by itself (the job ended, the connection went): the window says why in
+// its title and status bar and keeps the last frame.
+TEST(MainWindow, SaysWhenItsSourceEnded) {
+  const SceneDescription d = loadScene(kPlaneScene);
+  ScriptedSource source(d);
+  MainWindow w(source);
+  w.sourceEnded("the job ended: the job was interrupted (SIGTERM)");
+  EXPECT_TRUE(w.windowTitle().endsWith("(ended)")) << w.windowTitle().toStdString();
+  bool said = false;
+  for (const QLabel* label : w.statusBar()->findChildren<QLabel*>()) {
+    said = said || label->text().startsWith("the job ended: the job was interrupted (SIGTERM)");
+  }
+  EXPECT_TRUE(said);
+  EXPECT_EQ(w.endedBecause(), "the job ended: the job was interrupted (SIGTERM)");
 }
 
 TEST(MainWindow, SpeedupCsvErrorsAreReported) {

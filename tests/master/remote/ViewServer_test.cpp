@@ -256,6 +256,11 @@ TEST(ViewServer, GarbageOtherVersionsAndOversizedLengthsAreRefused) {
   EXPECT_EQ(reasonIn(sendRaw(job.info(), newer)),
             "protocol version 2, this Prism speaks version 1: use the same Prism release on both "
             "sides");
+  std::vector<uint8_t> older = hello;
+  older[4] = 0;
+  EXPECT_EQ(reasonIn(sendRaw(job.info(), older)),
+            "protocol version 0, this Prism speaks version 1: use the same Prism release on both "
+            "sides");
   std::vector<uint8_t> huge(hello.begin(), hello.begin() + view::kHeaderSize);
   for (int i = 0; i < 8; ++i) huge[8 + i] = i == 4 ? 1 : 0;  // 4 GiB of Hello
   EXPECT_EQ(reasonIn(sendRaw(job.info(), huge)), "Hello of 4294967296 bytes, the limit is 4096");
