@@ -56,6 +56,8 @@ class MessageReader {
   // false once the peer closed its side. Throws wire::WireError for a bad message (the
   // connection must then be dropped) and std::runtime_error for a socket error.
   bool readFrom(const Socket& socket, std::vector<view::Message>& out);
+  // Limits for the messages from now on (a viewer learns the frame's size from the Welcome).
+  void setLimits(const view::Limits& limits) { limits_ = limits; }
   // Bytes of a message begun but not finished.
   size_t pending() const { return header_.size() + payload_.size(); }
 

@@ -64,6 +64,9 @@ ViewClient::ViewClient(const ConnectionInfo& job, const ConnectOptions& options)
   }
   start_ = view::decode<view::WelcomeMessage>(answer).start;
   start_.sceneName += " · job at " + job.endpoint.text();
+  // From now on no message may be larger than the frame's full-precision image (and a little).
+  const size_t frameBytes = static_cast<size_t>(start_.width) * start_.height * 13 + (1 << 20);
+  reader_.setLimits({frameBytes, frameBytes});
   start_.lightSpaceRefusal =
       "the caustic maps' light-space images are shown only beside the job (`prism view` there)";
   board_ = NewsBoard(start_.width, start_.height);

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <thread>
@@ -93,10 +94,14 @@ struct ViewServer::Pending {
 struct ViewServer::Client {
   Socket socket;
   MessageReader reader{view::kClientToServer};
+  std::vector<view::Message> early;  // read with the Hello, not yet handled
   OutBuffer out;
   Clock::time_point lastHeard = Clock::now();
   Clock::time_point lastProgress = Clock::now();  // of writing, while out was not empty
   bool wantsWhole = true;                         // the next news has every pixel
+  // The last full-precision image asked for while another message was still going out: one
+  // is sent when that has left, so however often a viewer asks, one image at most waits.
+  std::optional<uint32_t> imageRequest;
   uint64_t newsSent = 0;
   uint64_t newsAcknowledged = 0;
   Clock::time_point lastAcknowledged = Clock::now();
@@ -173,7 +178,8 @@ std::string ViewServer::run() {
       if (mayTake && newsWaiting && !due) {
         timeout = std::min(timeout, 1 + static_cast<int>(1e3 * (kGatherSeconds - gathered)));
       }
-      const bool wantsToWrite = !client->out.empty() || (mayTake && due);
+      const bool wantsToWrite =
+          !client->out.empty() || client->imageRequest.has_value() || (mayTake && due);
       fds.push_back(
           {client->socket.fd(), static_cast<short>(POLLIN | (wantsToWrite ? POLLOUT : 0)), 0});
     }
@@ -234,6 +240,11 @@ std::string ViewServer::run() {
           } else {
             client = std::make_unique<Client>();
             client->socket = std::move(p.socket);
+            // What came behind the Hello (and a message half read) is the viewer's.
+            client->reader = std::move(p.reader);
+            client->reader.setLimits(view::kClientToServer);
+            client->early.assign(std::make_move_iterator(messages.begin() + 1),
+                                 std::make_move_iterator(messages.end()));
             client->name = hello.client.empty() ? "a viewer" : hello.client;
             ViewerStart start = source_.start();
             start.view = current;
@@ -256,7 +267,8 @@ std::string ViewServer::run() {
 
     if (!client) continue;
     try {
-      std::vector<view::Message> messages;
+      std::vector<view::Message> messages = std::move(client->early);
+      client->early.clear();
       if (!client->reader.readFrom(client->socket, messages)) {
         dropClient("it closed the connection");
         continue;
@@ -269,12 +281,9 @@ std::string ViewServer::run() {
             current = view::decode<ViewSettings>(m);
             source_.setView(current);
             break;
-          case view::MessageType::FullImageRequest: {
-            const auto request = view::decode<view::FullImageRequestMessage>(m);
-            client->out.put(
-                view::encode(view::FullImageMessage{request.request, source_.fullImage()}));
+          case view::MessageType::FullImageRequest:
+            client->imageRequest = view::decode<view::FullImageRequestMessage>(m).request;
             break;
-          }
           case view::MessageType::Ping:
             break;
           case view::MessageType::NewsReceived: {
@@ -297,6 +306,12 @@ std::string ViewServer::run() {
       if (bye) {
         dropClient("it said goodbye");
         continue;
+      }
+      if (client->out.empty() && client->imageRequest) {
+        client->out.put(
+            view::encode(view::FullImageMessage{*client->imageRequest, source_.fullImage()}));
+        client->imageRequest.reset();
+        client->lastProgress = Clock::now();
       }
       const bool mayTake = client->newsSent - client->newsAcknowledged < kNewsInFlight;
       const bool due =

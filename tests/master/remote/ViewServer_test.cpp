@@ -414,6 +414,37 @@ TEST(ViewServer, AtMostTwoNewsAreInFlightUntilTheViewerAcknowledges) {
   EXPECT_GT(latest.pass.frame, frame);
 }
 
+// A viewer asking for the full-precision image again and again gets the latest request
+// answered, not a queue of images (each is 12 bytes a pixel).
+TEST(ViewServer, FullImageRequestsDoNotQueueImages) {
+  ServedJob job;
+  Socket s = connectTcp(job.info().endpoint, 5.0);
+  std::vector<uint8_t> burst = view::encode(view::HelloMessage{job.info().token, "greedy"});
+  for (uint32_t i = 1; i <= 1000; ++i) {
+    const std::vector<uint8_t> request = view::encode(view::FullImageRequestMessage{i});
+    burst.insert(burst.end(), request.begin(), request.end());
+  }
+  sendAll(s, burst, 5.0);
+  MessageReader reader(view::kServerToClient);
+  std::vector<view::Message> got;
+  std::vector<uint32_t> answered;
+  ASSERT_TRUE(waitUntil(
+      [&] {
+        got.clear();
+        reader.readFrom(s, got);
+        for (const view::Message& m : got) {
+          if (m.type == view::MessageType::FullImage) {
+            answered.push_back(view::decode<view::FullImageMessage>(m).request);
+          } else if (m.type == view::MessageType::News) {
+            sendAll(s, view::encode(view::NewsReceivedMessage{0}), 1.0);  // stays a viewer
+          }
+        }
+        return !answered.empty() && answered.back() == 1000;
+      },
+      10.0));
+  EXPECT_LE(answered.size(), 5u);  // one per batch of requests the job read, not 1000
+}
+
 TEST(ViewServer, AHundredConnectionAttemptsInASecondLeaveTheJobReachable) {
   ServedJob job;
   for (int i = 0; i < 100; ++i) {
