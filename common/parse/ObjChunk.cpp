@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 #include "parse/LineChunks.h"
 #include "parse/PrintableText.h"
@@ -98,34 +99,93 @@ bool readIndex(const char*& p, const char* end, int64_t& value) {
 // to the `before` items read so far).
 uint32_t resolveIndex(int64_t index, uint64_t before, uint64_t inFile, const char* word,
                       const char* what) {
-  const std::string shown = std::to_string(index);
-  if (index == 0) {
-    throw ParseFailure{word, std::string("face refers to ") + what + " 0 (OBJ counts from 1)"};
+  if (index > 0 && static_cast<uint64_t>(index) <= inFile) return static_cast<uint32_t>(index - 1);
+  if (index < 0 && static_cast<uint64_t>(-index) <= before) {
+    return static_cast<uint32_t>(static_cast<int64_t>(before) + index);
   }
-  if (index > 0) {
-    if (static_cast<uint64_t>(index) > inFile) {
-      throw ParseFailure{word, std::string("face refers to ") + what + " " + shown +
-                                   " but the file has " + std::to_string(inFile)};
+  const std::string refers = std::string("face refers to ") + what + " " + std::to_string(index);
+  if (index == 0) throw ParseFailure{word, refers + " (OBJ counts from 1)"};
+  if (index > 0) throw ParseFailure{word, refers + " but the file has " + std::to_string(inFile)};
+  throw ParseFailure{word, refers + " but only " + std::to_string(before) + " come before it"};
+}
+
+// Finds line ends with memchr where the piece has no lone \r (a \r\n's \r ends the line's last
+// word, so the line runs to its \n): most files. Otherwise character by character.
+class LineEnds {
+ public:
+  explicit LineEnds(std::string_view text) : newlinesOnly_(!hasLoneCarriageReturn(text)) {}
+
+  // Where the line that `from` is in ends (its \n, \r\n or \r; or the end of the text).
+  const char* lineEnd(const char* from, const char* end) const {
+    if (newlinesOnly_) {
+      const void* newline = std::memchr(from, '\n', static_cast<size_t>(end - from));
+      return newline ? static_cast<const char*>(newline) : end;
     }
-    return static_cast<uint32_t>(index - 1);
+    while (from < end && !isLineEnd(*from)) ++from;
+    return from;
   }
-  if (static_cast<uint64_t>(-index) > before) {
-    throw ParseFailure{word, std::string("face refers to ") + what + " " + shown + " but only " +
-                                 std::to_string(before) + " come before it"};
+
+  const char* nextLineStart(const char* from, const char* end) const {
+    // Most statements are parsed up to their line's end: no search then.
+    if (from < end && *from == '\n') return from + 1;
+    if (!newlinesOnly_) return prism::nextLineStart(from, end);
+    return skipLineEnd(lineEnd(from, end), end);
   }
-  return static_cast<uint32_t>(static_cast<int64_t>(before) + index);
+
+  // Past the line end at `at`.
+  static const char* skipLineEnd(const char* at, const char* end) {
+    if (at < end && *at == '\r' && at + 1 < end && at[1] == '\n') return at + 2;
+    return at < end ? at + 1 : end;
+  }
+
+ private:
+  static bool hasLoneCarriageReturn(std::string_view text) {
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    while (const void* found = std::memchr(p, '\r', static_cast<size_t>(end - p))) {
+      p = static_cast<const char*>(found) + 1;
+      if (p == end || *p != '\n') return true;
+    }
+    return false;
+  }
+
+  bool newlinesOnly_;
+};
+
+// The words in [p, end), one line's rest, as nextWord would step through them. The first pass
+// reads every face line only to count them: a loop without branches, gone over again the slow
+// way only where a '#' may start a comment.
+uint64_t countWords(const char* p, const char* end) {
+  uint64_t words = 0;
+  bool inWord = false;
+  bool hash = false;
+  for (const char* c = p; c < end; ++c) {
+    const bool blank = isBlank(*c) || *c == '\r';
+    words += !inWord && !blank;
+    inWord = !blank;
+    hash |= *c == '#';
+  }
+  if (!hash) return words;
+  words = 0;
+  while (const char* word = nextWord(p, end)) {
+    p = wordEnd(word, end);
+    ++words;
+  }
+  return words;
 }
 
 }  // namespace
 
 ObjChunkCounts countObjChunk(std::string_view text) {
   ObjChunkCounts counts;
+  const LineEnds lineEnds(text);
   const char* p = text.data();
   const char* const end = p + text.size();
   while (p < end) {
     ++counts.lines;
-    if (const char* word = nextWord(p, end)) {
-      p = wordEnd(word, end);
+    const char* lineEnd = lineEnds.lineEnd(p, end);
+    if (const char* word = nextWord(p, lineEnd)) {
+      p = wordEnd(word, lineEnd);
       switch (statementOf(word, p)) {
         case Statement::Position:
           ++counts.positions;
@@ -134,11 +194,7 @@ ObjChunkCounts countObjChunk(std::string_view text) {
           ++counts.normals;
           break;
         case Statement::Face: {
-          uint64_t corners = 0;
-          while (const char* corner = nextWord(p, end)) {
-            p = wordEnd(corner, end);
-            ++corners;
-          }
+          const uint64_t corners = countWords(p, lineEnd);
           ++counts.faces;
           counts.corners += corners;
           if (corners >= 3) counts.triangles += corners - 2;
@@ -148,13 +204,14 @@ ObjChunkCounts countObjChunk(std::string_view text) {
           break;
       }
     }
-    p = nextLineStart(p, end);
+    p = LineEnds::skipLineEnd(lineEnd, end);
   }
   return counts;
 }
 
 ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target) {
   ObjChunkResult result;
+  const LineEnds lineEnds(text);
   const char* p = text.data();
   const char* const end = p + text.size();
   uint64_t line = target.firstLine - 1;
@@ -235,7 +292,7 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
             break;
         }
       }
-      p = nextLineStart(p, end);
+      p = lineEnds.nextLineStart(p, end);
     }
   } catch (const ParseFailure& failure) {
     result.line = line;
