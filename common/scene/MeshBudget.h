@@ -54,6 +54,15 @@ inline uint64_t objReadBytes(uint64_t textBytes, uint64_t positions, uint64_t no
   return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
 }
 
+// Reading a PLY file (parse/PlyLoader.cpp), its bytes included: positions and normals (12 each
+// per vertex) and the triangle indices (12 per triangle), made directly from the body.
+inline uint64_t plyReadBytes(uint64_t fileBytes, uint64_t vertices, bool normals,
+                             uint64_t triangles) {
+  uint64_t bytes = fileBytes;
+  bytes = saturatingAdd(bytes, saturatingMultiply(vertices, normals ? 24 : 12));
+  return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
+}
+
 // Reading a scene file of this size may take, besides the text itself: NFF builds at most one
 // triangle (3 positions, 3 normals, 3 indices: 84 bytes) per 6-byte vertex line, so 14 bytes
 // per byte (measured: a 10.7 MB file of 400 000 triangles peaked 93 MB above an empty scene,
