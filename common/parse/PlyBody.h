@@ -47,57 +47,70 @@ inline bool fitsPlyType(int64_t value, PlyType type) {
 template <bool BigEndian>
 class BinaryPlyBody {
  public:
+  static constexpr bool kBinary = true;
+
   BinaryPlyBody(std::string_view bytes, size_t bodyOffset, std::string path)
       : begin_(bytes.data()),
         p_(bytes.data() + bodyOffset),
         end_(bytes.data() + bytes.size()),
         path_(std::move(path)) {}
 
-  double number(PlyType type) {
+  // A value of type T at `at`, in the body's byte order.
+  template <class T>
+  static T decode(const char* at) {
+    T value;
+    if constexpr ((std::endian::native == std::endian::big) == BigEndian || sizeof(T) == 1) {
+      std::memcpy(&value, at, sizeof(T));
+    } else {
+      char reversed[sizeof(T)];
+      for (size_t i = 0; i < sizeof(T); ++i) reversed[i] = at[sizeof(T) - 1 - i];
+      std::memcpy(&value, reversed, sizeof(T));
+    }
+    return value;
+  }
+  // A value of the type at `at`, as a double (every PLY type fits one exactly).
+  static double decodeNumber(PlyType type, const char* at) {
     switch (type) {
       case PlyType::Int8:
-        return load<int8_t>();
+        return decode<int8_t>(at);
       case PlyType::UInt8:
-        return load<uint8_t>();
+        return decode<uint8_t>(at);
       case PlyType::Int16:
-        return load<int16_t>();
+        return decode<int16_t>(at);
       case PlyType::UInt16:
-        return load<uint16_t>();
+        return decode<uint16_t>(at);
       case PlyType::Int32:
-        return load<int32_t>();
+        return decode<int32_t>(at);
       case PlyType::UInt32:
-        return load<uint32_t>();
+        return decode<uint32_t>(at);
       case PlyType::Float32:
-        return load<float>();
+        return decode<float>(at);
       case PlyType::Float64:
-        return load<double>();
+        return decode<double>(at);
     }
     return 0.0;
   }
-  // Only called for integer types (the reader checks the header).
-  int64_t integer(PlyType type) {
-    switch (type) {
-      case PlyType::Int8:
-        return load<int8_t>();
-      case PlyType::UInt8:
-        return load<uint8_t>();
-      case PlyType::Int16:
-        return load<int16_t>();
-      case PlyType::UInt16:
-        return load<uint16_t>();
-      case PlyType::Int32:
-        return load<int32_t>();
-      case PlyType::UInt32:
-        return load<uint32_t>();
-      default:
-        return static_cast<int64_t>(number(type));
-    }
+
+  double number(PlyType type) {
+    const auto n = static_cast<size_t>(plyTypeBytes(type));
+    need(n);
+    const double value = decodeNumber(type, p_);
+    p_ += n;
+    return value;
   }
+  // Only called for integer types (the reader checks the header), whose values fit.
+  int64_t integer(PlyType type) { return static_cast<int64_t>(number(type)); }
   void skip(PlyType type) {
     const auto n = static_cast<size_t>(plyTypeBytes(type));
     need(n);
     p_ += n;
   }
+
+  // For readers that take a run of fixed-size elements at once.
+  const char* cursor() const { return p_; }
+  size_t remaining() const { return static_cast<size_t>(end_ - p_); }
+  void advance(size_t n) { p_ += n; }
+
   // Where a failure is reported: the file (a binary body has no lines), and the byte.
   FileLoc loc() const { return FileLoc{path_, 0, 0}; }
   std::string position() const { return " (byte " + std::to_string(p_ - begin_) + ")"; }
@@ -105,21 +118,6 @@ class BinaryPlyBody {
  private:
   void need(size_t n) const {
     if (static_cast<size_t>(end_ - p_) < n) throw PlyBodyFailure{"the file ends inside it"};
-  }
-  template <class T>
-  T load() {
-    need(sizeof(T));
-    T value;
-    if constexpr ((std::endian::native == std::endian::big) == BigEndian || sizeof(T) == 1) {
-      std::memcpy(&value, p_, sizeof(T));
-    } else {
-      unsigned char reversed[sizeof(T)];
-      for (size_t i = 0; i < sizeof(T); ++i)
-        reversed[i] = static_cast<unsigned char>(p_[sizeof(T) - 1 - i]);
-      std::memcpy(&value, reversed, sizeof(T));
-    }
-    p_ += sizeof(T);
-    return value;
   }
 
   const char* begin_;
@@ -130,6 +128,8 @@ class BinaryPlyBody {
 
 class AsciiPlyBody {
  public:
+  static constexpr bool kBinary = false;
+
   AsciiPlyBody(std::string_view bytes, size_t bodyOffset, int bodyLine, std::string path)
       : p_(bytes.data() + bodyOffset),
         end_(bytes.data() + bytes.size()),

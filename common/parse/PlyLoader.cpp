@@ -1,5 +1,7 @@
 #include "parse/PlyLoader.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "parse/MeshFileBytes.h"
@@ -7,6 +9,7 @@
 #include "parse/PrintableText.h"
 #include "scene/MeshBudget.h"
 #include "util/HugePages.h"
+#include "util/Parallel.h"
 
 namespace prism {
 
@@ -70,6 +73,10 @@ class PlyReader {
 
   void read(const PlyHeader& header) {
     for (const PlyElement& element : header.elements) {
+      if constexpr (Body::kBinary) {
+        if (&element == layout_.vertex && verticesAtOnce(element)) continue;
+        if (&element == layout_.face && trianglesAtOnce(element)) continue;
+      }
       for (uint64_t i = 0; i < element.count; ++i) {
         try {
           if (&element == layout_.vertex) {
@@ -88,6 +95,104 @@ class PlyReader {
   }
 
  private:
+  // Elements handed to each thread at a time by the readers below.
+  static constexpr uint64_t kBlock = uint64_t{1} << 16;
+
+  // Binary vertices of fixed size (no list among their properties), on all cores. False, with
+  // nothing consumed, where they are not of fixed size, run past the file's end or hold a
+  // non-finite number: read one by one, which names the first such vertex.
+  bool verticesAtOnce(const PlyElement& element) {
+    std::vector<size_t> offsets;
+    size_t stride = 0;
+    for (const PlyProperty& property : element.properties) {
+      if (property.isList) return false;
+      offsets.push_back(stride);
+      stride += static_cast<size_t>(plyTypeBytes(property.type));
+    }
+    const uint64_t count = element.count;
+    if (stride == 0 || body_.remaining() / stride < count) return false;
+    struct Value {
+      int role;
+      size_t offset;
+      PlyType type;
+    };
+    std::vector<Value> values;
+    bool allFloats = true;
+    for (int r = 0; r < 6; ++r) {
+      if (layout_.role[r] < 0) continue;
+      const PlyType type = element.properties[static_cast<size_t>(layout_.role[r])].type;
+      values.push_back({r, offsets[static_cast<size_t>(layout_.role[r])], type});
+      allFloats = allFloats && type == PlyType::Float32;
+    }
+    const char* const base = body_.cursor();
+    std::atomic<bool> nonFinite{false};
+    parallelFor((count + kBlock - 1) / kBlock, 0, [&](uint64_t block) {
+      const uint64_t end = std::min(count, (block + 1) * kBlock);
+      for (uint64_t i = block * kBlock; i < end; ++i) {
+        const char* record = base + i * stride;
+        float v[6] = {0, 0, 0, 0, 0, 0};
+        bool finite = true;
+        for (const Value& value : values) {
+          // The usual case, all floats, without a switch per number.
+          v[value.role] =
+              allFloats ? Body::template decode<float>(record + value.offset)
+                        : static_cast<float>(Body::decodeNumber(value.type, record + value.offset));
+          finite = finite && std::isfinite(v[value.role]);
+        }
+        if (!finite) nonFinite = true;
+        mesh_.positions[i] = Vec3(v[0], v[1], v[2]);
+        if (layout_.normals) mesh_.normals[i] = Vec3(v[3], v[4], v[5]);
+      }
+    });
+    if (nonFinite) return false;
+    body_.advance(count * stride);
+    return true;
+  }
+
+  // Binary faces whose only property is the index list, with a one-byte length and four-byte
+  // indices, as triangles, on all cores. False, with nothing kept, where a face is not a
+  // triangle, names a vertex the file lacks or runs past the file's end: read one by one, which
+  // splits polygons and names the first bad face.
+  bool trianglesAtOnce(const PlyElement& element) {
+    if (element.properties.size() != 1 || layout_.indices != 0) return false;
+    const PlyProperty& list = element.properties[0];
+    if (plyTypeBytes(list.countType) != 1 || plyTypeBytes(list.type) != 4) return false;
+    constexpr size_t kRecord = 1 + 3 * 4;
+    const uint64_t count = element.count;
+    if (body_.remaining() / kRecord < count) return false;
+    const bool signedIndices = list.type == PlyType::Int32;
+    const uint64_t vertices = layout_.vertex->count;
+    const char* const base = body_.cursor();
+    mesh_.indices.resize(3 * count);
+    std::atomic<bool> other{false};
+    parallelFor((count + kBlock - 1) / kBlock, 0, [&](uint64_t block) {
+      const uint64_t end = std::min(count, (block + 1) * kBlock);
+      for (uint64_t f = block * kBlock; f < end; ++f) {
+        const char* record = base + f * kRecord;
+        if (static_cast<uint8_t>(record[0]) != 3) {
+          other = true;
+          return;
+        }
+        for (int c = 0; c < 3; ++c) {
+          const char* at = record + 1 + 4 * c;
+          const int64_t index = signedIndices ? Body::template decode<int32_t>(at)
+                                              : Body::template decode<uint32_t>(at);
+          if (index < 0 || static_cast<uint64_t>(index) >= vertices) {
+            other = true;
+            return;
+          }
+          mesh_.indices[3 * f + static_cast<uint64_t>(c)] = static_cast<uint32_t>(index);
+        }
+      }
+    });
+    if (other) {
+      mesh_.indices.clear();
+      return false;
+    }
+    body_.advance(count * kRecord);
+    return true;
+  }
+
   void skip(const PlyProperty& property) {
     if (!property.isList) return body_.skip(property.type);
     const int64_t n = body_.integer(property.countType);

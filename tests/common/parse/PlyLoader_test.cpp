@@ -138,6 +138,82 @@ TEST(PlyLoader, BinaryCubesInBothByteOrdersReadAsTheAsciiOne) {
   }
 }
 
+// Enough triangles that the binary reader takes them in several blocks on several threads.
+struct ManyTriangles {
+  static constexpr int kVertices = 1000;
+  static constexpr int kFaces = 3 * 65536 + 5;
+
+  static std::string header(const char* format, int faces = kFaces) {
+    return std::string("ply\nformat ") + format + " 1.0\nelement vertex " +
+           std::to_string(kVertices) +
+           "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+           std::to_string(faces) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  }
+  static Vec3 vertex(int v) { return Vec3(0.25f * static_cast<float>(v), 1.0f / (1 + v), -0.5f); }
+  static uint32_t corner(int f, int c) {
+    return static_cast<uint32_t>((f * 7 + c * 131) % kVertices);
+  }
+
+  // The faces as triangles, one (the quad) with a fourth corner, one (bad) with a corner out of
+  // range.
+  static std::string file(bool binary, int quad = -1, int bad = -1) {
+    BinaryWriter body(false);
+    std::string text;
+    for (int v = 0; v < kVertices; ++v) {
+      const Vec3 p = vertex(v);
+      body.put(p.x).put(p.y).put(p.z);
+      text += std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    }
+    for (int f = 0; f < kFaces; ++f) {
+      const int corners = f == quad ? 4 : 3;
+      body.put(static_cast<uint8_t>(corners));
+      text += std::to_string(corners);
+      for (int c = 0; c < corners; ++c) {
+        const uint32_t index = f == bad && c == 2 ? kVertices : corner(f, c);
+        body.put(index);
+        text += ' ';
+        text += std::to_string(index);
+      }
+      text += "\n";
+    }
+    return binary ? header("binary_little_endian") + body.text() : header("ascii") + text;
+  }
+};
+
+TEST(PlyLoader, ManyBinaryTrianglesReadAsTheirAsciiText) {
+  const MeshDesc binary = parsePlyMesh(ManyTriangles::file(true), "many.ply", {});
+  ASSERT_EQ(binary.triangleCount(), static_cast<size_t>(ManyTriangles::kFaces));
+  for (int v = 0; v < ManyTriangles::kVertices; ++v) {
+    ASSERT_EQ(binary.positions[v], ManyTriangles::vertex(v)) << v;
+  }
+  for (int f = 0; f < ManyTriangles::kFaces; ++f) {
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(binary.indices[3 * f + c], ManyTriangles::corner(f, c));
+  }
+  // A quad among them: read one by one, split into two triangles, the rest as before.
+  const int quad = 2 * 65536 + 17;
+  const MeshDesc withQuad = parsePlyMesh(ManyTriangles::file(true, quad), "many.ply", {});
+  ASSERT_EQ(withQuad.triangleCount(), binary.triangleCount() + 1);
+  EXPECT_EQ(withQuad.indices[3 * quad + 3], ManyTriangles::corner(quad, 0));
+  EXPECT_EQ(withQuad.indices[3 * quad + 5], ManyTriangles::corner(quad, 3));
+  EXPECT_EQ(parsePlyMesh(ManyTriangles::file(false, quad), "many.ply", {}).indices,
+            withQuad.indices);
+}
+
+TEST(PlyLoader, TheFirstBadFaceAmongManyIsNamedWithItsByte) {
+  const int bad = 65536 + 3;
+  const std::string header = ManyTriangles::header("binary_little_endian");
+  try {
+    parsePlyMesh(ManyTriangles::file(true, -1, bad), "many.ply", {});
+    FAIL() << "a face out of range was read";
+  } catch (const SceneError& e) {
+    // The third index of the face: header, vertices, the faces before, its length and two indices.
+    const size_t byte = header.size() + 12 * ManyTriangles::kVertices + 13 * bad + 1 + 8 + 4;
+    EXPECT_EQ(e.message(), "face " + std::to_string(bad) + " (byte " + std::to_string(byte) +
+                               "): face refers to vertex 1000 but the file has 1000 (counted "
+                               "from 0)");
+  }
+}
+
 TEST(PlyLoader, AZeroNormalOrAMissingComponentLeavesTheMeshFlat) {
   const std::string zero =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
