@@ -200,10 +200,13 @@ PlyHeader parsePlyHeader(std::string_view bytes, const std::string& path) {
   // Counts the body cannot hold are refused here, before anything is allocated for them.
   uint64_t minimum = 0;
   const uint64_t body = bytes.size() - header.bodyOffset;
+  // An ASCII body's last value may lack the separator the minimum counts for it.
+  const uint64_t available = body + (header.format == PlyFormat::Ascii ? 1 : 0);
   for (const PlyElement& element : header.elements) {
     const uint64_t each = element.minimumBytes(header.format);
-    const bool tooMany =
-        each == 0 ? element.count > 0 : element.count > (body - std::min(minimum, body)) / each;
+    const bool tooMany = each == 0
+                             ? element.count > 0
+                             : element.count > (available - std::min(minimum, available)) / each;
     if (tooMany) {
       line = element.line;
       fail(1, "element '" + printableExcerpt(element.name) + "' declares " +

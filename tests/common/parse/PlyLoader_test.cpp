@@ -315,6 +315,21 @@ INSTANTIATE_TEST_SUITE_P(Ply, PlyBadInput, testing::ValuesIn(badPlyFiles()),
                            return std::string(info.param.name);
                          });
 
+TEST(PlyLoader, TheSmallestAsciiBodyIsNotTakenForATruncatedOne) {
+  // Nine one-character values, single spaces, no line end after the last: 17 bytes, the fewest
+  // three vertices can take. The header check lets them through; the reader then finds no face.
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 1 0 0 0 1 0";
+  try {
+    parsePlyMesh(text, "t.ply", {});
+    FAIL() << "a mesh without faces loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.message(), "mesh file has no triangles");
+  }
+}
+
 TEST(PlyLoader, AMeshPastTheMemoryLimitIsRefusedBeforeItsArraysExist) {
   const std::string text = kTriangleHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   // Reading: the file + 3 x 12 + 1 x 12; building: 1 x 240 + 3 x 64.
