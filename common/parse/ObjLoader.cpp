@@ -14,6 +14,7 @@
 #include "parse/MeshFileBytes.h"
 #include "parse/ObjChunk.h"
 #include "parse/PolygonTriangulator.h"
+#include "parse/UsableNormal.h"
 #include "scene/MeshBudget.h"
 #include "util/HugePages.h"
 #include "util/Parallel.h"
@@ -162,12 +163,14 @@ ObjArrays readPieces(std::string_view text, const std::string& path, const FileL
   return arrays;
 }
 
-// Whether the mesh keeps vertex normals: every corner names one, and none it names is zero
-// (a zero normal cannot be interpolated; exporters write them for degenerate faces).
+// Whether the mesh keeps vertex normals: every corner names one, and every one it names can be
+// normalised (UsableNormal.h).
 bool keepsNormals(const ObjArrays& arrays) {
   if (arrays.normals.empty() || arrays.cornerWithoutNormal) return false;
+  std::vector<uint8_t> usable(arrays.normals.size());
+  for (size_t i = 0; i < usable.size(); ++i) usable[i] = isUsableNormal(arrays.normals[i]);
   for (const uint32_t n : arrays.cornerNormal) {
-    if (maxAbsComponent(arrays.normals[n]) == 0.0f) return false;
+    if (!usable[n]) return false;
   }
   return true;
 }

@@ -7,6 +7,7 @@
 #include "parse/MeshFileBytes.h"
 #include "parse/PlyBody.h"
 #include "parse/PrintableText.h"
+#include "parse/UsableNormal.h"
 #include "scene/MeshBudget.h"
 #include "util/HugePages.h"
 #include "util/Parallel.h"
@@ -322,9 +323,9 @@ MeshDesc parsePlyMesh(std::string_view bytes, const std::string& path,
                           std::to_string(vertices) + " vertices) read and built",
                       neededAfter, limit, "simplify the mesh or raise --memory-limit"));
   }
-  // A zero normal cannot be interpolated: the mesh is shaded flat, as an OBJ mesh would be.
+  // A normal that cannot be normalised (zero, say) leaves the mesh flat, as it would an OBJ mesh.
   for (Vec3& n : mesh.normals) {
-    if (maxAbsComponent(n) == 0.0f) {
+    if (!isUsableNormal(n)) {
       std::vector<Vec3>().swap(mesh.normals);
       break;
     }

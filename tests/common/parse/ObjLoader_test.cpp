@@ -107,6 +107,19 @@ TEST_F(ObjFiles, ZeroNormalMakesTheMeshFlat) {
   EXPECT_TRUE(loadObjMesh(path, kReferencedFrom).normals.empty());
 }
 
+TEST(ObjLoader, NormalsTooSmallOrTooLargeToNormaliseMakeTheMeshFlat) {
+  for (const char* normal : {"1e-30 1e-30 1e-30", "1e30 1e30 1e30", "1e-45 0 0"}) {
+    std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn ";
+    text += normal;
+    text += "\nf 1//1 2//1 3//1\n";
+    EXPECT_TRUE(parseObjMesh(text, "mem.obj", {}).normals.empty()) << normal;
+  }
+  const MeshDesc tiny =
+      parseObjMesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1e-20\nf 1//1 2//1 3//1\n", "m.obj", {});
+  ASSERT_EQ(tiny.normals.size(), 3u);  // small, but its length is a normal float
+  EXPECT_NEAR(tiny.normals[0].z, 1.0f, 1e-5f);
+}
+
 TEST_F(ObjFiles, ConcaveFaceIsEarClipped) {
   // An L-shaped hexagon with texture coordinates and relative (negative) indices.
   const std::string path = write("l_shape.obj",
