@@ -353,7 +353,10 @@ TEST(ObjLoader, AFaceOf255CornersIsReadAndOneOf256Refused) {
       text += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
     }
     text += "f";
-    for (int i = 1; i <= corners; ++i) text += " " + std::to_string(i);
+    for (int i = 1; i <= corners; ++i) {
+      text += ' ';
+      text += std::to_string(i);
+    }
     if (corners == 255) {
       EXPECT_EQ(parseObjMesh(text, "mem.obj", {}).triangleCount(), 253u);
     } else {
