@@ -20,7 +20,7 @@ packages=(
   libglm-dev libyaml-cpp-dev                      # renderer core: math, scenes
   libpng-dev libopenexr-dev                       # PNG and EXR, written on every render
   libopenimageio-dev                              # other image formats (loaded on first use)
-  libtinyobjloader-dev libcli11-dev               # OBJ meshes, command line
+  libcli11-dev                                    # command line
   libnanoflann-dev                                # k-nearest photons (caustics)
   libopenmpi-dev openmpi-bin                      # distribution over MPI
   libzstd-dev libsodium-dev                       # the remote viewer: frames, access token

@@ -16,7 +16,7 @@
 
 #include "image/ImageIo.h"
 #include "parse/CheckedYaml.h"
-#include "parse/ObjLoader.h"
+#include "parse/MeshFile.h"
 #include "parse/PrintableText.h"
 #include "scene/MeshBudget.h"
 #include "scene/SceneValidation.h"
@@ -499,7 +499,7 @@ class YamlSceneReader : private CheckedYaml {
                                (exists ? " is not a regular file" : " not found") +
                                " (looked for '" + resolved.string() + "')");
     }
-    MeshDesc mesh = loadObjMesh(resolved.string(), loc(fileEntry), meshBudget_.remaining());
+    MeshDesc mesh = loadMeshFile(resolved.string(), loc(fileEntry), meshBudget_.remaining());
     meshBudget_.spend(meshBuildBytes(mesh.triangleCount(), mesh.positions.size()));
     if (mesh.triangleCount() == 0)
       fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");

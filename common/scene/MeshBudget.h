@@ -36,16 +36,30 @@ inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {
                        saturatingMultiply(vertices, kBytesPerVertex));
 }
 
-// Reading an OBJ file on top of its text: tinyobjloader's arrays (12 bytes per position, normal
-// and face corner, 9 per face) and the MeshDesc made from them (12 per position and per vertex
-// normal, 12 per triangle).
+// Reading an OBJ file (parse/ObjLoader.cpp), its text included: the parsed positions (12 per
+// 'v') and normals (12 per 'vn'), each face corner's position index (4, and 4 more for its
+// normal index when the file has normals), a byte per face; then numbering the output vertices
+// (8 per position: its first number and source, 8 more with normals), the output positions and
+// normals (12 each per position) and the triangle indices (12 per triangle). A sum: the text and
+// the corner arrays are gone before some of the later arrays exist, so this is an upper bound.
 inline uint64_t objReadBytes(uint64_t textBytes, uint64_t positions, uint64_t normals,
                              uint64_t corners, uint64_t faces, uint64_t triangles) {
+  const bool withNormals = normals > 0;
   uint64_t bytes = textBytes;
-  bytes = saturatingAdd(bytes, saturatingMultiply(positions, 12 + 12 + 12));
+  bytes = saturatingAdd(
+      bytes, saturatingMultiply(positions, withNormals ? 12 + 8 + 12 + 8 + 12 : 12 + 8 + 12));
   bytes = saturatingAdd(bytes, saturatingMultiply(normals, 12));
-  bytes = saturatingAdd(bytes, saturatingMultiply(corners, 12));
-  bytes = saturatingAdd(bytes, saturatingMultiply(faces, 9));
+  bytes = saturatingAdd(bytes, saturatingMultiply(corners, withNormals ? 8 : 4));
+  bytes = saturatingAdd(bytes, faces);
+  return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
+}
+
+// Reading a PLY file (parse/PlyLoader.cpp), its bytes included: positions and normals (12 each
+// per vertex) and the triangle indices (12 per triangle), made directly from the body.
+inline uint64_t plyReadBytes(uint64_t fileBytes, uint64_t vertices, bool normals,
+                             uint64_t triangles) {
+  uint64_t bytes = fileBytes;
+  bytes = saturatingAdd(bytes, saturatingMultiply(vertices, normals ? 24 : 12));
   return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
 }
 

@@ -29,6 +29,8 @@ Outcome fuzzYamlScene(const uint8_t* data, size_t size);
 Outcome fuzzNff(const uint8_t* data, size_t size);
 // OBJ mesh text.
 Outcome fuzzObj(const uint8_t* data, size_t size);
+// PLY mesh files (header and ASCII or binary body).
+Outcome fuzzPly(const uint8_t* data, size_t size);
 // Wire messages: the bytes as an envelope, and the bytes after the first as the payload of a
 // valid envelope whose type the first byte chooses (the checksum would otherwise stop nearly
 // every mutation before the payload decoders).
@@ -46,6 +48,7 @@ inline const std::vector<Harness>& harnesses() {
   static const std::vector<Harness> all = {{"yaml_scene", fuzzYamlScene},
                                            {"nff", fuzzNff},
                                            {"obj", fuzzObj},
+                                           {"ply", fuzzPly},
                                            {"wire", fuzzWire},
                                            {"view", fuzzView}};
   return all;

@@ -393,6 +393,16 @@ objects:
   }
 }
 
+// quad.ply holds quad.obj's square as one polygon, which the PLY reader splits into the same fan.
+TEST(YamlSceneParser, PlyMeshesLoadLikeObjMeshes) {
+  const SceneDescription obj = parse("objects: [mesh: {file: ../meshes/quad.obj}]");
+  const SceneDescription ply = parse("objects: [mesh: {file: ../meshes/quad.ply}]");
+  ASSERT_EQ(ply.meshes.size(), 1u);
+  EXPECT_EQ(ply.meshes[0].positions, obj.meshes[0].positions);
+  EXPECT_EQ(ply.meshes[0].normals, obj.meshes[0].normals);
+  EXPECT_EQ(ply.meshes[0].indices, obj.meshes[0].indices);
+}
+
 // slope.obj is one triangle in the plane x + y = 1 with normal (1, 1, 0)/√2. Stretched 2x along
 // X the plane becomes x/2 + y = 1, whose normal is ∝ (1/2, 1, 0): what the inverse transpose
 // gives, and not what transforming the normal like a position (∝ (2, 1, 0)) would.

@@ -1,0 +1,305 @@
+#include "parse/ObjChunk.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+#include "parse/LineChunks.h"
+#include "parse/PrintableText.h"
+
+namespace prism {
+
+namespace {
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t';
+}
+bool isLineEnd(char c) {
+  return c == '\n' || c == '\r';
+}
+
+const char* skipBlanks(const char* p, const char* end) {
+  while (p < end && isBlank(*p)) ++p;
+  return p;
+}
+const char* wordEnd(const char* p, const char* end) {
+  while (p < end && !isBlank(*p) && !isLineEnd(*p)) ++p;
+  return p;
+}
+// The start of the next word on this line, or null where the line (or a comment) begins.
+const char* nextWord(const char* p, const char* end) {
+  p = skipBlanks(p, end);
+  return (p == end || isLineEnd(*p) || *p == '#') ? nullptr : p;
+}
+
+enum class Statement { Position, Normal, Face, Other };
+
+Statement statementOf(const char* word, const char* end) {
+  const size_t n = static_cast<size_t>(end - word);
+  if (n == 1 && word[0] == 'v') return Statement::Position;
+  if (n == 2 && word[0] == 'v' && word[1] == 'n') return Statement::Normal;
+  if (n == 1 && word[0] == 'f') return Statement::Face;
+  return Statement::Other;
+}
+
+// An error at a word of the current line; the parse stops at the first.
+struct ParseFailure {
+  const char* at;
+  std::string message;
+};
+
+// Reads an OBJ coordinate: a whole word that std::from_chars reads as a double (after an
+// optional '+'), finite as a float. The double is rounded to float as tinyobjloader did.
+float coordinate(const char* word, const char* end) {
+  const std::string_view w(word, static_cast<size_t>(end - word));
+  double value = 0.0;
+  const char* first = word + (*word == '+' ? 1 : 0);
+  const auto [ptr, ec] = std::from_chars(first, end, value);
+  const float rounded = static_cast<float>(value);
+  if (ec == std::errc::result_out_of_range ||
+      (ec == std::errc() && ptr == end && !std::isfinite(rounded))) {
+    throw ParseFailure{word, "non-finite coordinate '" + printableExcerpt(w) + "'"};
+  }
+  if (ec != std::errc() || ptr != end) {
+    throw ParseFailure{word, "expected a number but found '" + printableExcerpt(w) + "'"};
+  }
+  return rounded;
+}
+
+// The numbers of a 'v' or 'vn' line (all must be numbers; the first three are kept).
+Vec3 threeCoordinates(const char* statement, const char* p, const char* end, const char* what) {
+  float xyz[3] = {0, 0, 0};
+  int count = 0;
+  while (const char* word = nextWord(p, end)) {
+    p = wordEnd(word, end);
+    const float value = coordinate(word, p);
+    if (count < 3) xyz[count] = value;
+    ++count;
+  }
+  if (count < 3) throw ParseFailure{statement, std::string(what) + " needs 3 coordinates"};
+  return Vec3(xyz[0], xyz[1], xyz[2]);
+}
+
+// An OBJ index: an optional sign and digits. Values past any file's size are kept large rather
+// than overflowing. False where there are no digits.
+bool readIndex(const char*& p, const char* end, int64_t& value) {
+  const bool negative = p < end && *p == '-';
+  if (p < end && (*p == '-' || *p == '+')) ++p;
+  const char* digits = p;
+  value = 0;
+  while (p < end && static_cast<unsigned>(*p - '0') < 10) {
+    if (value < (int64_t{1} << 40)) value = value * 10 + (*p - '0');
+    ++p;
+  }
+  if (negative) value = -value;
+  return p != digits;
+}
+
+// A 0-based index into `inFile` items from the OBJ index `index` (1-based, or negative: relative
+// to the `before` items read so far).
+uint32_t resolveIndex(int64_t index, uint64_t before, uint64_t inFile, const char* word,
+                      const char* what) {
+  if (index > 0 && static_cast<uint64_t>(index) <= inFile) return static_cast<uint32_t>(index - 1);
+  if (index < 0 && static_cast<uint64_t>(-index) <= before) {
+    return static_cast<uint32_t>(static_cast<int64_t>(before) + index);
+  }
+  const std::string refers = std::string("face refers to ") + what + " " + std::to_string(index);
+  if (index == 0) throw ParseFailure{word, refers + " (OBJ counts from 1)"};
+  if (index > 0) throw ParseFailure{word, refers + " but the file has " + std::to_string(inFile)};
+  throw ParseFailure{word, refers + " but only " + std::to_string(before) + " come before it"};
+}
+
+// Finds line ends with memchr where the piece has no lone \r (a \r\n's \r ends the line's last
+// word, so the line runs to its \n): most files. Otherwise character by character.
+class LineEnds {
+ public:
+  explicit LineEnds(std::string_view text) : newlinesOnly_(!hasLoneCarriageReturn(text)) {}
+
+  // Where the line that `from` is in ends (its \n, \r\n or \r; or the end of the text).
+  const char* lineEnd(const char* from, const char* end) const {
+    if (newlinesOnly_) {
+      const void* newline = std::memchr(from, '\n', static_cast<size_t>(end - from));
+      return newline ? static_cast<const char*>(newline) : end;
+    }
+    while (from < end && !isLineEnd(*from)) ++from;
+    return from;
+  }
+
+  const char* nextLineStart(const char* from, const char* end) const {
+    // Most statements are parsed up to their line's end: no search then.
+    if (from < end && *from == '\n') return from + 1;
+    if (!newlinesOnly_) return prism::nextLineStart(from, end);
+    return skipLineEnd(lineEnd(from, end), end);
+  }
+
+  // Past the line end at `at`.
+  static const char* skipLineEnd(const char* at, const char* end) {
+    if (at < end && *at == '\r' && at + 1 < end && at[1] == '\n') return at + 2;
+    return at < end ? at + 1 : end;
+  }
+
+ private:
+  static bool hasLoneCarriageReturn(std::string_view text) {
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    while (const void* found = std::memchr(p, '\r', static_cast<size_t>(end - p))) {
+      p = static_cast<const char*>(found) + 1;
+      if (p == end || *p != '\n') return true;
+    }
+    return false;
+  }
+
+  bool newlinesOnly_;
+};
+
+// The words in [p, end), one line's rest, as nextWord would step through them. The first pass
+// reads every face line only to count them: a loop without branches, gone over again the slow
+// way only where a '#' may start a comment.
+uint64_t countWords(const char* p, const char* end) {
+  uint64_t words = 0;
+  bool inWord = false;
+  bool hash = false;
+  for (const char* c = p; c < end; ++c) {
+    const bool blank = isBlank(*c) || *c == '\r';
+    words += !inWord && !blank;
+    inWord = !blank;
+    hash |= *c == '#';
+  }
+  if (!hash) return words;
+  words = 0;
+  while (const char* word = nextWord(p, end)) {
+    p = wordEnd(word, end);
+    ++words;
+  }
+  return words;
+}
+
+}  // namespace
+
+ObjChunkCounts countObjChunk(std::string_view text) {
+  ObjChunkCounts counts;
+  const LineEnds lineEnds(text);
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  while (p < end) {
+    ++counts.lines;
+    const char* lineEnd = lineEnds.lineEnd(p, end);
+    if (const char* word = nextWord(p, lineEnd)) {
+      p = wordEnd(word, lineEnd);
+      switch (statementOf(word, p)) {
+        case Statement::Position:
+          ++counts.positions;
+          break;
+        case Statement::Normal:
+          ++counts.normals;
+          break;
+        case Statement::Face: {
+          const uint64_t corners = countWords(p, lineEnd);
+          ++counts.faces;
+          counts.corners += corners;
+          if (corners >= 3) counts.triangles += corners - 2;
+          break;
+        }
+        case Statement::Other:
+          break;
+      }
+    }
+    p = LineEnds::skipLineEnd(lineEnd, end);
+  }
+  return counts;
+}
+
+ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target) {
+  ObjChunkResult result;
+  const LineEnds lineEnds(text);
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  uint64_t line = target.firstLine - 1;
+  const char* lineStart = p;
+  Vec3* position = target.positions;
+  Vec3* normal = target.normals;
+  uint32_t* cornerVertex = target.cornerVertex;
+  uint32_t* cornerNormal = target.cornerNormal;
+  uint8_t* faceCorners = target.faceCorners;
+  try {
+    while (p < end) {
+      ++line;
+      lineStart = p;
+      if (const char* word = nextWord(p, end)) {
+        p = wordEnd(word, end);
+        switch (statementOf(word, p)) {
+          case Statement::Position:
+            *position++ = threeCoordinates(word, p, end, "vertex");
+            break;
+          case Statement::Normal:
+            *normal++ = threeCoordinates(word, p, end, "normal");
+            break;
+          case Statement::Face: {
+            const uint64_t positionsBefore =
+                target.positionsBefore + static_cast<uint64_t>(position - target.positions);
+            const uint64_t normalsBefore =
+                target.normalsBefore + static_cast<uint64_t>(normal - target.normals);
+            const char* face = word;
+            int corners = 0;
+            while (const char* corner = nextWord(p, end)) {
+              p = wordEnd(corner, end);
+              // v, v/vt, v//vn or v/vt/vn; vt is checked for form and ignored.
+              const char* q = corner;
+              int64_t v = 0, vt = 0, vn = 0;
+              bool hasNormal = false;
+              bool ok = readIndex(q, p, v);
+              if (ok && q < p && *q == '/') {
+                ++q;
+                if (q < p && *q != '/') {
+                  ok = readIndex(q, p, vt);
+                  if (ok && vt == 0) {
+                    throw ParseFailure{corner,
+                                       "face refers to texture coordinate 0 (OBJ counts from 1)"};
+                  }
+                }
+                if (ok && q < p && *q == '/') {
+                  ++q;
+                  hasNormal = q < p;
+                  if (hasNormal) ok = readIndex(q, p, vn);
+                }
+              }
+              if (!ok || q != p) {
+                throw ParseFailure{corner,
+                                   "expected a face corner (v, v/vt, v//vn or v/vt/vn) "
+                                   "but found '" +
+                                       printableExcerpt(std::string_view(
+                                           corner, static_cast<size_t>(p - corner))) +
+                                       "'"};
+              }
+              *cornerVertex++ =
+                  resolveIndex(v, positionsBefore, target.positionsInFile, corner, "vertex");
+              if (hasNormal) {
+                const uint32_t n =
+                    resolveIndex(vn, normalsBefore, target.normalsInFile, corner, "normal");
+                if (cornerNormal) *cornerNormal++ = n;
+              } else {
+                result.cornerWithoutNormal = true;
+                if (cornerNormal) *cornerNormal++ = kNoNormal;
+              }
+              ++corners;
+            }
+            if (corners < 3) throw ParseFailure{face, "face needs at least 3 vertices"};
+            if (corners > 255) throw ParseFailure{face, "face has more than 255 vertices"};
+            *faceCorners++ = static_cast<uint8_t>(corners);
+            break;
+          }
+          case Statement::Other:
+            break;
+        }
+      }
+      p = lineEnds.nextLineStart(p, end);
+    }
+  } catch (const ParseFailure& failure) {
+    result.line = line;
+    result.column = static_cast<int>(failure.at - lineStart) + 1;
+    result.message = failure.message;
+  }
+  return result;
+}
+
+}  // namespace prism

@@ -1,0 +1,20 @@
+#include "fuzz/Harnesses.h"
+#include "fuzz/SceneInvariants.h"
+#include "parse/PlyLoader.h"
+
+namespace prism::fuzz {
+
+Outcome fuzzPly(const uint8_t* data, size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  MeshDesc mesh;
+  try {
+    mesh = parsePlyMesh(bytes, "fuzz-input.ply", FileLoc{"fuzz-input.yaml", 1, 1});
+  } catch (const SceneError&) {
+    return Outcome::Rejected;
+  }
+  checkMesh(mesh);
+  if (mesh.indices.empty()) throw InvariantBroken("accepted a mesh without triangles");
+  return Outcome::Accepted;
+}
+
+}  // namespace prism::fuzz
