@@ -194,21 +194,82 @@ void printSummary(const DisplayFrame& shown, const LiveStats& s, std::ostream& o
   }
 }
 
+// Types keys into the window, queued: handled once the event loop runs, in order.
+void typeKeys(QWidget& window, const std::string& keys) {
+  for (const char c : keys) {
+    const int key = std::isalpha(static_cast<unsigned char>(c))
+                        ? Qt::Key_A + (std::toupper(static_cast<unsigned char>(c)) - 'A')
+                        : static_cast<int>(c);
+    const Qt::KeyboardModifiers shift =
+        std::isupper(static_cast<unsigned char>(c)) ? Qt::ShiftModifier : Qt::NoModifier;
+    QCoreApplication::postEvent(&window,
+                                new QKeyEvent(QEvent::KeyPress, key, shift, QString(QChar(c))));
+  }
+}
+
+// The source's run() on the calling thread (the coordinator), its news queued to the window.
+// When the source ends by itself the window says why, and a script's window (it would quit by
+// itself) quits; a failure quits with it in `failure`.
+void runSource(LiveSource& source, MainWindow& window, bool scripted, std::string& endedBecause,
+               std::exception_ptr& failure) {
+  try {
+    endedBecause = source.run([&window](bool) {  // a window takes at once, urgent or not
+      QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection);
+    });
+    if (!endedBecause.empty()) {
+      const QString why = QString::fromStdString(endedBecause);
+      QMetaObject::invokeMethod(
+          &window, [&window, why] { window.sourceEnded(why); }, Qt::QueuedConnection);
+      if (scripted) QMetaObject::invokeMethod(qApp, "quit", Qt::QueuedConnection);
+    }
+  } catch (...) {
+    failure = std::current_exception();
+    QMetaObject::invokeMethod(qApp, "quit", Qt::QueuedConnection);
+  }
+}
+
+// --save: written once, when the viewer decides to quit (its view renders no more passes) or,
+// failing that, when the window has closed.
+class SaveOnQuit {
+ public:
+  SaveOnQuit(MainWindow& window, std::string path) : window_(window), path_(std::move(path)) {}
+  void operator()() {
+    if (done_ || path_.empty()) return;
+    done_ = true;
+    try {
+      window_.saveImage(QString::fromStdString(path_));
+    } catch (const std::exception& e) {
+      error_ = e.what();
+    }
+  }
+  bool done() const { return done_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  MainWindow& window_;
+  std::string path_;
+  bool done_ = false;
+  std::string error_;
+};
+
+// Why the window should not open ("" : it may): no display, or a --save it could not write.
+std::string whyNotToOpen(const ViewerOptions& options) {
+  if (!haveDisplay()) {
+    return "no display: set DISPLAY (or run under xvfb-run), or set QT_QPA_PLATFORM=offscreen "
+           "to render without a window";
+  }
+  std::string why;
+  if (!options.savePath.empty() && !isWritableImagePath(options.savePath, &why)) return why;
+  return "";
+}
+
 }  // namespace
 
 int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& out,
               std::ostream& err) {
-  if (!haveDisplay()) {
-    err << "prism: error: no display: set DISPLAY (or run under xvfb-run), or set "
-           "QT_QPA_PLATFORM=offscreen to render without a window\n";
+  if (const std::string why = whyNotToOpen(options); !why.empty()) {
+    err << "prism: error: " << why << "\n";
     return 1;
-  }
-  if (!options.savePath.empty()) {
-    std::string why;
-    if (!isWritableImagePath(options.savePath, &why)) {
-      err << "prism: error: " << why << "\n";
-      return 1;
-    }
   }
   static int argc = 1;
   static char name[] = "prism";
@@ -217,8 +278,9 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
 
   MainWindow window(source);
   if (options.exitAfterPasses > 0) window.limitPasses(options.exitAfterPasses);
-  if (options.frameTimeMilliseconds >= 0.0)
+  if (options.frameTimeMilliseconds >= 0.0) {
     window.setFrameTime(options.frameTimeMilliseconds / 1e3);
+  }
   if (!options.speedupCsv.empty()) {
     const QString error = window.loadSpeedupCsv(QString::fromStdString(options.speedupCsv));
     if (!error.isEmpty()) {
@@ -226,21 +288,10 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
       return 1;
     }
   }
-  // Saved at the moment the viewer decides to quit (the view renders no more passes).
-  bool saved = false;
-  std::string saveError;
-  const auto save = [&] {
-    if (saved || options.savePath.empty()) return;
-    saved = true;
-    try {
-      window.saveImage(QString::fromStdString(options.savePath));
-    } catch (const std::exception& e) {
-      saveError = e.what();
-    }
-  };
+  SaveOnQuit save(window, options.savePath);
   if (options.exitAfterPasses > 0) {
     QObject::connect(&window, &MainWindow::fullPassDone, &window, [&](int passes) {
-      if (saved || passes < options.exitAfterPasses) return;
+      if (save.done() || passes < options.exitAfterPasses) return;
       save();
       QMetaObject::invokeMethod(&window, &QWidget::close, Qt::QueuedConnection);  // in the loop
     });
@@ -253,15 +304,7 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
       window.close();
     });
   }
-  for (const char c : options.keys) {  // queued: handled once the event loop runs, in order
-    const int key = std::isalpha(static_cast<unsigned char>(c))
-                        ? Qt::Key_A + (std::toupper(static_cast<unsigned char>(c)) - 'A')
-                        : static_cast<int>(c);
-    const Qt::KeyboardModifiers shift =
-        std::isupper(static_cast<unsigned char>(c)) ? Qt::ShiftModifier : Qt::NoModifier;
-    QCoreApplication::postEvent(&window,
-                                new QKeyEvent(QEvent::KeyPress, key, shift, QString(QChar(c))));
-  }
+  typeKeys(window, options.keys);
   std::unique_ptr<MoveBenchmark> benchmark;
   if (options.benchmarkMoves > 0) {
     benchmark = std::make_unique<MoveBenchmark>(window, options.benchmarkMoves,
@@ -274,23 +317,7 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
   std::string endedBecause;
 
   std::exception_ptr failure;
-  std::thread coordinator([&] {
-    try {
-      // One queued take at a time: the source wakes once per take.
-      endedBecause = source.run([&window](bool) {  // a window takes at once, whether urgent or not
-        QMetaObject::invokeMethod(&window, "takeNews", Qt::QueuedConnection);
-      });
-      if (!endedBecause.empty()) {
-        const QString why = QString::fromStdString(endedBecause);
-        QMetaObject::invokeMethod(
-            &window, [&window, why] { window.sourceEnded(why); }, Qt::QueuedConnection);
-        if (scripted) QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
-      }
-    } catch (...) {
-      failure = std::current_exception();
-      QMetaObject::invokeMethod(&app, "quit", Qt::QueuedConnection);
-    }
-  });
+  std::thread coordinator([&] { runSource(source, window, scripted, endedBecause, failure); });
   window.fitToScreen(QSize(1600, 900));
   window.show();
   window.startRendering();
@@ -299,11 +326,11 @@ int runViewer(LiveSource& source, const ViewerOptions& options, std::ostream& ou
   source.stop();
   coordinator.join();
   if (failure) std::rethrow_exception(failure);  // the command reports it
-  if (!saveError.empty()) {
-    err << "prism: error: " << saveError << "\n";
+  if (!save.error().empty()) {
+    err << "prism: error: " << save.error() << "\n";
     return 1;
   }
-  if (!options.savePath.empty()) {
+  if (save.done()) {
     out << "written    " << options.savePath << "\n"
         << "view       " << cameraOptionsText(window.viewSettings().camera)
         << " (prism render options for this view)\n";
