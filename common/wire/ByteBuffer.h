@@ -47,6 +47,14 @@ class ByteWriter {
 
   const std::vector<uint8_t>& bytes() const { return bytes_; }
   std::vector<uint8_t> take() { return std::move(bytes_); }
+  // Writes into `reuse` from its start, keeping its memory: a writer for message after
+  // message without a fresh (and page-faulted) buffer each time.
+  void reuse(std::vector<uint8_t>&& buffer) {
+    bytes_ = std::move(buffer);
+    bytes_.clear();
+  }
+  // The last `count` bytes written, to be transformed in place (a filter over what was copied).
+  uint8_t* lastBytes(size_t count) { return bytes_.data() + (bytes_.size() - count); }
 
  private:
   void writeLittleEndian(uint64_t v, int byteCount);

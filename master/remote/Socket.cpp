@@ -201,10 +201,11 @@ bool MessageReader::readFrom(const Socket& socket, std::vector<view::Message>& o
   }
 }
 
-void OutBuffer::put(const std::vector<uint8_t>& bytes) {
+void OutBuffer::put(std::vector<uint8_t>&& bytes) {
   if (empty()) {
-    bytes_.clear();
+    bytes_ = std::move(bytes);
     offset_ = 0;
+    return;
   }
   bytes_.insert(bytes_.end(), bytes.begin(), bytes.end());
 }
@@ -224,8 +225,7 @@ size_t OutBuffer::writeTo(const Socket& socket) {
     throw std::runtime_error(std::string("the connection failed: ") + std::strerror(errno));
   }
   if (empty()) {
-    bytes_.clear();
-    bytes_.shrink_to_fit();
+    bytes_ = {};  // its memory goes with it: one frame's message is the most kept per viewer
     offset_ = 0;
   }
   return written;

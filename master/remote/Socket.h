@@ -72,8 +72,8 @@ class MessageReader {
 class OutBuffer {
  public:
   bool empty() const { return offset_ == bytes_.size(); }
-  // Queues bytes behind what is there.
-  void put(const std::vector<uint8_t>& bytes);
+  // Queues bytes behind what is there (taking the vector as it is when nothing is).
+  void put(std::vector<uint8_t>&& bytes);
   // Writes what the socket takes now. Returns the bytes written; throws std::runtime_error when
   // the peer is gone.
   size_t writeTo(const Socket& socket);

@@ -23,15 +23,17 @@ struct SubFilteredRows {
   Width& width;
 
   void write(ByteWriter& w) const {
-    std::vector<uint8_t> filtered(bytes.begin(), bytes.end());
+    w.writeCount(bytes.size());
+    if (bytes.empty()) return;
+    w.writeRaw(bytes.data(), bytes.size());
+    uint8_t* filtered = w.lastBytes(bytes.size());  // filtered where it was copied
     const size_t row = rowBytes();
-    for (size_t start = 0; start < filtered.size(); start += row) {
-      const size_t end = std::min(start + row, filtered.size());
-      for (size_t i = end - 1; i >= start + 3 && i < end; --i) {
-        filtered[i] = static_cast<uint8_t>(filtered[i] - filtered[i - 3]);
+    for (size_t start = 0; start < bytes.size(); start += row) {
+      const size_t end = std::min(start + row, bytes.size());
+      for (size_t i = start + 3; i < end; ++i) {
+        filtered[i] = static_cast<uint8_t>(bytes[i] - bytes[i - 3]);
       }
     }
-    w.writeU8s(filtered);
   }
   void read(ByteReader& r) {
     bytes = r.readU8s();

@@ -45,7 +45,7 @@ class ViewerConnection {
   // dropped ("" while it stays): it stopped reading or acknowledging, or is silent.
   std::string write(LiveSource& source, NewsState& news, double timeoutSeconds);
   // Queues a message (the Welcome) before anything else.
-  void queue(const std::vector<uint8_t>& message) { out_.put(message); }
+  void queue(std::vector<uint8_t> message) { out_.put(std::move(message)); }
   // Says a last word without waiting for the viewer to read it.
   void tryToSay(const std::vector<uint8_t>& message);
 
