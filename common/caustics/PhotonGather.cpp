@@ -54,9 +54,14 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float averaged2 = footprint.valid ? std::max(narrow2, reach * reach) : 0.0f;
   const PixelFootprint::Test inFootprint =
       footprint.valid ? footprint.test(normal) : PixelFootprint::Test{};
+  // The footprint lies about the pixel's centre, not the (jittered) sample: so every sample of a
+  // pixel counts a narrow photon by the pixel's box, and a focus narrower than a pixel stays in
+  // its pixel at any spp. The wide photons' kernels are read at the sample itself, whose jitter
+  // then averages them over the pixel.
+  const Vec3 centre = footprint.valid ? position + footprint.offset() : position;
   // p: a Photon, or a PhotonDiscs::Disc (the same photon, in tree order).
   const auto overFootprint = [&](const auto& p, float radius2) {
-    const Vec3 q = p.position - position;
+    const Vec3 q = p.position - centre;
     if (radius2 <= narrow2) return inFootprint.contains(q) ? 1.0f / area : 0.0f;
     return footprintMeanKernel(settings_.filter, q, footprint.a, footprint.b, radius2);
   };
@@ -73,7 +78,7 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
     });
     if (footprint.valid) {
       // Narrow photons outside the footprint add nothing (overFootprint's 0): not visited.
-      discs_->reaching(position, reach, averaged2, narrow2, inFootprint,
+      discs_->reaching(centre, reach, averaged2, narrow2, inFootprint,
                        [&](const PhotonDiscs::Disc& p, float, float radius2) {
                          if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
                        });
@@ -85,7 +90,7 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float radius2 = settings_.radius * settings_.radius;
   const bool averaged = radius2 <= averaged2;
   const float gatherRadius = averaged ? settings_.radius + reach : settings_.radius;
-  map_->within(position, gatherRadius * gatherRadius, neighbours);
+  map_->within(averaged ? centre : position, gatherRadius * gatherRadius, neighbours);
   for (const PhotonNeighbour& n : neighbours) {
     const Photon& p = photons[n.index];
     if (!fromFront(p)) continue;

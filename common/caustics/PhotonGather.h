@@ -42,7 +42,8 @@ class PhotonGather : public CausticEstimator {
   // than a pixel gives that pixel its average, not the value at one point of it. A photon
   // narrower than the footprint counts its power over the footprint's area if it lies in it and
   // nothing otherwise; one about as wide, the mean of its kernel over the footprint; a wider one
-  // keeps its kernel at the centre.
+  // keeps its kernel at the sample's point. The footprint is centred on the pixel's centre
+  // (PixelFootprint::offset), whichever sample of the pixel asks.
   Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
   bool usesFootprint() const override { return true; }
 

@@ -16,10 +16,20 @@
 namespace prism {
 
 // The pixel's footprint on a surface: the parallelogram centre ± a/2 ± b/2 (a and b are the hit
-// point's changes per pixel in x and y). An invalid footprint asks for the estimate at a point.
+// point's changes per pixel in x and y). Its centre is where the pixel's centre maps, which is
+// not the hit of a sample jittered off it: offset() from the hit. An invalid footprint asks for
+// the estimate at a point.
 struct PixelFootprint {
   bool valid = false;
   Vec3 a{0.0f}, b{0.0f};
+  // The pixel's centre less the sample's image-plane point, in pixels (0 for a sample at the
+  // centre): a footprint centred on each jittered sample would count a focus narrower than the
+  // pixel in the samples' neighbours too (a tent, one pixel wider than the pixel, and one frozen
+  // with the sample pattern across progressive passes: docs/accuracy.md).
+  Vec2 toPixelCentre{0.0f};
+
+  // The centre less the hit point, to first order.
+  Vec3 offset() const { return toPixelCentre.x * a + toPixelCentre.y * b; }
 
   float area() const { return glm::length(glm::cross(a, b)); }
   // No point of the parallelogram is further than this from its centre.
@@ -47,6 +57,7 @@ struct RayDifferential {
   bool valid = false;
   Vec3 dOdx{0.0f}, dOdy{0.0f};  // the origin's change per pixel
   Vec3 dDdx{0.0f}, dDdy{0.0f};  // the unit direction's change per pixel
+  Vec2 toPixelCentre{0.0f};     // as PixelFootprint's, carried along the path
 
   // The footprint where a ray of unit direction d meets, at distance t, a surface of unit normal
   // n. At grazing angles (|cos| below 0.05) it would grow without bound: none then.
@@ -54,7 +65,8 @@ struct RayDifferential {
     if (!valid) return {};
     const float cosine = glm::dot(d, n);
     if (!(std::fabs(cosine) >= 0.05f)) return {};
-    return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine)};
+    return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine),
+            toPixelCentre};
   }
 
   // How the surface's unit normal n (facing the ray) turns per pixel where the footprint lies:
@@ -76,7 +88,7 @@ struct RayDifferential {
       const float dDn = glm::dot(dD, n) + glm::dot(d, dn);
       return dD - 2.0f * (glm::dot(d, n) * dn + dDn * n);
     };
-    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
+    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy), f.toPixelCentre};
   }
 
   // The same for the ray refracted into direction t (unit, from refract(d, n, eta)): Igehy's
@@ -92,7 +104,7 @@ struct RayDifferential {
       const float dMu = (eta - eta * eta * cosI / cosT) * dCosI;
       return eta * dD + mu * dn + dMu * n;
     };
-    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
+    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy), f.toPixelCentre};
   }
 
  private:

@@ -53,8 +53,11 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
       sample = debugColor(scene_, ray, debugView_, rays);
     } else {
       ++rays.primary;
-      const RayDifferential differential =
-          integrator_.usesDifferentials() ? camera_.pixelDifferential(ray) : RayDifferential{};
+      RayDifferential differential;
+      if (integrator_.usesDifferentials()) {
+        differential = camera_.pixelDifferential(ray);
+        differential.toPixelCentre = Vec2(0.5f) - offset;
+      }
       sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
     }
     addSample(sample, sum, rays);
