@@ -79,6 +79,51 @@ TEST(TileRenderer, CameraRayPacketsGiveTheSameImageAsSingleRays) {
   }
 }
 
+// Records where each footprint the caustic estimate is asked for lies: the hit plus the
+// footprint's offset to its pixel's centre.
+class FootprintCentres : public CausticEstimator {
+ public:
+  Color irradiance(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint) const override {
+    centres.push_back(s.position + footprint.offset());
+    samples.push_back(s.position);
+    return Color(0.0f);
+  }
+  bool usesFootprint() const override { return true; }
+  mutable std::vector<Vec3> centres, samples;
+};
+
+// With several jittered samples a pixel, each sample's footprint still lies about its pixel's
+// centre: an orthographic view straight down at a plane, 8 × 8 pixels of 0.25, 4 spp; pixel
+// (x, y)'s centre maps to (-1 + 0.25 (x + 0.5), 0, -1 + 0.25 (y + 0.5)).
+TEST(TileRenderer, EverySamplesFootprintLiesAboutItsPixelsCentre) {
+  SceneDescription d;
+  d.camera.projection = Projection::Orthographic;
+  d.camera.position = {0.0f, 1.0f, 0.0f};
+  d.camera.lookAt = {0.0f, 0.0f, 0.0f};
+  d.camera.up = {0.0f, 0.0f, -1.0f};
+  d.camera.width = 2.0f;
+  d.render.width = d.render.height = 8;
+  d.render.samplesPerPixel = 4;
+  MaterialDesc floor;
+  floor.diffuse = Color(0.5f);
+  d.materials.push_back(floor);
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  const Scene scene(d);
+  FootprintCentres probe;
+  const TileRenderer renderer(scene, {true, &probe});
+  renderTile(renderer, {0, 0, 8, 8});
+  ASSERT_EQ(probe.centres.size(), 8u * 8u * 4u);
+  float jitter = 0.0f;
+  for (size_t i = 0; i < probe.centres.size(); ++i) {
+    const int x = static_cast<int>(i / 4) % 8, y = static_cast<int>(i / 4) / 8;
+    const Vec3 centre(-1.0f + 0.25f * (x + 0.5f), 0.0f, -1.0f + 0.25f * (y + 0.5f));
+    EXPECT_NEAR(glm::length(probe.centres[i] - centre), 0.0f, 1e-5f) << "sample " << i;
+    jitter = std::max(jitter, glm::length(probe.samples[i] - centre));
+  }
+  EXPECT_GT(jitter, 0.05f);  // the samples themselves lie off the centres
+}
+
 // The viewer's passes: its own camera and size, one jittered sample per pixel.
 TEST(TileRenderer, CameraRayPacketsGiveTheSameViewerPass) {
   const SceneDescription d = loadScene(std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml");
