@@ -4,7 +4,7 @@
 // is exactly rho^(2/3) of the whole. Photons drawn that way, gathered as the renderer gathers
 // them (per-photon radii shrunk pass by pass, pixel footprints, the renderer's own sample
 // pattern, the same in every pass), must give each pixel square around the focus its share.
-// Before footprints were centred on the pixel's centre, a 4-spp pixel counted a focus narrower
+// Before each sample counted by its stratum's cell, a 4-spp pixel counted a focus narrower
 // than itself through a tent one pixel wider than itself, frozen with the sample pattern: after
 // 8 passes the focal pixel had 0.78 (4 spp) and 0.80 (9 spp) of its flux and the 3 × 3 pixels
 // about it 1.028 (9 spp) — the focus's surroundings biased high, as issue 53 measured.
@@ -58,7 +58,7 @@ double exactFlux(double L) {
 
 // Each pixel's flux (irradiance × pixel area) for a view straight down at the focus: spp
 // samples a pixel where the renderer puts them (PixelSampler on the pixel's own stream, the
-// same in every pass), each with the pixel's footprint and its offset to the pixel's centre.
+// same in every pass), each with the pixel's footprint and its stratum's cell.
 std::vector<double> pixelFluxes(const PhotonGather& gather, int spp) {
   const PixelSampler sampler(spp);
   std::vector<double> image;
@@ -76,7 +76,10 @@ std::vector<double> pixelFluxes(const PhotonGather& gather, int spp) {
         footprint.valid = true;
         footprint.a = Vec3(kPixel, 0.0f, 0.0f);
         footprint.b = Vec3(0.0f, 0.0f, kPixel);
-        footprint.toPixelCentre = Vec2(0.5f) - offset;
+        if (spp > 1) {  // as TileRenderer: each sample stands for its stratum's cell
+          footprint.cell = sampler.stratumSize();
+          footprint.toCellCentre = sampler.stratumCentre(i) - offset;
+        }
         sum += gather.irradianceAt(hit, footprint).x;
       }
       image.push_back(sum / spp * kPixel * kPixel);
@@ -130,26 +133,32 @@ INSTANTIATE_TEST_SUITE_P(SamplesPerPixel, ProgressiveFocus, testing::Values(1, 4
                            return std::to_string(info.param) + "Spp";
                          });
 
-// A photon narrower than the pixel counts in its pixel, and only there, whichever sample of
-// the pixel asks: every sample's footprint is the pixel's own.
-TEST(ProgressiveFocus, ANarrowPhotonCountsInItsPixelFromEverySample) {
+// A photon narrower than a stratum counts in the cell of the stratum it lies in, whichever
+// sample of that stratum asks, and nowhere else: the cells tile the pixel, so the pixel's mean
+// is its power over the pixel's area. 4 spp: 2 × 2 strata; the photon lies at (0.8, 0.7) of
+// pixel (0, 0), in stratum (1, 1).
+TEST(ProgressiveFocus, ANarrowPhotonCountsInTheCellOfItsStratum) {
   std::vector<Photon> one(1);
   one[0].position = kFocus;
   one[0].power = Color(1.0f);
   one[0].setDirection({0.0f, -1.0f, 0.0f});
   const PhotonGather gather(std::make_shared<const PhotonMap>(std::move(one)),
-                            {false, 1, 0.1f * kPixel, PhotonFilter::Cone}, 1);
-  for (const float sx : {0.05f, 0.5f, 0.95f}) {
-    for (const float sy : {0.05f, 0.5f, 0.95f}) {
-      for (const int px : {-1, 0, 1}) {
+                            {false, 1, 0.05f * kPixel, PhotonFilter::Cone}, 1);
+  const PixelSampler sampler(4);
+  const float cellArea = 0.25f * kPixel * kPixel;
+  for (const int px : {-1, 0, 1}) {
+    for (int i = 0; i < 4; ++i) {
+      for (const float jitter : {0.05f, 0.5f, 0.95f}) {
+        // The sample at `jitter` across its stratum, both ways.
+        const Vec2 offset = sampler.stratumCentre(i) + (jitter - 0.5f) * sampler.stratumSize();
         SurfaceHit hit;
-        hit.position = Vec3((px - 0.5f + sx) * kPixel, 0.0f, (-0.5f + sy) * kPixel);
+        hit.position = Vec3((px - 0.5f + offset.x) * kPixel, 0.0f, (-0.5f + offset.y) * kPixel);
         hit.geometricNormal = Vec3(0.0f, 1.0f, 0.0f);
         const PixelFootprint footprint{true, Vec3(kPixel, 0, 0), Vec3(0, 0, kPixel),
-                                       Vec2(0.5f - sx, 0.5f - sy)};
-        const float expected = px == 0 ? 1.0f / (kPixel * kPixel) : 0.0f;
+                                       sampler.stratumCentre(i) - offset, sampler.stratumSize()};
+        const float expected = px == 0 && i == 3 ? 1.0f / cellArea : 0.0f;
         EXPECT_NEAR(gather.irradianceAt(hit, footprint).x, expected, 1e-3f * expected)
-            << "pixel " << px << ", sample at (" << sx << ", " << sy << ")";
+            << "pixel " << px << ", stratum " << i << ", jitter " << jitter;
       }
     }
   }

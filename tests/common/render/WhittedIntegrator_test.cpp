@@ -321,19 +321,23 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   EXPECT_FALSE(f[0].valid);
 }
 
-// The sample's offset to its pixel's centre, in pixels, travels with the differentials: the
-// footprint met through a mirror, and through a glass ball, is centred where the pixel's centre
-// maps (PixelFootprint::offset), whichever sample of the pixel traced it.
-TEST(WhittedIntegrator, TheSamplesOffsetToItsPixelsCentreTravelsThroughMirrorsAndGlass) {
+// The sample's cell (its offset to its stratum's centre and the stratum's size, in pixels)
+// travels with the differentials: the footprint met through a mirror, and through a glass ball,
+// gives the cell about where its centre maps (PixelFootprint::offset, sampleCell).
+TEST(WhittedIntegrator, TheSamplesCellTravelsThroughMirrorsAndGlass) {
   SceneDescription d = mirrorAndReceiverMaterials();
   d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});  // a mirror floor 1 below the camera
   d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // a receiving ceiling
   RayDifferential sample = perPixel(0.0f, 0.01f);
-  sample.toPixelCentre = Vec2(0.25f, -0.375f);
+  sample.toCellCentre = Vec2(0.125f, -0.1875f);
+  sample.cell = Vec2(0.5f, 0.5f);
   std::vector<PixelFootprint> f = footprintsAlong(d, Ray{{0, 1, 0}, {0, -1, 0}}, sample);
   ASSERT_EQ(f.size(), 1u);
-  EXPECT_EQ(f[0].toPixelCentre, sample.toPixelCentre);
-  expectNear(f[0].offset(), 0.25f * f[0].a - 0.375f * f[0].b, 1e-7f);
+  EXPECT_EQ(f[0].toCellCentre, sample.toCellCentre);
+  EXPECT_EQ(f[0].cell, sample.cell);
+  expectNear(f[0].offset(), 0.125f * f[0].a - 0.1875f * f[0].b, 1e-7f);
+  expectNear(f[0].sampleCell().a, 0.5f * f[0].a, 1e-7f);
+  expectNear(f[0].sampleCell().b, 0.5f * f[0].b, 1e-7f);
 
   // A clear ball (index 1.5) between the camera and a receiving floor.
   SceneDescription glass = mirrorAndReceiverMaterials();
@@ -345,7 +349,8 @@ TEST(WhittedIntegrator, TheSamplesOffsetToItsPixelsCentreTravelsThroughMirrorsAn
   f = footprintsAlong(glass, Ray{{0.1f, 5, 0}, {0, -1, 0}}, sample);
   ASSERT_FALSE(f.empty());
   ASSERT_TRUE(f.back().valid);
-  EXPECT_EQ(f.back().toPixelCentre, sample.toPixelCentre);
+  EXPECT_EQ(f.back().toCellCentre, sample.toCellCentre);
+  EXPECT_EQ(f.back().cell, sample.cell);
 }
 
 // A mirror ball too small for the pixel's footprint on it (reach over a quarter of its radius)
