@@ -40,23 +40,33 @@ Color PhotonGather::irradianceAt(const SurfaceHit& s, const PixelFootprint& foot
 }
 
 Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
-                                     const PixelFootprint& footprint) const {
-  // With a footprint the estimate is the pixel's average of the photons' kernels: a photon
-  // narrower than the footprint (a disc of less area) counts its power over the footprint's area
-  // if it lies in it; one up to the footprint's reach wide, the mean of its kernel over the
-  // footprint; a wider one, its kernel at the centre, as without a footprint. Flipping straight
-  // from the first rule to the last left a photon counted in no pixel or in two where pixels'
-  // footprints differ (seen through a lens): the glass ball's focus seen from above read 9 %
-  // high at k = 400 (docs/accuracy.md).
+                                     const PixelFootprint& pixel) const {
+  // With a footprint the estimate is the average of the photons' kernels over the sample's cell
+  // of its pixel (the pixel itself at 1 spp): a photon narrower than the cell (a disc of less
+  // area) counts its power over the cell's area if it lies in it; one up to the pixel's reach
+  // wide, the mean of its kernel over the cell; a wider one, its kernel at the sample, as without
+  // a footprint. Flipping straight from the first rule to the last left a photon counted in no
+  // pixel or in two where pixels' footprints differ (seen through a lens): the glass ball's focus
+  // seen from above read 9 % high at k = 400 (docs/accuracy.md). The cell lies about its own
+  // centre, not the jittered sample, so the cells of a pixel's samples tile it and a focus
+  // narrower than a pixel stays in its pixel at any spp; the wide photons' kernels are read at
+  // the sample itself, whose jitter averages them over the cell.
+  const PixelFootprint footprint = pixel.sampleCell();
   const float reach = footprint.valid ? footprint.reach() : 0.0f;
   const float area = footprint.valid ? footprint.area() : 0.0f;
   const float narrow2 = area * kInvPi;
-  const float averaged2 = footprint.valid ? std::max(narrow2, reach * reach) : 0.0f;
+  // Photons up to the pixel's reach, not the cell's, are averaged over the cell: kernels about
+  // as wide as a pixel, read at each cell's jittered sample (the same points in every
+  // progressive pass), left a frozen error at a focus (2 % at 9 spp, the closed form of
+  // tests/common/caustics/ProgressiveFocus_test.cpp).
+  const float pixelReach = pixel.valid ? pixel.reach() : 0.0f;
+  const float averaged2 = footprint.valid ? std::max(narrow2, pixelReach * pixelReach) : 0.0f;
   const PixelFootprint::Test inFootprint =
       footprint.valid ? footprint.test(normal) : PixelFootprint::Test{};
+  const Vec3 centre = footprint.valid ? position + pixel.offset() : position;
   // p: a Photon, or a PhotonDiscs::Disc (the same photon, in tree order).
   const auto overFootprint = [&](const auto& p, float radius2) {
-    const Vec3 q = p.position - position;
+    const Vec3 q = p.position - centre;
     if (radius2 <= narrow2) return inFootprint.contains(q) ? 1.0f / area : 0.0f;
     return footprintMeanKernel(settings_.filter, q, footprint.a, footprint.b, radius2);
   };
@@ -73,7 +83,7 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
     });
     if (footprint.valid) {
       // Narrow photons outside the footprint add nothing (overFootprint's 0): not visited.
-      discs_->reaching(position, reach, averaged2, narrow2, inFootprint,
+      discs_->reaching(centre, reach, averaged2, narrow2, inFootprint,
                        [&](const PhotonDiscs::Disc& p, float, float radius2) {
                          if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
                        });
@@ -85,7 +95,7 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   const float radius2 = settings_.radius * settings_.radius;
   const bool averaged = radius2 <= averaged2;
   const float gatherRadius = averaged ? settings_.radius + reach : settings_.radius;
-  map_->within(position, gatherRadius * gatherRadius, neighbours);
+  map_->within(averaged ? centre : position, gatherRadius * gatherRadius, neighbours);
   for (const PhotonNeighbour& n : neighbours) {
     const Photon& p = photons[n.index];
     if (!fromFront(p)) continue;

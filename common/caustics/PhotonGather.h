@@ -42,7 +42,9 @@ class PhotonGather : public CausticEstimator {
   // than a pixel gives that pixel its average, not the value at one point of it. A photon
   // narrower than the footprint counts its power over the footprint's area if it lies in it and
   // nothing otherwise; one about as wide, the mean of its kernel over the footprint; a wider one
-  // keeps its kernel at the centre.
+  // keeps its kernel at the sample's point. With several samples a pixel, each sample's share is
+  // its stratum's cell of the footprint, about the cell's centre (PixelFootprint::sampleCell,
+  // offset): the cells tile the pixel.
   Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint = {}) const override;
   bool usesFootprint() const override { return true; }
 

@@ -17,9 +17,22 @@ namespace prism {
 
 // The pixel's footprint on a surface: the parallelogram centre ± a/2 ± b/2 (a and b are the hit
 // point's changes per pixel in x and y). An invalid footprint asks for the estimate at a point.
+// With several samples a pixel, a sample stands for its stratum of the pixel: its cell.
 struct PixelFootprint {
   bool valid = false;
   Vec3 a{0.0f}, b{0.0f};
+  // The centre of the sample's cell less the sample's image-plane point, and the cell's size, in
+  // pixels (0 and 1 × 1: the pixel about the sample). The cells of a pixel's strata tile it, so
+  // a focus narrower than a pixel is counted once in it; a footprint of the whole pixel about
+  // each jittered sample counted it in the samples' neighbours too (a tent one pixel wider than
+  // the pixel, the same in every progressive pass: docs/accuracy.md).
+  Vec2 toCellCentre{0.0f};
+  Vec2 cell{1.0f};
+
+  // The cell's centre less the hit point, to first order.
+  Vec3 offset() const { return toCellCentre.x * a + toCellCentre.y * b; }
+  // The sample's cell as a footprint of its own, about the hit point plus offset().
+  PixelFootprint sampleCell() const { return {valid, cell.x * a, cell.y * b}; }
 
   float area() const { return glm::length(glm::cross(a, b)); }
   // No point of the parallelogram is further than this from its centre.
@@ -45,8 +58,9 @@ struct PixelFootprint {
 
 struct RayDifferential {
   bool valid = false;
-  Vec3 dOdx{0.0f}, dOdy{0.0f};  // the origin's change per pixel
-  Vec3 dDdx{0.0f}, dDdy{0.0f};  // the unit direction's change per pixel
+  Vec3 dOdx{0.0f}, dOdy{0.0f};          // the origin's change per pixel
+  Vec3 dDdx{0.0f}, dDdy{0.0f};          // the unit direction's change per pixel
+  Vec2 toCellCentre{0.0f}, cell{1.0f};  // as PixelFootprint's, carried along the path
 
   // The footprint where a ray of unit direction d meets, at distance t, a surface of unit normal
   // n. At grazing angles (|cos| below 0.05) it would grow without bound: none then.
@@ -54,7 +68,8 @@ struct RayDifferential {
     if (!valid) return {};
     const float cosine = glm::dot(d, n);
     if (!(std::fabs(cosine) >= 0.05f)) return {};
-    return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine)};
+    return {true, transfer(dOdx, dDdx, d, t, n, cosine), transfer(dOdy, dDdy, d, t, n, cosine),
+            toCellCentre, cell};
   }
 
   // How the surface's unit normal n (facing the ray) turns per pixel where the footprint lies:
@@ -76,7 +91,8 @@ struct RayDifferential {
       const float dDn = glm::dot(dD, n) + glm::dot(d, dn);
       return dD - 2.0f * (glm::dot(d, n) * dn + dDn * n);
     };
-    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
+    return {true,           f.a,   f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy),
+            f.toCellCentre, f.cell};
   }
 
   // The same for the ray refracted into direction t (unit, from refract(d, n, eta)): Igehy's
@@ -92,7 +108,8 @@ struct RayDifferential {
       const float dMu = (eta - eta * eta * cosI / cosT) * dCosI;
       return eta * dD + mu * dn + dMu * n;
     };
-    return {true, f.a, f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy)};
+    return {true,           f.a,   f.b, turned(dDdx, turn.dndx), turned(dDdy, turn.dndy),
+            f.toCellCentre, f.cell};
   }
 
  private:

@@ -19,6 +19,14 @@ class PixelSampler {
 
   // Offset in [0, 1)² of sample i; rng is the pixel's own stream, drawn in sample order.
   Vec2 offset(int i, Pcg32& rng) const;
+  // Sample i's stratum: its centre in [0, 1)² and its size, in pixels.
+  Vec2 stratumCentre(int i) const {
+    return Vec2((static_cast<float>(i % columns_) + 0.5f) / static_cast<float>(columns_),
+                (static_cast<float>(i / columns_) + 0.5f) / static_cast<float>(rows_));
+  }
+  Vec2 stratumSize() const {
+    return Vec2(1.0f / static_cast<float>(columns_), 1.0f / static_cast<float>(rows_));
+  }
 
  private:
   int count_;

@@ -53,8 +53,16 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
       sample = debugColor(scene_, ray, debugView_, rays);
     } else {
       ++rays.primary;
-      const RayDifferential differential =
-          integrator_.usesDifferentials() ? camera_.pixelDifferential(ray) : RayDifferential{};
+      RayDifferential differential;
+      if (integrator_.usesDifferentials()) {
+        differential = camera_.pixelDifferential(ray);
+        // Each of several samples stands for its stratum (a single jittered one, the viewer's,
+        // for the pixel about it: its passes move it).
+        if (sampler_.count() > 1) {
+          differential.cell = sampler_.stratumSize();
+          differential.toCellCentre = sampler_.stratumCentre(i) - offset;
+        }
+      }
       sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
     }
     addSample(sample, sum, rays);

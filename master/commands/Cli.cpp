@@ -187,8 +187,10 @@ void addCausticOptions(CLI::App* render, RenderOptions& o) {
              "Progressive photon passes (implies photon_map)")
       ->group(caustics);
   render
-      ->add_option("--time-budget", o.timeBudget,
-                   "Seconds after which no further progressive pass starts")
+      ->add_option(
+          "--time-budget", o.timeBudget,
+          "Progressive: seconds for the whole run, start to written image; a pass starts only "
+          "if it (as long as the longest so far) and the write fit (the first always runs)")
       ->check(CLI::PositiveNumber)
       ->group(caustics);
   render

@@ -91,6 +91,7 @@ int renderAndWrite(MasterSession& session, const std::string& output, SteadyCloc
   FrameOptions frameOptions;
   frameOptions.distribution = options.distribution;
   frameOptions.stopRequested = interruptRequested;
+  frameOptions.runStart = start;  // a time budget bounds the whole run
   StageProgress bar(!options.quiet);
   const auto onProgress = [&](const std::string& stage, size_t done, size_t total) {
     if (!options.statusFile.empty()) {

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 #include "master/runtime/ResourceCheck.h"
@@ -91,6 +92,22 @@ void printCausticMap(const CausticRunStats& c, std::ostream& out) {
       << fixed(c.gatherRenderSeconds, 3) << " s\n";
 }
 
+// What a progressive run's time budget bounded, and what it did.
+std::string budgetLine(const CausticRunStats& c) {
+  std::ostringstream line;
+  line << "budget    " << fixed(c.settings.timeBudgetSeconds, 2)
+       << " s for the whole run, start to written image: ";
+  if (c.stoppedByBudget) {
+    line << c.passes << " of " << c.settings.passes << " passes; at "
+         << fixed(c.budgetStopSeconds, 2) << " s one more (up to " << fixed(c.longestPassSeconds, 2)
+         << " s) and the write (" << fixed(c.budgetWriteSeconds, 2)
+         << " s budgeted) would not have fitted\n";
+  } else {
+    line << "all " << c.passes << " passes fitted\n";
+  }
+  return line.str();
+}
+
 // What the photon passes did: counts, sizes and times.
 void printCaustics(const RunSummary& s, std::ostream& out) {
   const CausticRunStats& c = *s.caustics;
@@ -125,6 +142,7 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
         << milliseconds(c.distributeSeconds);
   }
   out << ", frames with gathers " << fixed(c.gatherRenderSeconds, 3) << " s\n";
+  if (c.progressive && c.settings.timeBudgetSeconds > 0.0) out << budgetLine(c);
   if (c.photonsByRank.size() > 1) {
     const auto byRank = [&](const std::vector<uint64_t>& counts) {
       for (size_t r = 0; r < counts.size(); ++r) {

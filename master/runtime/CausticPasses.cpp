@@ -5,6 +5,7 @@
 
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
+#include "master/runtime/PassBudget.h"
 #include "master/runtime/PhotonPass.h"
 #include "util/Parallel.h"
 #include "util/Stopwatch.h"
@@ -76,7 +77,8 @@ class CausticRun {
         settings_(scene_.causticSettings()),
         options_(std::move(options)),
         progress_(progress),
-        frameId_(options_.frameId) {
+        frameId_(options_.frameId),
+        runStart_(options_.runStart.value_or(SteadyClock::now())) {
     CausticRunStats& stats = out_.caustics;
     stats.method = settings_.method;
     stats.progressive = settings_.progressive;
@@ -119,6 +121,7 @@ class CausticRun {
   CausticFrame out_;
   std::unique_ptr<PhotonTracer> tracer_;
   float maxRadius_ = 0.0f;
+  SteadyClock::time_point runStart_;
 };
 
 CausticFrame CausticRun::causticMaps() {
@@ -176,14 +179,19 @@ CausticFrame CausticRun::progressive(const ProgressiveSnapshot& snapshot) {
     return std::move(out_);
   }
   ImageRgb causticSum(direct.image.width, direct.image.height);
-  const auto causticStart = SteadyClock::now();
+  const PassBudget budget{settings_.timeBudgetSeconds,
+                          budgetedWriteSeconds(causticSum.pixels.size())};
+  stats.budgetWriteSeconds = budget.writeSeconds;
   PhotonGatherSettings gather;
   int done = 0;
   for (int i = 1; i <= settings_.passes; ++i) {
-    if (i > 1 && settings_.timeBudgetSeconds > 0.0 &&
-        secondsSince(causticStart) >= settings_.timeBudgetSeconds) {
+    const double elapsed = secondsSince(runStart_);
+    if (!startsPass(budget, i, elapsed, stats.longestPassSeconds)) {
+      stats.stoppedByBudget = true;
+      stats.budgetStopSeconds = elapsed;
       break;
     }
+    const auto passStart = SteadyClock::now();
     // Interrupted between passes: the image of the passes done is whole, so nothing is missing.
     if (options_.stopRequested && options_.stopRequested()) {
       out_.frames.interrupted = true;
@@ -208,6 +216,7 @@ CausticFrame CausticRun::progressive(const ProgressiveSnapshot& snapshot) {
     addFrame(out_.frames, f, false);
     out_.lastMap = map;
     ++done;
+    stats.longestPassSeconds = std::max(stats.longestPassSeconds, secondsSince(passStart));
     if (snapshot) snapshot(done, progressiveImage(direct.image, causticSum, done));
   }
   out_.image = progressiveImage(direct.image, causticSum, done);

@@ -10,7 +10,7 @@
 //                caustic frames.
 // Every pass draws from its own photon streams, so the image is bit-identical for any rank
 // count, thread count or tile size (a time budget makes the pass count, and so the image,
-// depend on speed).
+// depend on speed). The budget bounds the whole run from FrameOptions::runStart.
 #pragma once
 
 #include <functional>
@@ -40,6 +40,11 @@ struct CausticRunStats {
   size_t sentBytes = 0;              // photon maps sent to slaves
   int k = 0;
   float firstRadius = 0.0f, lastRadius = 0.0f;  // gather radius (progressive) or k-NN cap
+  // Progressive under a time budget (master/runtime/PassBudget.h): whether it stopped a pass
+  // from starting, the seconds into the run when it did, the longest pass and the write it
+  // reserved.
+  bool stoppedByBudget = false;
+  double budgetStopSeconds = 0.0, longestPassSeconds = 0.0, budgetWriteSeconds = 0.0;
   std::vector<uint64_t> photonsByRank;
   std::vector<uint64_t> radiiByRank;  // photons whose radius each rank found
   CausticMapStats map;                // caustic mapping: summed over the lights (rank 0's build)

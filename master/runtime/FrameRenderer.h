@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "render/RenderPass.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
+#include "util/Stopwatch.h"
 
 namespace prism {
 
@@ -36,6 +38,9 @@ struct FrameOptions {
   // Polled by the coordinating loop; once true the frame stops: no more tiles are handed out,
   // the tiles being rendered here are abandoned and the result is marked interrupted.
   std::function<bool()> stopRequested;
+  // When the run began as its user reads it (the command's start), from which a progressive
+  // run's time budget counts (master/runtime/PassBudget.h); unset: when its passes begin.
+  std::optional<SteadyClock::time_point> runStart;
 };
 
 struct FrameResult {

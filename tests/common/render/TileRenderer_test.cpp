@@ -79,6 +79,57 @@ TEST(TileRenderer, CameraRayPacketsGiveTheSameImageAsSingleRays) {
   }
 }
 
+// Records where each footprint the caustic estimate is asked for lies: the hit plus the
+// footprint's offset to its cell's centre, and the cell's size.
+class FootprintCells : public CausticEstimator {
+ public:
+  Color irradiance(const Vec3&, const Vec3&) const override { return Color(0.0f); }
+  Color irradianceAt(const SurfaceHit& s, const PixelFootprint& footprint) const override {
+    centres.push_back(s.position + footprint.offset());
+    samples.push_back(s.position);
+    cells.push_back(footprint.cell);
+    return Color(0.0f);
+  }
+  bool usesFootprint() const override { return true; }
+  mutable std::vector<Vec3> centres, samples;
+  mutable std::vector<Vec2> cells;
+};
+
+// With several jittered samples a pixel, each sample's cell is its stratum, about the stratum's
+// centre: an orthographic view straight down at a plane, 8 × 8 pixels of 0.25, 4 spp (2 × 2
+// strata of 0.125); sample i of pixel (x, y) has its cell's centre at (-1 + 0.25 x + 0.125
+// (i % 2 + 0.5), 0, -1 + 0.25 y + 0.125 (i / 2 + 0.5)).
+TEST(TileRenderer, EverySamplesCellIsItsStratumAboutItsCentre) {
+  SceneDescription d;
+  d.camera.projection = Projection::Orthographic;
+  d.camera.position = {0.0f, 1.0f, 0.0f};
+  d.camera.lookAt = {0.0f, 0.0f, 0.0f};
+  d.camera.up = {0.0f, 0.0f, -1.0f};
+  d.camera.width = 2.0f;
+  d.render.width = d.render.height = 8;
+  d.render.samplesPerPixel = 4;
+  MaterialDesc floor;
+  floor.diffuse = Color(0.5f);
+  d.materials.push_back(floor);
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});
+  const Scene scene(d);
+  FootprintCells probe;
+  const TileRenderer renderer(scene, {true, &probe});
+  renderTile(renderer, {0, 0, 8, 8});
+  ASSERT_EQ(probe.centres.size(), 8u * 8u * 4u);
+  float jitter = 0.0f;
+  for (size_t n = 0; n < probe.centres.size(); ++n) {
+    const int i = static_cast<int>(n % 4), pixel = static_cast<int>(n / 4);
+    const int x = pixel % 8, y = pixel / 8;
+    const Vec3 centre(-1.0f + 0.25f * x + 0.125f * (i % 2 + 0.5f), 0.0f,
+                      -1.0f + 0.25f * y + 0.125f * (i / 2 + 0.5f));
+    EXPECT_NEAR(glm::length(probe.centres[n] - centre), 0.0f, 1e-5f) << "sample " << n;
+    EXPECT_EQ(probe.cells[n], Vec2(0.5f)) << "sample " << n;
+    jitter = std::max(jitter, glm::length(probe.samples[n] - centre));
+  }
+  EXPECT_GT(jitter, 0.02f);  // the samples themselves lie off the centres
+}
+
 // The viewer's passes: its own camera and size, one jittered sample per pixel.
 TEST(TileRenderer, CameraRayPacketsGiveTheSameViewerPass) {
   const SceneDescription d = loadScene(std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml");

@@ -321,6 +321,38 @@ TEST(WhittedIntegrator, TheCausticEstimateGetsThePixelsFootprintThroughMirrors) 
   EXPECT_FALSE(f[0].valid);
 }
 
+// The sample's cell (its offset to its stratum's centre and the stratum's size, in pixels)
+// travels with the differentials: the footprint met through a mirror, and through a glass ball,
+// gives the cell about where its centre maps (PixelFootprint::offset, sampleCell).
+TEST(WhittedIntegrator, TheSamplesCellTravelsThroughMirrorsAndGlass) {
+  SceneDescription d = mirrorAndReceiverMaterials();
+  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 0, {}});  // a mirror floor 1 below the camera
+  d.planes.push_back({{0, 3, 0}, {0, 1, 0}, 1, {}});  // a receiving ceiling
+  RayDifferential sample = perPixel(0.0f, 0.01f);
+  sample.toCellCentre = Vec2(0.125f, -0.1875f);
+  sample.cell = Vec2(0.5f, 0.5f);
+  std::vector<PixelFootprint> f = footprintsAlong(d, Ray{{0, 1, 0}, {0, -1, 0}}, sample);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0].toCellCentre, sample.toCellCentre);
+  EXPECT_EQ(f[0].cell, sample.cell);
+  expectNear(f[0].offset(), 0.125f * f[0].a - 0.1875f * f[0].b, 1e-7f);
+  expectNear(f[0].sampleCell().a, 0.5f * f[0].a, 1e-7f);
+  expectNear(f[0].sampleCell().b, 0.5f * f[0].b, 1e-7f);
+
+  // A clear ball (index 1.5) between the camera and a receiving floor.
+  SceneDescription glass = mirrorAndReceiverMaterials();
+  glass.materials[0].reflectance = Color(0.0f);
+  glass.materials[0].transmittance = Color(1.0f);
+  glass.materials[0].ior = 1.5f;
+  glass.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}, CausticRole::Auto});
+  glass.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  f = footprintsAlong(glass, Ray{{0.1f, 5, 0}, {0, -1, 0}}, sample);
+  ASSERT_FALSE(f.empty());
+  ASSERT_TRUE(f.back().valid);
+  EXPECT_EQ(f.back().toCellCentre, sample.toCellCentre);
+  EXPECT_EQ(f.back().cell, sample.cell);
+}
+
 // A mirror ball too small for the pixel's footprint on it (reach over a quarter of its radius)
 // turns the pixel's rays by more than the first-order model follows: past it the estimate is
 // taken at the point, not averaged over a footprint that would cover much of the scene. The

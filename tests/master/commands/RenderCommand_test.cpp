@@ -178,6 +178,16 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
             std::string::npos)
       << progressive.output;
   EXPECT_NE(progressive.output.find(", shrunk to "), std::string::npos) << progressive.output;
+  EXPECT_EQ(progressive.output.find("budget "), std::string::npos) << progressive.output;
+
+  // A time budget says what it bounds (far above what this run takes: all passes fit).
+  const ProcessRun budgeted = runPrism("render " + kCausticScene + " -o " + path("b.exr") +
+                                       " --progressive --passes 2 --time-budget 1000");
+  ASSERT_EQ(budgeted.exitCode, 0) << budgeted.output;
+  EXPECT_NE(budgeted.output.find("budget    1000.00 s for the whole run, start to written image: "
+                                 "all 2 passes fitted"),
+            std::string::npos)
+      << budgeted.output;
 }
 
 // Caustics on a scene with no caster: a warning, no photon cost, and the very same pixels as

@@ -324,5 +324,31 @@ TEST(CausticPasses, AThirtyTwoPassProgressiveRenderStartsOnePool) {
   EXPECT_EQ(TileWorkerPool::startedInProcess() - poolsBefore, 1u);
 }
 
+// The time budget counts from the run's start, set-up included: a run whose set-up already took
+// longer than its budget renders the one pass an image needs and starts no other; one whose
+// budget is far above what it takes renders them all. (Times 100 s apart from the budget: no
+// machine is that slow or that fast.)
+TEST(CausticPasses, TheTimeBudgetCountsFromTheRunsStart) {
+  SceneDescription d = indexOneView(8);
+  d.caustics.photons = 2000;
+  d.caustics.progressive = true;
+  d.caustics.passes = 4;
+  d.caustics.timeBudgetSeconds = 100.0;
+  const Scene scene(d);
+  FrameOptions options;
+  options.distribution.threads = 2;
+  options.runStart = SteadyClock::now() - std::chrono::seconds(200);
+  const CausticFrame late = renderWithCaustics(scene, options);
+  EXPECT_EQ(late.caustics.passes, 1);
+  EXPECT_TRUE(late.caustics.stoppedByBudget);
+  EXPECT_GE(late.caustics.budgetStopSeconds, 200.0);
+
+  options.runStart = SteadyClock::now();
+  const CausticFrame onTime = renderWithCaustics(scene, options);
+  EXPECT_EQ(onTime.caustics.passes, 4);
+  EXPECT_FALSE(onTime.caustics.stoppedByBudget);
+  EXPECT_GT(onTime.caustics.longestPassSeconds, 0.0);
+}
+
 }  // namespace
 }  // namespace prism
