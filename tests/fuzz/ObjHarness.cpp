@@ -6,15 +6,9 @@ namespace prism::fuzz {
 
 Outcome fuzzObj(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  MeshDesc mesh;
-  try {
-    mesh = parseObjMesh(text, "fuzz-input.obj", FileLoc{"fuzz-input.yaml", 1, 1});
-  } catch (const SceneError&) {
-    return Outcome::Rejected;
-  }
-  checkMesh(mesh);
-  if (mesh.indices.empty()) throw InvariantBroken("accepted a mesh without triangles");
-  return Outcome::Accepted;
+  return meshOutcome([&] {
+    return parseObjMesh(text, "fuzz-input.obj", FileLoc{"fuzz-input.yaml", 1, 1});
+  });
 }
 
 }  // namespace prism::fuzz

@@ -6,15 +6,9 @@ namespace prism::fuzz {
 
 Outcome fuzzPly(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  MeshDesc mesh;
-  try {
-    mesh = parsePlyMesh(bytes, "fuzz-input.ply", FileLoc{"fuzz-input.yaml", 1, 1});
-  } catch (const SceneError&) {
-    return Outcome::Rejected;
-  }
-  checkMesh(mesh);
-  if (mesh.indices.empty()) throw InvariantBroken("accepted a mesh without triangles");
-  return Outcome::Accepted;
+  return meshOutcome([&] {
+    return parsePlyMesh(bytes, "fuzz-input.ply", FileLoc{"fuzz-input.yaml", 1, 1});
+  });
 }
 
 }  // namespace prism::fuzz

@@ -3,7 +3,9 @@
 // decoder's checks (which reject what would crash the renderer).
 #pragma once
 
+#include "fuzz/Harnesses.h"
 #include "scene/SceneDescription.h"
+#include "scene/FileLoc.h"
 
 namespace prism::fuzz {
 
@@ -13,5 +15,20 @@ void checkScene(const SceneDescription& scene);
 // Throws InvariantBroken for indices past the positions, normals that do not match the positions,
 // or non-finite vertex data.
 void checkMesh(const MeshDesc& mesh);
+
+// A mesh parser's outcome on fuzz input: parse() throwing SceneError is a clean rejection; an
+// accepted mesh must pass checkMesh and hold at least one triangle.
+template <class Parse>
+Outcome meshOutcome(Parse parse) {
+  MeshDesc mesh;
+  try {
+    mesh = parse();
+  } catch (const SceneError&) {
+    return Outcome::Rejected;
+  }
+  checkMesh(mesh);
+  if (mesh.indices.empty()) throw InvariantBroken("accepted a mesh without triangles");
+  return Outcome::Accepted;
+}
 
 }  // namespace prism::fuzz
