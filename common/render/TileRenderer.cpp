@@ -41,6 +41,18 @@ Color TileRenderer::pixelValue(const Color& sum, RayCounters& rays) const {
   return Color(0.0f);
 }
 
+RayDifferential TileRenderer::sampleDifferential(const Ray& ray, int sample,
+                                                 const Vec2& offset) const {
+  RayDifferential differential = camera_.pixelDifferential(ray);
+  // Each of several samples stands for its stratum (a single jittered one, the viewer's, for
+  // the pixel about it: its passes move it).
+  if (sampler_.count() > 1) {
+    differential.cell = sampler_.stratumSize();
+    differential.toCellCentre = sampler_.stratumCentre(sample) - offset;
+  }
+  return differential;
+}
+
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   Pcg32 rng = Pcg32::forKey(seed_, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
   Color sum(0.0f);
@@ -53,16 +65,8 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
       sample = debugColor(scene_, ray, debugView_, rays);
     } else {
       ++rays.primary;
-      RayDifferential differential;
-      if (integrator_.usesDifferentials()) {
-        differential = camera_.pixelDifferential(ray);
-        // Each of several samples stands for its stratum (a single jittered one, the viewer's,
-        // for the pixel about it: its passes move it).
-        if (sampler_.count() > 1) {
-          differential.cell = sampler_.stratumSize();
-          differential.toCellCentre = sampler_.stratumCentre(i) - offset;
-        }
-      }
+      const RayDifferential differential =
+          integrator_.usesDifferentials() ? sampleDifferential(ray, i, offset) : RayDifferential{};
       sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
     }
     addSample(sample, sum, rays);
@@ -86,16 +90,26 @@ void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, 
     // The image-plane points, then the rays four at a time as vector lanes, each stored whole
     // in its place (Camera::generateRays).
     alignas(16) float pointX[kSize], pointY[kSize];
+    Vec2 offsets[kSize];
     for (int k = 0; k < count; ++k) {
-      const Vec2 offset = sampler_.offset(i, *rng[k]);
-      pointX[k] = static_cast<float>(x + k % columns) + offset.x;
-      pointY[k] = static_cast<float>(y + k / columns) + offset.y;
+      offsets[k] = sampler_.offset(i, *rng[k]);
+      pointX[k] = static_cast<float>(x + k % columns) + offsets[k].x;
+      pointY[k] = static_cast<float>(y + k / columns) + offsets[k].y;
     }
     ScratchArray<Ray, kSize> packet;
     camera_.generateRays(pointX, pointY, count, packet.data());
     rays.primary += static_cast<uint64_t>(count);
+    // The differentials renderPixel() gives the same samples, where the integrator uses them.
+    ScratchArray<RayDifferential, kSize> differentials;
+    const bool withDifferentials = integrator_.usesDifferentials();
+    if (withDifferentials) {
+      for (int k = 0; k < count; ++k) {
+        ::new (&differentials[k]) RayDifferential(sampleDifferential(packet[k], i, offsets[k]));
+      }
+    }
     Color samples[kSize];
-    integrator_.radiance8(packet.data(), count, samples, rays);
+    integrator_.radiance8(packet.data(), count, samples, rays,
+                          withDifferentials ? differentials.data() : nullptr);
     for (int k = 0; k < count; ++k) addSample(samples[k], sum[k], rays);
   }
   for (int k = 0; k < count; ++k) {
@@ -116,7 +130,7 @@ TileResult TileRenderer::render(uint32_t tileIndex, const TileRect& rect,
   result.rect = rect;
   result.pixels.resize(static_cast<size_t>(rect.pixelCount()));
   const bool packets = cameraRays_ == CameraRays::Packets && debugView_ == DebugView::Image &&
-                       !integrator_.usesDifferentials();
+                       !integrator_.causticsUseFootprint();
   if (packets) {
     // 4 × 2 pixel blocks, so a packet's directions stay close (RayPacket8); a tile's last
     // columns or row take narrower or shorter blocks.

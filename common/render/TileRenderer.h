@@ -15,7 +15,8 @@ namespace prism {
 // How a tile's camera rays are traced: in packets of eight (4 × 2 pixel blocks,
 // Scene::intersect8; their shadow rays and first reflection and refraction rays in packets too,
 // see WhittedIntegrator::radiance8) or one at a time. The images are bit-identical. Debug views
-// and integrators that carry ray differentials (photon gathers) always go one ray at a time.
+// and integrators whose caustic estimate takes the pixel's footprint (photon gathers) always go
+// one ray at a time.
 enum class CameraRays { Packets, OneByOne };
 
 class TileRenderer {
@@ -37,6 +38,9 @@ class TileRenderer {
 
  private:
   Color renderPixel(int x, int y, RayCounters& rays) const;
+  // The differential of sample number `sample` of a pixel, its ray through the pixel's point
+  // moved by offset: Camera::pixelDifferential, over the sample's stratum where there are several.
+  RayDifferential sampleDifferential(const Ray& ray, int sample, const Vec2& offset) const;
   // The pixels of a block of at most Scene::kPacketSize (columns x..x+columns-1 of rows
   // y..y+rows-1), each sample's camera rays traced as one packet; written to out in row order
   // with the given row stride.

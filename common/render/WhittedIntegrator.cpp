@@ -1,5 +1,7 @@
 #include "render/WhittedIntegrator.h"
 
+#include <new>
+
 #include "math/RayOffset.h"
 #include "render/LightLanes.h"
 #include "render/MirrorLanes.h"
@@ -59,15 +61,9 @@ Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& dir
   return result;
 }
 
-template <class Send>
-void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
-                                      const PixelFootprint& footprint, int depth,
-                                      const Color& weight, const RayDifferential& differential,
-                                      RayCounters& counters, Send&& send) const {
-  const RenderSettings& settings = scene_.settings();
-  if (depth >= settings.maxDepth) return;
-  const SurfaceHit& s = p.surface;
-  const MaterialDesc& m = *p.material;
+bool WhittedIntegrator::bounceTurn(const HitRecord& hit, const SurfaceHit& s,
+                                   const PixelFootprint& footprint,
+                                   RayDifferential::Turn& turn) const {
   // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
   // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
   // taken at the point. So does a footprint too wide for its sphere: the turn is first order, and
@@ -77,16 +73,31 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
   // would send them over radians: gathers past it averaged the photons of much of the scene
   // (sphereflakes: over ten thousand per estimate).
   const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
-  bool turnKnown = kind == PrimitiveKind::Plane ||
-                   (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal);
-  RayDifferential::Turn turn;
+  if (kind == PrimitiveKind::Plane ||
+      (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal)) {
+    return true;
+  }
   if (kind == PrimitiveKind::Sphere && footprint.valid) {
     const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
     if (footprint.reach() <= kMaxFootprintReachOnSphere * radius) {
       turn = RayDifferential::sphereTurn(footprint, (s.frontFace ? 1.0f : -1.0f) / radius);
-      turnKnown = true;
+      return true;
     }
   }
+  return false;
+}
+
+template <class Send>
+void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
+                                      const PixelFootprint& footprint, int depth,
+                                      const Color& weight, const RayDifferential& differential,
+                                      RayCounters& counters, Send&& send) const {
+  const RenderSettings& settings = scene_.settings();
+  if (depth >= settings.maxDepth) return;
+  const SurfaceHit& s = p.surface;
+  const MaterialDesc& m = *p.material;
+  RayDifferential::Turn turn;
+  const bool turnKnown = differential.valid && bounceTurn(hit, s, footprint, turn);
 
   const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
 
@@ -115,13 +126,17 @@ Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight
                                   const RayDifferential& differential) const {
   HitRecord hit;
   if (!scene_.intersect(ray, hit)) {
-    return escaped(ray);
+    return escaped(ray, differential);
   }
   return shade(ray, hit, depth, weight, counters, differential);
 }
 
-Color WhittedIntegrator::escaped(const Ray& ray) const {
-  return terms_.direct ? scene_.escapedRadiance(ray.direction) : Color(0.0f);
+Color WhittedIntegrator::escaped(const Ray& ray, const RayDifferential& differential) const {
+  if (!terms_.direct) return Color(0.0f);
+  if (!differential.valid) return scene_.escapedRadiance(ray.direction);
+  // A sample of several a pixel stands for its stratum: its footprint is the cell's.
+  return scene_.escapedRadiance(ray.direction, differential.cell.x * differential.dDdx,
+                                differential.cell.y * differential.dDdy);
 }
 
 Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
@@ -141,16 +156,20 @@ Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, 
   return result;
 }
 
-void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results,
-                                  RayCounters& counters) const {
+void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results, RayCounters& counters,
+                                  const RayDifferential* differentials) const {
   Color weights[Scene::kPacketSize];
   for (int i = 0; i < count; ++i) weights[i] = Color(1.0f);
-  radiancePacket(rays, count, (1u << count) - 1u, 0, weights, results, counters);
+  radiancePacket(rays, count, (1u << count) - 1u, 0, weights, differentials, results, counters);
 }
 
 void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live, int depth,
-                                       const Color* weights, Color* results,
-                                       RayCounters& counters) const {
+                                       const Color* weights, const RayDifferential* differentials,
+                                       Color* results, RayCounters& counters) const {
+  const RayDifferential none;
+  const auto differentialOf = [&](int i) -> const RayDifferential& {
+    return differentials ? differentials[i] : none;
+  };
   constexpr int kSize = Scene::kPacketSize;
   // Bounces that spread out (off curved mirrors) or leave few rays cost a packet more than they
   // share: those rays go on alone.
@@ -158,7 +177,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       (simd::laneCount(live) < kMinPacketRays || !Scene::coherentDirections(rays, live))) {
     for (uint32_t m = live; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
-      results[i] = radiance(rays[i], depth, weights[i], counters);
+      results[i] = radiance(rays[i], depth, weights[i], counters, differentialOf(i));
     }
     return;
   }
@@ -229,6 +248,8 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // computed at once (render/MirrorLanes.h); points that refract go through forEachBounce.
   ScratchArray<Ray, kSize> onward[2];  // rays below count written below, or emptied
   Color scale[2][kSize], contribution[2][kSize];
+  // Their differentials, where the rays carry them: only the bouncing lanes' are written.
+  ScratchArray<RayDifferential, kSize> onwardDifferentials[2];
   uint32_t bouncing[2] = {0, 0};
   const RenderSettings& settings = scene_.settings();
   const bool bounces = depth < settings.maxDepth && foundLanes != 0;
@@ -236,7 +257,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   for (uint32_t m = live; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
     if (!found[i]) {
-      results[i] = escaped(rays[i]);
+      results[i] = escaped(rays[i], differentialOf(i));
       continue;
     }
     results[i] =
@@ -252,19 +273,39 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
         scale[0][i] = material.reflectance;
         contribution[0][i] = reflectContribution;
         bouncing[0] |= 1u << i;
+        if (differentials) {
+          // forEachBounce's differential of the reflected ray.
+          const RayDifferential& differential = differentials[i];
+          const SurfaceHit& s = points[i].surface;
+          const PixelFootprint footprint =
+              differential.footprint(rays[i].direction, hits[i].t, s.geometricNormal);
+          RayDifferential::Turn turn;
+          ::new (&onwardDifferentials[0][i]) RayDifferential(
+              differential.valid && bounceTurn(hits[i], s, footprint, turn)
+                  ? differential.reflected(footprint, rays[i].direction, s.geometricNormal, turn)
+                  : RayDifferential{});
+        }
       }
       continue;
     }
     int k = 0;
-    forEachBounce(rays[i], hits[i], points[i], {}, depth, weights[i], {}, counters,
+    const RayDifferential& differential = differentialOf(i);
+    const PixelFootprint footprint = differentials
+                                         ? differential.footprint(rays[i].direction, hits[i].t,
+                                                                  points[i].surface.geometricNormal)
+                                         : PixelFootprint{};
+    forEachBounce(rays[i], hits[i], points[i], footprint, depth, weights[i], differential, counters,
                   [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
-                      const Color& rayContribution, const RayDifferential&) {
+                      const Color& rayContribution, const RayDifferential& onwardDifferential) {
                     // Built here from origin and direction: a whole Ray built by the caller
                     // and copied in was read back before its stores had landed (a
                     // store-forwarding stall).
                     onward[k][i] = Ray{origin, direction};
                     scale[k][i] = rayScale;
                     contribution[k][i] = rayContribution;
+                    if (differentials) {
+                      ::new (&onwardDifferentials[k][i]) RayDifferential(onwardDifferential);
+                    }
                     bouncing[k] |= 1u << i;
                     ++k;
                   });
@@ -279,8 +320,8 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       }
     }
     Color arriving[kSize];
-    radiancePacket(onward[k].data(), count, bouncing[k], depth + 1, contribution[k], arriving,
-                   counters);
+    radiancePacket(onward[k].data(), count, bouncing[k], depth + 1, contribution[k],
+                   differentials ? onwardDifferentials[k].data() : nullptr, arriving, counters);
     for (uint32_t m = bouncing[k]; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
       results[i] += scale[k][i] * arriving[i];

@@ -24,28 +24,36 @@ class WhittedIntegrator {
   // Radiance arriving along ray (unit direction). depth counts bounces so far; weight is the
   // product of reflection/transmission weights that scales this ray's contribution to the pixel.
   // differential is how the ray changes per pixel (Camera::pixelDifferential): the caustic
-  // estimate averages over the pixel's footprint where it meets a receiver. Without one (the
-  // default) the estimate is taken at the point.
+  // estimate averages over the pixel's footprint where it meets a receiver, and a ray that
+  // escapes reads the environment's mip levels its footprint asks for. Without one (the
+  // default) the estimate is taken at the point and the environment's finest level is read.
   Color radiance(const Ray& ray, int depth, const Color& weight, RayCounters& counters,
                  const RayDifferential& differential = {}) const;
-  // The same for up to Scene::kPacketSize camera rays at once (depth 0, weight 1, no
-  // differential): their first hits found as one packet (Scene::intersect8), the shadow rays of
-  // those hits as one packet per light (Scene::occluded8), their reflection and refraction rays
-  // as packets (every pixel's first bounce, then its second) while they stay coherent; direct
-  // light and mirror rays for all the packet's points at once as vector lanes, the rest of the
-  // shading ray by ray. Each result is bit-identical to radiance() of its ray, and counts the
-  // same rays. Only for integrators that use no differentials.
-  void radiance8(const Ray* rays, int count, Color* results, RayCounters& counters) const;
-  // Whether radiance() uses a differential: only a caustic estimate that averages over the
-  // pixel's footprint does (photon gathers; not the caustic map), so otherwise the tracing loop
-  // need not compute them.
+  // The same for up to Scene::kPacketSize camera rays at once (depth 0, weight 1; differentials:
+  // each ray's, or null for none): their first hits found as one packet (Scene::intersect8), the
+  // shadow rays of those hits as one packet per light (Scene::occluded8), their reflection and
+  // refraction rays as packets (every pixel's first bounce, then its second) while they stay
+  // coherent; direct light and mirror rays for all the packet's points at once as vector lanes, the
+  // rest of the shading ray by ray. Each result is bit-identical to radiance() of its ray, and
+  // counts the same rays. Only for integrators whose caustic estimate takes no footprint
+  // (!causticsUseFootprint()).
+  void radiance8(const Ray* rays, int count, Color* results, RayCounters& counters,
+                 const RayDifferential* differentials = nullptr) const;
+  // Whether radiance() uses a differential: a caustic estimate that averages over the pixel's
+  // footprint (photon gathers; not the caustic map), or an environment filtered by the
+  // footprint of the rays that escape to it. Otherwise the tracing loop need not compute them.
   bool usesDifferentials() const {
+    return causticsUseFootprint() || (terms_.direct && scene_.escapedRadianceFiltered());
+  }
+  // Whether the caustic estimate uses the footprint: radiance8 has none to give it.
+  bool causticsUseFootprint() const {
     return terms_.caustics != nullptr && terms_.caustics->usesFootprint();
   }
 
  private:
-  // Radiance along a ray that hits nothing: the environment, when this pass adds direct light.
-  Color escaped(const Ray& ray) const;
+  // Radiance along a ray that hits nothing: the environment, when this pass adds direct light,
+  // filtered over the sample's footprint where the differential is valid.
+  Color escaped(const Ray& ray, const RayDifferential& differential) const;
   // Radiance leaving the ray's hit towards its origin: radiance() once the hit is found.
   Color shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
               RayCounters& counters, const RayDifferential& differential) const;
@@ -55,8 +63,10 @@ class WhittedIntegrator {
   // and the mirror rays of points that do not refract as vector lanes (render/LightLanes.h,
   // render/MirrorLanes.h), the rest of the shading ray by ray. Bounce packets of fewer than
   // kMinPacketRays rays, or whose directions spread (Scene::coherentDirections), go ray by ray.
+  // differentials: each ray's, or null for none.
   void radiancePacket(const Ray* rays, int count, uint32_t live, int depth, const Color* weights,
-                      Color* results, RayCounters& counters) const;
+                      const RayDifferential* differentials, Color* results,
+                      RayCounters& counters) const;
   static constexpr int kMinPacketRays = 3;
 
   // A surface point as shading reads it.
@@ -84,6 +94,10 @@ class WhittedIntegrator {
   // Whether a caustic estimate is added at p.
   bool receivesCaustics(const ShadingPoint& p) const;
 
+  // How the surface under the footprint turns the rays it sends on (RayDifferential::Turn):
+  // false where the differentials end there (forEachBounce says which surfaces).
+  bool bounceTurn(const HitRecord& hit, const SurfaceHit& s, const PixelFootprint& footprint,
+                  RayDifferential::Turn& turn) const;
   // Calls send(origin, direction, weight, contribution, onward) for the reflected and then the
   // refracted ray the hit sends on, where there is one: weight scales the radiance it brings back,
   // contribution is the path weight it carries, onward its differential.

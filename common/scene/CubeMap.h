@@ -1,9 +1,17 @@
 // Environment cube map: six square images around the scene, looked up by direction for
 // escaping rays (background, reflections, refractions). Face order and orientation follow the
 // OpenGL convention (+X, -X, +Y, -Y, +Z, -Z), so maps made for OpenGL load unchanged.
+//
+// Each face keeps a mip pyramid (image/MipPyramid.h, box filtered), built once with the scene.
+// A ray that carries its footprint (how its direction changes per pixel) reads the levels whose
+// texels match the footprint, blending the two nearest (trilinear, as OpenGL's
+// LINEAR_MIPMAP_LINEAR picks them); a ray without one reads the finest level. Bilinear blends
+// that reach past a face's edge read the neighbouring face's texels there (OpenGL's seamless
+// cube-map filtering), so coarse levels show no seams along the cube's edges.
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "scene/SceneDescription.h"
 
@@ -14,8 +22,17 @@ class CubeMap {
   // By value: a description the caller no longer needs moves in (six faces, megabytes).
   explicit CubeMap(CubeMapDesc desc);
 
-  // Bilinearly filtered radiance seen along direction (need not be unit length).
+  // Bilinearly filtered radiance of the finest level seen along direction (need not be unit
+  // length): for rays without a footprint (photons, ended differentials).
   Color lookup(const Vec3& direction) const;
+  // Radiance averaged over the footprint of a ray of unit direction d whose direction changes
+  // by dDdx and dDdy per pixel (RayDifferential): trilinear between the two levels about
+  // levelOfDetail(). Zero changes give lookup(d).
+  Color lookup(const Vec3& d, const Vec3& dDdx, const Vec3& dDdy) const;
+  // log2 of the footprint's width in finest-level texels (OpenGL's λ, the longer of the two
+  // per-pixel steps projected onto d's face); below 0 where a pixel is narrower than a texel,
+  // -infinity without change.
+  float levelOfDetail(const Vec3& d, const Vec3& dDdx, const Vec3& dDdy) const;
 
   // Where a direction meets the cube: the face (in the order above) and the point on its image
   // in texel units, texel centres at whole numbers (each coordinate within [-0.5, size - 0.5]);
@@ -26,10 +43,21 @@ class CubeMap {
   };
   std::optional<FacePoint> facePoint(const Vec3& direction) const;
 
- private:
-  Color texel(int face, int x, int y) const;
+  // Level 0 is the finest (the faces as loaded), the last 1x1; each level is
+  // halved(the level below).
+  int levelCount() const { return static_cast<int>(levels_.size()); }
+  const ImageRgb& face(int level, int face) const { return levels_[level][face]; }
+  // Bilinearly filtered radiance of one level (no scale applied); u, v in [0, 1] across the
+  // face, as facePoint's s, t over the face's size in texels. Texels past the face's edge are
+  // read from the neighbouring face.
+  Color bilinear(int level, int face, float u, float v) const;
 
-  std::array<ImageRgb, 6> faces_;
+ private:
+  // Texel (x, y) of a face at a level; x or y one past the face's edge (-1 or size) reads the
+  // nearest texel of the neighbouring face the direction through it meets.
+  Color texel(int level, int face, int x, int y) const;
+
+  std::vector<std::array<ImageRgb, 6>> levels_;
   float scale_;
 };
 

@@ -100,9 +100,18 @@ class Scene {
   // SurfaceHit copied there would be read back before its stores retire.
   void surface(const Ray& ray, const HitRecord& hit, SurfaceHit& s) const;
 
+  // Radiance of a ray that hits nothing: the environment's finest level seen along direction,
+  // or the background colour.
   Color escapedRadiance(const Vec3& direction) const {
     return environment_ ? environment_->lookup(direction) : background_;
   }
+  // The same averaged over the footprint of a ray of unit direction whose direction changes by
+  // dDdx, dDdy per pixel (CubeMap's mip levels).
+  Color escapedRadiance(const Vec3& direction, const Vec3& dDdx, const Vec3& dDdy) const {
+    return environment_ ? environment_->lookup(direction, dDdx, dDdy) : background_;
+  }
+  // Whether escapedRadiance depends on the footprint: a cube map, not a plain background.
+  bool escapedRadianceFiltered() const { return environment_.has_value(); }
 
   const Camera& camera() const { return camera_; }
   const RenderSettings& settings() const { return settings_; }

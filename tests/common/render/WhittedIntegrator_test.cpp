@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "master/runtime/FrameRenderer.h"
 #include "shading/Optics.h"
 
@@ -398,6 +400,71 @@ TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
   const float side = 0.01f * (2.5f / 1.5f - 1.0f);
   expectNear(f[0].a, {-side, 0, 0}, 2e-5f);
   expectNear(f[0].b, {0, 0, -side}, 2e-5f);
+}
+
+// A sky far finer than the pixels that see it, directly and in a mirror ball: a checkerboard of
+// 2 × 2-texel cells on 256² faces, seen by a 24 × 24 camera with a 90° view (about 8 texels a
+// pixel; the ball's reflection shrinks it further). Each camera ray carrying its differential
+// reads the mip levels of its footprint; against a reference averaging 16 × 16 rays a pixel,
+// its error is a fraction of what one finest-level lookup a pixel gives (a coin toss between
+// the cells: aliasing).
+TEST(WhittedIntegrator, EscapingRaysFilterTheSkyOverTheirFootprint) {
+  SceneDescription d;
+  d.camera.position = {0, 0, 0};
+  d.camera.lookAt = {0, 0, -1};
+  d.camera.fovDegrees = 90.0f;
+  d.render.width = d.render.height = 24;
+  d.render.maxDepth = 2;
+  CubeMapDesc sky;
+  for (ImageRgb& face : sky.faces) {
+    face = ImageRgb(256, 256);
+    for (int y = 0; y < 256; ++y) {
+      for (int x = 0; x < 256; ++x) face.at(x, y) = Color(static_cast<float>((x / 2 + y / 2) % 2));
+    }
+  }
+  d.environment = sky;
+  MaterialDesc mirror;
+  mirror.diffuse = Color(0.0f);
+  mirror.reflectance = Color(1.0f);
+  d.materials.push_back(mirror);
+  d.spheres.push_back({{0.6f, -0.3f, -3.0f}, 0.8f, 0, {}});
+  const Scene scene(d);
+  const WhittedIntegrator integrator(scene);
+  ASSERT_TRUE(integrator.usesDifferentials());
+  const Camera camera(d.camera, 24, 24);
+
+  double filteredError = 0.0, pointError = 0.0;
+  int ballPixels = 0;
+  for (int y = 0; y < 24; ++y) {
+    for (int x = 0; x < 24; ++x) {
+      RayCounters rays;
+      Color reference(0.0f);
+      constexpr int kSide = 16;
+      for (int j = 0; j < kSide; ++j) {
+        for (int i = 0; i < kSide; ++i) {
+          const Ray ray = camera.generateRay(static_cast<float>(x) + (i + 0.5f) / kSide,
+                                             static_cast<float>(y) + (j + 0.5f) / kSide);
+          reference += integrator.radiance(ray, 0, Color(1.0f), rays);
+        }
+      }
+      reference /= static_cast<float>(kSide * kSide);
+      const Ray ray =
+          camera.generateRay(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const Color filtered =
+          integrator.radiance(ray, 0, Color(1.0f), rays, camera.pixelDifferential(ray));
+      const Color point = integrator.radiance(ray, 0, Color(1.0f), rays);
+      filteredError += glm::dot(filtered - reference, filtered - reference) / 3.0f;
+      pointError += glm::dot(point - reference, point - reference) / 3.0f;
+      HitRecord hit;
+      ballPixels += scene.intersect(ray, hit);
+    }
+  }
+  EXPECT_GT(ballPixels, 30);  // the reflections are part of the test
+  const double filteredRmse = std::sqrt(filteredError / (24 * 24));
+  const double pointRmse = std::sqrt(pointError / (24 * 24));
+  EXPECT_GT(pointRmse, 0.3);  // the sky aliases unfiltered
+  // Measured: 0.077 against 0.33.
+  EXPECT_LT(filteredRmse, 0.25 * pointRmse) << "point RMSE " << pointRmse;
 }
 
 }  // namespace

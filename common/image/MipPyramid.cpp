@@ -1,0 +1,64 @@
+#include "image/MipPyramid.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace prism {
+
+namespace {
+
+// The texels of a side of `from` texels that texel i of the halved side covers, and their
+// weights (the covered part of each, over the texel's width in the side below; they sum to 1).
+struct Tap {
+  int index;
+  float weight;
+};
+
+std::vector<std::vector<Tap>> boxTaps(int from, int to) {
+  std::vector<std::vector<Tap>> taps(static_cast<size_t>(to));
+  const double width = static_cast<double>(from) / to;
+  for (int i = 0; i < to; ++i) {
+    const double begin = i * width, end = (i + 1) * width;
+    for (int k = static_cast<int>(begin); k < from && k < end; ++k) {
+      const double covered = std::min(end, k + 1.0) - std::max(begin, static_cast<double>(k));
+      if (covered > 0.0) taps[i].push_back({k, static_cast<float>(covered / width)});
+    }
+  }
+  return taps;
+}
+
+}  // namespace
+
+ImageRgb halved(const ImageRgb& image) {
+  const int width = std::max(1, image.width / 2), height = std::max(1, image.height / 2);
+  const auto across = boxTaps(image.width, width), down = boxTaps(image.height, height);
+  // Rows first, then columns.
+  ImageRgb rows(width, image.height);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      Color sum(0.0f);
+      for (const Tap& tap : across[x]) sum += tap.weight * image.at(tap.index, y);
+      rows.at(x, y) = sum;
+    }
+  }
+  ImageRgb result(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      Color sum(0.0f);
+      for (const Tap& tap : down[y]) sum += tap.weight * rows.at(x, tap.index);
+      result.at(x, y) = sum;
+    }
+  }
+  return result;
+}
+
+std::vector<ImageRgb> mipLevels(ImageRgb image) {
+  std::vector<ImageRgb> levels;
+  levels.push_back(std::move(image));
+  while (levels.back().width > 1 || levels.back().height > 1) {
+    levels.push_back(halved(levels.back()));
+  }
+  return levels;
+}
+
+}  // namespace prism
