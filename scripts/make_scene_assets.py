@@ -6,10 +6,13 @@
   scenes/assets/trefoil.obj                  a trefoil-knot tube with per-vertex normals
 
 The files are committed; run this only to change them:  python3 scripts/make_scene_assets.py
+(or name one: `... sky`, `... trefoil`). The sky's 1024² faces take a few minutes.
 """
 import math
+import multiprocessing
 import os
 import struct
+import sys
 import zlib
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "assets")
@@ -75,25 +78,37 @@ FACES = {
 }
 
 
-def make_sky(size=320, supersampling=3):
+# 1024² faces: a texel of the default view's horizon (the -Z face's middle) spans 3.2 pixels
+# at 1920x1080 (320² faces: 10), small enough that bilinear magnification draws the hills'
+# edges without steps; the renderer reads coarser mip levels where pixels are larger.
+SKY_SIZE = 1024
+
+
+def make_face(name, size, supersampling):
     """Each texel averages supersampling² directions so the hills' edges are antialiased."""
-    os.makedirs(os.path.join(ROOT, "sky"), exist_ok=True)
+    direction = FACES[name]
     n = supersampling
-    for name, direction in FACES.items():
-        rows = []
-        for j in range(size):
-            row = []
-            for i in range(size):
-                total = [0.0, 0.0, 0.0]
-                for sj in range(n):
-                    t = 2.0 * (j + (sj + 0.5) / n) / size - 1.0
-                    for si in range(n):
-                        s = 2.0 * (i + (si + 0.5) / n) / size - 1.0
-                        for c, value in enumerate(sky_radiance(normalize(direction(s, t)))):
-                            total[c] += value
-                row.append(tuple(srgb(min(c / (n * n), 1.0)) for c in total))
-            rows.append(row)
-        write_png(os.path.join(ROOT, "sky", name + ".png"), size, size, rows)
+    rows = []
+    for j in range(size):
+        row = []
+        for i in range(size):
+            total = [0.0, 0.0, 0.0]
+            for sj in range(n):
+                t = 2.0 * (j + (sj + 0.5) / n) / size - 1.0
+                for si in range(n):
+                    s = 2.0 * (i + (si + 0.5) / n) / size - 1.0
+                    for c, value in enumerate(sky_radiance(normalize(direction(s, t)))):
+                        total[c] += value
+            row.append(tuple(srgb(min(c / (n * n), 1.0)) for c in total))
+        rows.append(row)
+    write_png(os.path.join(ROOT, "sky", name + ".png"), size, size, rows)
+
+
+def make_sky(size=SKY_SIZE, supersampling=3):
+    """The six faces, one process each (a 1024² face takes minutes in pure Python)."""
+    os.makedirs(os.path.join(ROOT, "sky"), exist_ok=True)
+    with multiprocessing.Pool() as pool:
+        pool.starmap(make_face, [(name, size, supersampling) for name in FACES])
 
 
 def trefoil(u):
@@ -142,5 +157,9 @@ def make_trefoil(segments=240, sides=20, tube=0.45):
 
 
 if __name__ == "__main__":
-    make_sky()
-    make_trefoil()
+    # "sky" or "trefoil" makes only that asset; nothing makes both.
+    wanted = sys.argv[1:] or ["sky", "trefoil"]
+    if "sky" in wanted:
+        make_sky()
+    if "trefoil" in wanted:
+        make_trefoil()
