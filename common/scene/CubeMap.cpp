@@ -61,10 +61,12 @@ CubeMap::CubeMap(CubeMapDesc desc) : scale_(desc.scale) {
   for (const auto& pyramid : pyramids) count = std::max(count, pyramid.size());
   levels_.resize(count);
   for (int f = 0; f < 6; ++f) {
-    // Faces of unequal sizes (the parser refuses them; a description built in code may not)
-    // repeat their 1x1 level at the top.
+    // Moved, not copied (the finest level is 12 MiB a 1024² face). Faces of unequal sizes (the
+    // parser refuses them; a description built in code may not) repeat their 1x1 level at the
+    // top.
+    const size_t own = pyramids[f].size();
     for (size_t level = 0; level < count; ++level) {
-      levels_[level][f] = pyramids[f][std::min(level, pyramids[f].size() - 1)];
+      levels_[level][f] = level < own ? std::move(pyramids[f][level]) : levels_[own - 1][f];
     }
   }
 }
@@ -103,7 +105,7 @@ std::optional<CubeMap::FacePoint> CubeMap::facePoint(const Vec3& d) const {
                    p.v() * static_cast<float>(image.height) - 0.5f};
 }
 
-Color CubeMap::bilinear(int level, int face, float u, float v) const {
+[[gnu::always_inline]] inline Color CubeMap::blend(int level, int face, float u, float v) const {
   const ImageRgb& image = levels_[level][face];
   const float s = u * static_cast<float>(image.width) - 0.5f;
   const float t = v * static_cast<float>(image.height) - 0.5f;
@@ -122,8 +124,8 @@ Color CubeMap::bilinear(int level, int face, float u, float v) const {
     const auto lanes = [](const Color* c) { return simd::load<simd::Float4>(&c->x); };
     const simd::Float4 top = lanes(texels) * (1.0f - fx) + lanes(texels + 1) * fx;
     const simd::Float4 bottom = lanes(texels + w) * (1.0f - fx) + lanes(texels + w + 1) * fx;
-    const simd::Float4 blend = top * (1.0f - fy) + bottom * fy;
-    return Color(blend[0], blend[1], blend[2]);
+    const simd::Float4 mixed = top * (1.0f - fy) + bottom * fy;
+    return Color(mixed[0], mixed[1], mixed[2]);
   }
   const Color top = glm::mix(texel(level, face, x0, y0), texel(level, face, x0 + 1, y0), fx);
   const Color bottom =
@@ -131,10 +133,14 @@ Color CubeMap::bilinear(int level, int face, float u, float v) const {
   return glm::mix(top, bottom, fy);
 }
 
+Color CubeMap::bilinear(int level, int face, float u, float v) const {
+  return blend(level, face, u, v);
+}
+
 Color CubeMap::lookup(const Vec3& d) const {
   CubePoint p;
   if (!findCubePoint(d, p)) return Color(0.0f);
-  return scale_ * bilinear(0, p.face, p.u(), p.v());
+  return scale_ * blend(0, p.face, p.u(), p.v());
 }
 
 namespace {
@@ -169,14 +175,14 @@ Color CubeMap::lookup(const Vec3& d, const Vec3& dDdx, const Vec3& dDdy) const {
   const ImageRgb& finest = levels_[0][p.face];
   const float squaredStep = squaredTexelStep(p, dDdx, dDdy, finest.width, finest.height);
   // A step of at most a texel magnifies the finest level: no logarithm needed.
-  if (!(squaredStep > 1.0f)) return scale_ * bilinear(0, p.face, p.u(), p.v());
+  if (!(squaredStep > 1.0f)) return scale_ * blend(0, p.face, p.u(), p.v());
   const int top = levelCount() - 1;
   const float lod = std::min(0.5f * std::log2(squaredStep), static_cast<float>(top));
   const int level = std::min(static_cast<int>(lod), top);
-  const float blend = lod - static_cast<float>(level);
-  const Color lower = bilinear(level, p.face, p.u(), p.v());
-  if (level == top || blend == 0.0f) return scale_ * lower;
-  return scale_ * glm::mix(lower, bilinear(level + 1, p.face, p.u(), p.v()), blend);
+  const float weight = lod - static_cast<float>(level);  // of the coarser level
+  const Color lower = blend(level, p.face, p.u(), p.v());
+  if (level == top || weight == 0.0f) return scale_ * lower;
+  return scale_ * glm::mix(lower, blend(level + 1, p.face, p.u(), p.v()), weight);
 }
 
 }  // namespace prism

@@ -56,6 +56,8 @@ class CubeMap {
   // Texel (x, y) of a face at a level; x or y one past the face's edge (-1 or size) reads the
   // nearest texel of the neighbouring face the direction through it meets.
   Color texel(int level, int face, int x, int y) const;
+  // bilinear(), inlined into the lookups.
+  Color blend(int level, int face, float u, float v) const;
 
   std::vector<std::array<ImageRgb, 6>> levels_;
   float scale_;
