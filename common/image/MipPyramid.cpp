@@ -66,6 +66,16 @@ ImageRgb halved(const ImageRgb& image) {
   return result;
 }
 
+uint64_t mipLevelsTexels(int width, int height) {
+  uint64_t texels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  while (width > 1 || height > 1) {
+    width = std::max(1, width / 2);
+    height = std::max(1, height / 2);
+    texels += static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  }
+  return texels;
+}
+
 std::vector<ImageRgb> mipLevels(ImageRgb image) {
   std::vector<ImageRgb> levels;
   levels.push_back(std::move(image));

@@ -11,6 +11,7 @@
 // part covered.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "image/ImageRgb.h"
@@ -22,5 +23,8 @@ ImageRgb halved(const ImageRgb& image);
 
 // image (level 0) and every level above it, the last 1x1.
 std::vector<ImageRgb> mipLevels(ImageRgb image);
+
+// The texels of mipLevels() of a width × height image, all levels (about 4/3 of the image's).
+uint64_t mipLevelsTexels(int width, int height);
 
 }  // namespace prism

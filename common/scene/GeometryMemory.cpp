@@ -3,6 +3,7 @@
 #include <string>
 
 #include "geometry/ConeSegments.h"
+#include "image/MipPyramid.h"
 #include "scene/MeshBudget.h"
 
 namespace prism {
@@ -22,8 +23,9 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
   bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
   if (d.environment) {
     for (const ImageRgb& face : d.environment->faces) {
-      // The description's copy, its wire copy and the scene's.
-      bytes = saturatingAdd(bytes, 3 * face.pixels.size() * sizeof(Color));
+      // The description's copy, its wire copy and the scene's with its mip levels.
+      const uint64_t texels = 2 * face.pixels.size() + mipLevelsTexels(face.width, face.height);
+      bytes = saturatingAdd(bytes, saturatingMultiply(texels, sizeof(Color)));
     }
   }
   return bytes;

@@ -76,6 +76,9 @@ TEST(MipPyramid, EveryLevelKeepsTheMeanDownToOneTexel) {
     }
   }
   EXPECT_EQ(mipLevels(randomImage(1024, 1024, 2)).size(), 11u);
+  // 20x12 + 10x6 + 5x3 + 2x1 + 1x1.
+  EXPECT_EQ(mipLevelsTexels(20, 12), 240u + 60u + 15u + 2u + 1u);
+  EXPECT_EQ(mipLevelsTexels(1024, 1024), (uint64_t{1} << 22) / 3);  // (4^11 - 1) / 3
 }
 
 }  // namespace

@@ -22,6 +22,15 @@ TEST(GeometryMemory, CountsTrianglesVerticesAndPrimitives) {
   EXPECT_EQ(geometryMemoryBytes(thousandTrianglesAndTwoSpheres()), 279296u);
 }
 
+TEST(GeometryMemory, CountsCubeMapFacesWithTheirMipLevels) {
+  SceneDescription d;
+  d.environment.emplace();
+  for (ImageRgb& face : d.environment->faces) face = ImageRgb(16, 16);
+  // Six faces of 12-byte texels: the description's 256 and its wire copy's, and the scene's
+  // 256 + 64 + 16 + 4 + 1 with the levels.
+  EXPECT_EQ(geometryMemoryBytes(d), 6u * 12u * (2u * 256u + 341u));
+}
+
 TEST(GeometryMemory, CountsEachPartASlantedConeEntersTheBvhAs) {
   SceneDescription d;
   ConeDesc upright;  // default: base at the origin, apex one unit up, pointed
