@@ -1,10 +1,10 @@
 #include "render/WhittedIntegrator.h"
 
+#include "accel/PrimitiveRef.h"
 #include "math/RayOffset.h"
 #include "render/LightLanes.h"
 #include "render/MirrorLanes.h"
 #include "render/PointLightPath.h"
-#include "scene/PrimitiveRef.h"
 #include "shading/MaterialEval.h"
 #include "shading/SpecularSplit.h"
 #include "util/ScratchArray.h"

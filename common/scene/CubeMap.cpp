@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <utility>
 
-#include "accel/Simd.h"
 #include "math/FloorToInt.h"
+#include "math/Simd.h"
 
 namespace prism {
 
