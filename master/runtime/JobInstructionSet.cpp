@@ -21,7 +21,7 @@ std::string JobInstructionSet::describe() const {
   if (limitingRank >= 0) {
     return text + " (rank " + std::to_string(limitingRank) + " runs no more: " + limitingCpu + ")";
   }
-  return text + " (the best every rank runs)";
+  return text + (ranks > 1 ? " (the best every rank runs)" : " (the best this CPU runs)");
 }
 
 JobInstructionSet chooseJobInstructionSet(Transport* cluster, InstructionSet requested,
@@ -31,6 +31,7 @@ JobInstructionSet chooseJobInstructionSet(Transport* cluster, InstructionSet req
   const InstructionSet ownBest = bestInstructionSet(runnableInstructionSets());
   job.chosen = resolveInstructionSet(requested);  // throws when rank 0 cannot run it
   if (cluster == nullptr || cluster->size() <= 1) return job;
+  job.ranks = cluster->size();
 
   std::vector<wire::HelloMessage> hellos(static_cast<size_t>(cluster->size()));
   std::vector<bool> heard(hellos.size(), false);

@@ -20,9 +20,11 @@ struct JobInstructionSet {
   // its CPU's name.
   int limitingRank = -1;
   std::string limitingCpu;
+  int ranks = 1;  // in the job
 
   // "x86-64-v4 (the best every rank runs)", "x86-64-v2 (rank 2 runs no more: Intel Xeon ...)",
-  // "x86-64-v3 (--isa)": for the run summary and the viewer.
+  // "x86-64-v3 (--isa)", one process "x86-64-v4 (the best this CPU runs)": for the run
+  // summary and the speedup CSV.
   std::string describe() const;
 };
 

@@ -33,7 +33,8 @@ TEST(JobInstructionSet, OneProcessTakesItsOwnBest) {
   const JobInstructionSet job = chooseJobInstructionSet(nullptr, InstructionSet::Auto, 1.0);
   EXPECT_EQ(job.chosen, bestInstructionSet(runnableInstructionSets()));
   EXPECT_EQ(job.limitingRank, -1);
-  EXPECT_NE(job.describe().find(instructionSetName(job.chosen)), std::string::npos);
+  EXPECT_EQ(job.describe(),
+            std::string(instructionSetName(job.chosen)) + " (the best this CPU runs)");
 }
 
 // The slave on the oldest CPU holds the whole job to what it runs, and the summary names it.
@@ -57,6 +58,8 @@ TEST(JobInstructionSet, EveryRankRunningMoreLeavesRankZerosBest) {
       chooseJobInstructionSet(&network.endpoint(0), InstructionSet::Auto, 5.0);
   EXPECT_EQ(job.chosen, bestInstructionSet(runnableInstructionSets()));
   EXPECT_EQ(job.limitingRank, -1);
+  EXPECT_EQ(job.describe(),
+            std::string(instructionSetName(job.chosen)) + " (the best every rank runs)");
 }
 
 TEST(JobInstructionSet, AForcedSetIsKeptOrRefusedNamingTheRankThatLacksIt) {
