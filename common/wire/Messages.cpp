@@ -252,8 +252,6 @@ void ReadyMessage::check(const ReadyMessage& ready) {
   if (ready.threads < 0) throw WireError("invalid thread count " + std::to_string(ready.threads));
 }
 
-static_assert(HelloMessage{}.instructionSets == maskOf(InstructionSet::Baseline));
-
 void HelloMessage::check(const HelloMessage& hello) {
   const uint32_t known = maskOf(InstructionSet::Baseline) | maskOf(InstructionSet::V2) |
                          maskOf(InstructionSet::V3) | maskOf(InstructionSet::V4);

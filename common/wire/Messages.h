@@ -21,6 +21,7 @@
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"
+#include "util/InstructionSet.h"
 #include "wire/ByteBuffer.h"
 #include "wire/Fields.h"
 #include "wire/MessageParts.h"
@@ -244,8 +245,9 @@ struct ReadyMessage {
 // Slave to master, before anything else: the instruction sets its CPU runs, so that rank 0 can
 // choose one for the whole job (util/InstructionSet.h) before any rank renders a pixel.
 struct HelloMessage {
-  uint32_t instructionSets = 1u << 1;  // an InstructionSetMask; the baseline's bit always set
-  std::string cpu;                     // the CPU's model name, for messages about this rank
+  // An InstructionSetMask; the baseline's bit always set.
+  uint32_t instructionSets = maskOf(InstructionSet::Baseline);
+  std::string cpu;  // the CPU's model name, for messages about this rank
   PRISM_WIRE_FIELDS(instructionSets, cpu)
   static void check(const HelloMessage& hello);  // known sets, the baseline's among them; name
 };
