@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "PrismProcess.h"
+#include "SamePixels.h"
 #include "image/ImageError.h"
 #include "image/ImageIo.h"
 #include "util/InstructionSet.h"
@@ -19,10 +20,7 @@ namespace {
 const std::string kScene =
     std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 96 -H 54 --spp 2";
 
-bool samePixels(const ImageRgb& a, const ImageRgb& b) {
-  return a.width == b.width && a.height == b.height &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
-}
+using test::samePixels;
 
 bool runs(InstructionSet isa) {
   return (runnableInstructionSets() & maskOf(isa)) != 0;
