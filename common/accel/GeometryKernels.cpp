@@ -1,8 +1,5 @@
 #include "accel/GeometryKernels.h"
 
-#include <stdexcept>
-#include <string>
-
 // Each set's table, defined by accel/GeometryKernelTable.cpp in that set's copy.
 extern "C" const prism::GeometryKernels prism_isa_baseline_geometry;
 #if defined(PRISM_HAVE_ISA_VARIANTS)
@@ -14,21 +11,15 @@ extern "C" const prism::GeometryKernels prism_isa_v4_geometry;
 namespace prism {
 
 const GeometryKernels& geometryKernels(InstructionSet isa) {
-  switch (isa) {
-    case InstructionSet::Baseline:
-      return prism_isa_baseline_geometry;
 #if defined(PRISM_HAVE_ISA_VARIANTS)
-    case InstructionSet::V2:
-      return prism_isa_v2_geometry;
-    case InstructionSet::V3:
-      return prism_isa_v3_geometry;
-    case InstructionSet::V4:
-      return prism_isa_v4_geometry;
+  static const GeometryKernels* const kTables[4] = {&prism_isa_baseline_geometry,
+                                                    &prism_isa_v2_geometry, &prism_isa_v3_geometry,
+                                                    &prism_isa_v4_geometry};
+#else
+  static const GeometryKernels* const kTables[4] = {&prism_isa_baseline_geometry, nullptr, nullptr,
+                                                    nullptr};
 #endif
-    default:
-      break;
-  }
-  throw std::invalid_argument(std::string("no geometry kernels for ") + instructionSetName(isa));
+  return tableForSet(isa, kTables, "geometry kernels");
 }
 
 }  // namespace prism

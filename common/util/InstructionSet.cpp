@@ -17,7 +17,7 @@ constexpr NamedSet kNames[] = {{"auto", "auto", InstructionSet::Auto},
 #if defined(__x86_64__)
                                {"x86-64", "baseline", InstructionSet::Baseline},
 #else
-                                {"baseline", "baseline", InstructionSet::Baseline},
+                               {"baseline", "baseline", InstructionSet::Baseline},
 #endif
                                {"x86-64-v2", "v2", InstructionSet::V2},
                                {"x86-64-v3", "v3", InstructionSet::V3},
@@ -117,6 +117,12 @@ InstructionSet resolveInstructionSet(InstructionSet requested) {
                                 instructionSetName(bestInstructionSet(runnable)));
   }
   return requested;
+}
+
+const void* tableForSet(InstructionSet isa, const void* const (&tables)[4], const char* what) {
+  const int index = static_cast<int>(isa) - static_cast<int>(InstructionSet::Baseline);
+  if (index >= 0 && index < 4 && tables[index] != nullptr) return tables[index];
+  throw std::invalid_argument(std::string("no ") + what + " for " + instructionSetName(isa));
 }
 
 std::string cpuModelName() {

@@ -48,6 +48,15 @@ InstructionSet bestInstructionSet(InstructionSetMask mask);
 // std::invalid_argument naming what this CPU runs.
 InstructionSet resolveInstructionSet(InstructionSet requested);
 
+// One of a table per concrete set (the kernels' entry points): tables[isa - Baseline], null where
+// this binary has none. Throws std::invalid_argument naming `what` and the set.
+const void* tableForSet(InstructionSet isa, const void* const (&tables)[4], const char* what);
+template <class Table>
+const Table& tableForSet(InstructionSet isa, const Table* const (&tables)[4], const char* what) {
+  const void* const erased[4] = {tables[0], tables[1], tables[2], tables[3]};
+  return *static_cast<const Table*>(tableForSet(isa, erased, what));
+}
+
 // The model name of this machine's CPU ("AMD EPYC 7B13"; at most kMaxCpuNameBytes), or
 // "unknown CPU": how messages name a rank's machine.
 inline constexpr size_t kMaxCpuNameBytes = 256;
