@@ -51,6 +51,7 @@ MainWindow::MainWindow(LiveSource& source, QWidget* parent)
 
   view_ = new FrameView(frame_, this);
   stats_ = new StatsPanel(this);
+  stats_->setInstructionSet(QString::fromStdString(source.start().instructionSet));
   connect(view_, &FrameView::dragged, this, [this](int dx, int dy) {
     camera_.orbit(-kOrbitDegreesPerPixel * static_cast<float>(dx),
                   -kOrbitDegreesPerPixel * static_cast<float>(dy));

@@ -191,6 +191,7 @@ void StatsPanel::showStats(const LiveStats& s) {
           .arg(s.pass)
           .arg(s.passesDone) +
       QString("rays/s       %1rays/s\n").arg(siRate(s.raysPerSecond)) +
+      (instructionSet_.isEmpty() ? QString() : QString("kernels      %1\n").arg(instructionSet_)) +
       QString("frame time   %1 median, %2 p95\n")
           .arg(milliseconds(s.frameTimes.medianSeconds))
           .arg(milliseconds(s.frameTimes.p95Seconds)) +

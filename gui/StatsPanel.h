@@ -32,6 +32,9 @@ class StatsPanel : public QWidget {
 
   void showStats(const LiveStats& stats);
   void setSpeedupTable(const std::vector<SpeedupPoint>& points, const QString& name);
+  // The ray kernels' instruction set on every rank of the job ("x86-64-v4"), shown with the
+  // statistics.
+  void setInstructionSet(const QString& name) { instructionSet_ = name; }
 
   // For tests: the per-rank table and the chart's series.
   const QTableWidget* rankTable() const { return table_; }
@@ -56,6 +59,7 @@ class StatsPanel : public QWidget {
   QtCharts::QValueAxis* axisEfficiency_;
   int maxP_ = 2;
   double maxSpeedup_ = 2.0;
+  QString instructionSet_;
 };
 
 }  // namespace prism

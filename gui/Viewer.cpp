@@ -53,6 +53,7 @@ class MoveBenchmark : public QObject {
   MoveBenchmark(MainWindow& window, int moves, double intervalMs, std::ostream& out)
       : window_(window), moves_(moves), intervalMs_(intervalMs), out_(out) {
     connect(&window, &MainWindow::passComplete, this, &MoveBenchmark::onPassComplete);
+    connect(&window, &MainWindow::statsShown, this, &MoveBenchmark::onStats);
     connect(&timer_, &QTimer::timeout, this, &MoveBenchmark::move);
     timer_.setTimerType(Qt::PreciseTimer);
   }
@@ -66,6 +67,24 @@ class MoveBenchmark : public QObject {
       timer_.stop();
       lastMove_ = SteadyClock::now();
     }
+  }
+
+  // The rays every rank traced, counted since the viewer started, as the statistics bring them
+  // (every statsInterval): the first count after the first move and the last before the end
+  // give the rays traced per second while moving.
+  void onStats(const LiveStats& stats) {
+    if (!started_ || done_) return;
+    uint64_t rays = 0;
+    for (const RankStats& r : stats.ranks) rays += r.rays.total();
+    const RayCount count{SteadyClock::now(), rays};
+    if (!firstRays_) firstRays_ = count;
+    lastRays_ = count;
+  }
+
+  double raysPerSecondWhileMoving() const {
+    if (!firstRays_ || !lastRays_) return 0.0;
+    const double seconds = std::chrono::duration<double>(lastRays_->at - firstRays_->at).count();
+    return seconds > 0.0 ? static_cast<double>(lastRays_->rays - firstRays_->rays) / seconds : 0.0;
   }
 
   void onPassComplete(const DisplayPass& pass) {
@@ -130,9 +149,9 @@ class MoveBenchmark : public QObject {
     char line[256];
     std::snprintf(line, sizeof line,
                   "realtime  %.1f frames/s at %dx%d, frame time median %.1f ms, p95 %.1f ms, %d "
-                  "frames at full resolution\n",
+                  "frames at full resolution, %.1f Mrays/s\n",
                   fps, image.width(), image.height(), 1e3 * percentile(frameTimes, 0.5),
-                  1e3 * percentile(frameTimes, 0.95), full);
+                  1e3 * percentile(frameTimes, 0.95), full, raysPerSecondWhileMoving() / 1e6);
     out_ << "benchmark  " << moves_ << " camera moves, one every " << intervalMs_ << " ms, "
          << std::chrono::duration<double>(lastMove_ - firstMove_).count() << " s\n"
          << line << "frames     " << frames_.size() << " shown while moving: " << full
@@ -154,6 +173,10 @@ class MoveBenchmark : public QObject {
     FrameScale scale;
     int pass = 0;
   };
+  struct RayCount {
+    SteadyClock::time_point at;
+    uint64_t rays = 0;
+  };
 
   MainWindow& window_;
   int moves_;
@@ -166,6 +189,7 @@ class MoveBenchmark : public QObject {
   std::vector<Frame> frames_;
   std::vector<double> latencies_;
   SteadyClock::time_point firstMove_, lastMove_;
+  std::optional<RayCount> firstRays_, lastRays_;
 };
 
 // shown: what the window showed last (its passes are counted there, not by the statistics,

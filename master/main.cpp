@@ -8,8 +8,8 @@
 #include <iostream>
 #include <memory>
 
-#include "accel/Simd.h"
 #include "master/commands/Cli.h"
+#include "math/Simd.h"
 #include "slave/SlaveLoop.h"
 #include "transport/MpiModule.h"
 #include "util/PhysicalMemory.h"

@@ -11,6 +11,7 @@
 #include "slave/ShutdownWait.h"
 #include "slave/SlaveHandlers.h"
 #include "slave/SlaveWork.h"
+#include "util/InstructionSet.h"
 #include "util/InterruptSignal.h"
 #include "util/Parallel.h"
 #include "util/ProcessStart.h"
@@ -45,6 +46,13 @@ SlaveEnd SlaveSession::run() {
 }
 
 std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
+  // First what this CPU runs: rank 0 chooses the job's instruction set from every rank's answer
+  // before it broadcasts the scene (master/runtime/JobInstructionSet.h).
+  try {
+    transport_.send(0, wire::encode(wire::HelloMessage{runnableInstructionSets(), cpuModelName()}));
+  } catch (const std::invalid_argument& e) {  // a bad PRISM_TEST_CPU_LIMIT: rank 0 reports it
+    transport_.send(0, wire::encode(wire::ErrorMessage{e.what()}));
+  }
   std::vector<uint8_t> bytes;
   try {
     transport_.broadcast(bytes, options_.masterTimeoutSeconds);

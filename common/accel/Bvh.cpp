@@ -4,7 +4,7 @@
 #include <array>
 #include <memory>
 
-#include "accel/Simd.h"
+#include "math/Simd.h"
 #include "util/HugePages.h"
 #include "util/Stopwatch.h"
 

@@ -1,6 +1,6 @@
 // An 8-wide BVH collapsed from the binary SAH BVH (accel/Bvh.h): each node holds the boxes of up
 // to eight children in structure-of-arrays form, so one ray tests all eight with a few SIMD
-// instructions (accel/Simd.h). The collapse keeps the binary BVH's leaves and primitive order,
+// instructions (math/Simd.h). The collapse keeps the binary BVH's leaves and primitive order,
 // so the same leaf visitor serves both, and the closest hit is the same primitive test.
 //
 // Collapsing: starting from a binary node, the child with the largest surface area that is not a
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "accel/Bvh.h"
-#include "accel/Simd.h"
+#include "math/Simd.h"
 
 namespace prism {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "accel/Simd.h"
 #include "math/FloorToInt.h"
+#include "math/Simd.h"
 #include "shading/LightFalloff.h"
 #include "shading/SpecularSplit.h"
 #include "util/Parallel.h"

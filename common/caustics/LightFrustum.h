@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "accel/Simd.h"
+#include "math/Simd.h"
 #include "math/Vec.h"
 #include "scene/Scene.h"
 

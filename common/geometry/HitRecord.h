@@ -16,7 +16,7 @@ inline constexpr uint8_t kReceivesCaustics = 2;  // photons are stored on it
 
 struct HitRecord {
   float t = 0.0f;
-  uint32_t primitive = 0;  // a PrimitiveRef (see scene/PrimitiveRef.h)
+  uint32_t primitive = 0;  // a PrimitiveRef (see accel/PrimitiveRef.h)
   float u = 0.0f;          // barycentric coordinates for triangles
   float v = 0.0f;
 };

@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
-#include "accel/Simd.h"
 #include "geometry/Sphere.h"
 #include "geometry/TriangleMollerTrumboreRays.h"
+#include "math/Simd.h"
 
 namespace prism {
 

@@ -8,9 +8,9 @@
 
 #include <cstdint>
 
-#include "accel/Simd.h"
 #include "geometry/TrianglePack4.h"
 #include "math/Ray.h"
+#include "math/Simd.h"
 
 namespace prism {
 

@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "accel/Simd.h"
+#include "math/Simd.h"
 
 namespace prism {
 

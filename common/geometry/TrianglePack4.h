@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <limits>
 
-#include "accel/Simd.h"
 #include "geometry/Triangle.h"
+#include "math/Simd.h"
 
 namespace prism {
 

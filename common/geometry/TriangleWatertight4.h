@@ -7,9 +7,9 @@
 
 #include <cstdint>
 
-#include "accel/Simd.h"
 #include "geometry/TrianglePack4.h"
 #include "geometry/TriangleWatertight.h"
+#include "math/Simd.h"
 
 namespace prism {
 

@@ -1,4 +1,4 @@
-// A packet's shading points as lanes of vectors (accel/Simd.h): one array of eight lanes per
+// A packet's shading points as lanes of vectors (math/Simd.h): one array of eight lanes per
 // coordinate, so that the kernels working on all points at once (render/LightLanes.h,
 // render/MirrorLanes.h) take one vector operation where the scalar code takes one per point. The
 // vector is the widest the build does well: eight lanes with AVX, else four, twice (GCC splits
@@ -9,10 +9,10 @@
 
 #include <cstdint>
 
-#include "accel/RayRows.h"
-#include "accel/Simd.h"
 #include "geometry/HitRecord.h"
 #include "math/Ray.h"
+#include "math/RayRows.h"
+#include "math/Simd.h"
 #include "scene/SceneDescription.h"
 #include "shading/SpecularSplit.h"
 
@@ -70,7 +70,7 @@ inline V dot(const Vec3Lanes& a, const Vec3Lanes& b) {
 }
 
 // Rays first..first+3 of `rays` from four lanes of origins, directions and ends (tMin 0),
-// each stored whole (accel/RayRows.h).
+// each stored whole (math/RayRows.h).
 inline void storeRays(const simd::Float4 origin[3], const simd::Float4 direction[3],
                       simd::Float4 tMax, Ray* rays) {
   simd::storeRays(origin, direction, simd::Float4{}, tMax, rays);

@@ -36,6 +36,13 @@ class TileRenderer {
   // Packets by default; one at a time to compare against or to measure what packets buy.
   void setCameraRays(CameraRays mode) { cameraRays_ = mode; }
 
+  // The render of a tile itself, one copy per instruction set (render/RenderKernels.h holds
+  // their addresses; render/TileRendering.cpp). render() calls the scene's set.
+  struct Kernels {
+    static TileResult render(const TileRenderer& renderer, uint32_t tileIndex, const TileRect& rect,
+                             const std::atomic<bool>* cancel, const std::atomic<bool>* frameEnded);
+  };
+
  private:
   Color renderPixel(int x, int y, RayCounters& rays) const;
   // The differential of sample number `sample` of a pixel, its ray through the pixel's point

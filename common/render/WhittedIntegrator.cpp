@@ -2,11 +2,11 @@
 
 #include <new>
 
+#include "accel/PrimitiveRef.h"
 #include "math/RayOffset.h"
 #include "render/LightLanes.h"
 #include "render/MirrorLanes.h"
 #include "render/PointLightPath.h"
-#include "scene/PrimitiveRef.h"
 #include "shading/MaterialEval.h"
 #include "shading/SpecularSplit.h"
 #include "util/ScratchArray.h"

@@ -2,8 +2,8 @@
 
 #include <new>
 
-#include "accel/RayRows.h"
-#include "accel/Simd.h"
+#include "math/RayRows.h"
+#include "math/Simd.h"
 
 namespace prism {
 

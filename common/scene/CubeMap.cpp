@@ -4,9 +4,9 @@
 #include <cmath>
 #include <utility>
 
-#include "accel/Simd.h"
 #include "image/MipPyramid.h"
 #include "math/FloorToInt.h"
+#include "math/Simd.h"
 #include "util/Parallel.h"
 
 namespace prism {

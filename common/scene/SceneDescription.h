@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "geometry/MaterialId.h"
+#include "geometry/TriangleTest.h"
 #include "image/ImageRgb.h"
 #include "math/Vec.h"
 #include "scene/FileLoc.h"
+#include "util/InstructionSet.h"
 
 namespace prism {
 
@@ -120,7 +122,6 @@ struct CubeMapDesc {
 
 // Names and limits of these settings: SettingNames.h, SettingLimits.h; validate() checks them
 // (SceneValidation.h).
-enum class TriangleTest { MollerTrumbore, PlaneThenInside, Watertight };
 
 struct RenderSettings {
   int width = 640;
@@ -131,6 +132,10 @@ struct RenderSettings {
   uint64_t seed = 0;
   float exposure = 1.0f;  // PNG/viewer only: radiance multiplied before tone mapping
   TriangleTest triangleTest = TriangleTest::MollerTrumbore;
+  // The kernels' instruction set (util/InstructionSet.h): not a scene-file setting but the
+  // job's choice, which rank 0 makes once for every rank (the best all of them run, or the
+  // command line's --isa) and sends with the scene, so that every rank traces the same pixels.
+  InstructionSet instructionSet = InstructionSet::Auto;
 };
 
 enum class CausticMethod { None, PhotonMap, CausticMap };

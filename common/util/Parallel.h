@@ -20,4 +20,14 @@ int machineCores();
 // runs an index (callers write item i to slot i).
 void parallelFor(uint64_t count, int threads, const std::function<void(uint64_t)>& body);
 
+// body(begin, end) over [0, count) in chunks of `chunk`, on up to `threads` threads, for items
+// too small to hand out one at a time. Every item has its own slot, so the result is the same
+// for any number of threads.
+inline void forChunks(uint64_t count, uint64_t chunk, unsigned threads,
+                      const std::function<void(uint64_t, uint64_t)>& body) {
+  parallelFor((count + chunk - 1) / chunk, static_cast<int>(threads), [&](uint64_t c) {
+    body(c * chunk, count < (c + 1) * chunk ? count : (c + 1) * chunk);
+  });
+}
+
 }  // namespace prism

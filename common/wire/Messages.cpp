@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "image/DisplayBytes.h"
+#include "util/InstructionSet.h"
 #include "wire/FieldCodec.h"
 
 namespace prism::wire {
@@ -249,6 +250,19 @@ void ReadyMessage::check(const ReadyMessage& ready) {
   if (ready.startSeconds != -1.0) checkSeconds(ready.startSeconds, "start time");
   checkSeconds(ready.mpiInitSeconds, "MPI_Init time");
   if (ready.threads < 0) throw WireError("invalid thread count " + std::to_string(ready.threads));
+}
+
+void HelloMessage::check(const HelloMessage& hello) {
+  const uint32_t known = maskOf(InstructionSet::Baseline) | maskOf(InstructionSet::V2) |
+                         maskOf(InstructionSet::V3) | maskOf(InstructionSet::V4);
+  if ((hello.instructionSets & ~known) != 0 ||
+      !(hello.instructionSets & maskOf(InstructionSet::Baseline))) {
+    throw WireError("invalid instruction sets " + hex(hello.instructionSets, 8));
+  }
+  if (hello.cpu.size() > prism::kMaxCpuNameBytes) {
+    throw WireError("CPU name of " + std::to_string(hello.cpu.size()) + " bytes (at most " +
+                    std::to_string(prism::kMaxCpuNameBytes) + ")");
+  }
 }
 
 void ViewMessage::check(const ViewMessage& message) {

@@ -21,6 +21,7 @@
 #include "render/RenderView.h"
 #include "render/Tile.h"
 #include "scene/SceneDescription.h"
+#include "util/InstructionSet.h"
 #include "wire/ByteBuffer.h"
 #include "wire/Fields.h"
 #include "wire/MessageParts.h"
@@ -38,7 +39,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 9: a View's display exposure, and TileResults as display bytes for frames only shown.
 // 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
 // 11: PhotonRadiiJob, PhotonRadiiShare and PhotonRadii (the ranks find a map's radii together).
-inline constexpr uint16_t kVersion = 11;
+// 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
+inline constexpr uint16_t kVersion = 12;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -60,7 +62,8 @@ inline constexpr size_t kHeaderSize = 24;
   X(PhotonMapAgain, 14, PhotonMapAgainMessage)     \
   X(PhotonRadiiJob, 15, PhotonRadiiJobMessage)     \
   X(PhotonRadiiShare, 16, PhotonRadiiShareMessage) \
-  X(PhotonRadii, 17, PhotonRadiiMessage)
+  X(PhotonRadii, 17, PhotonRadiiMessage)           \
+  X(Hello, 18, HelloMessage)
 
 enum class MessageType : uint16_t {
 #define PRISM_WIRE_ENUMERATOR(name, number, Type) name = number,
@@ -237,6 +240,16 @@ struct ReadyMessage {
   double mpiInitSeconds = 0;
   PRISM_WIRE_FIELDS(buildSeconds, threads, startSeconds, mpiInitSeconds)
   static void check(const ReadyMessage& ready);  // times finite, not negative; threads ≥ 0
+};
+
+// Slave to master, before anything else: the instruction sets its CPU runs, so that rank 0 can
+// choose one for the whole job (util/InstructionSet.h) before any rank renders a pixel.
+struct HelloMessage {
+  // An InstructionSetMask; the baseline's bit always set.
+  uint32_t instructionSets = maskOf(InstructionSet::Baseline);
+  std::string cpu;  // the CPU's model name, for messages about this rank
+  PRISM_WIRE_FIELDS(instructionSets, cpu)
+  static void check(const HelloMessage& hello);  // known sets, the baseline's among them; name
 };
 
 struct ErrorMessage {

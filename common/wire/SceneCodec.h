@@ -22,7 +22,7 @@ struct Fields<CameraDesc> {
 template <>
 struct Fields<RenderSettings> {
   PRISM_WIRE_FIELDS(width, height, samplesPerPixel, maxDepth, minContribution, seed, exposure,
-                    triangleTest)
+                    triangleTest, instructionSet)
   static void check(const RenderSettings& render);  // validate(): what the parser refuses
 };
 

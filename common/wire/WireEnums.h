@@ -28,6 +28,18 @@ inline bool isKnown(TriangleTest t) {
   return false;
 }
 
+inline bool isKnown(InstructionSet isa) {
+  switch (isa) {
+    case InstructionSet::Auto:
+    case InstructionSet::Baseline:
+    case InstructionSet::V2:
+    case InstructionSet::V3:
+    case InstructionSet::V4:
+      return true;
+  }
+  return false;
+}
+
 inline bool isKnown(CausticMethod m) {
   switch (m) {
     case CausticMethod::None:
@@ -84,6 +96,9 @@ inline const char* enumName(Projection) {
 }
 inline const char* enumName(TriangleTest) {
   return "triangle test";
+}
+inline const char* enumName(InstructionSet) {
+  return "instruction set";
 }
 inline const char* enumName(CausticMethod) {
   return "caustic method";

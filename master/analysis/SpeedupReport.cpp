@@ -102,6 +102,7 @@ void writeSpeedupCsv(const SpeedupReport& r, std::ostream& out) {
       << r.samplesPerPixel << " spp; " << r.ranks << " MPI ranks (rank 0 coordinates), "
       << r.threadsPerRank << " thread(s) per slave, " << r.cores << " cores; medians of "
       << r.repeats << " runs\n";
+  out << "# kernels: " << r.instructionSet << "\n";
   out << "# T1 = " << formatNumber("%.6g", r.serialSeconds)
       << " s: 1 process, 1 thread, no MPI, tile " << r.serialTileSize
       << "; p = slaves x threads per slave; set-up not in seconds\n";
@@ -221,6 +222,7 @@ void printSpeedupTable(const SpeedupReport& r, std::ostream& out) {
   out << "  job: " << r.ranks << " ranks (rank 0 coordinates, " << r.ranks - 1 << " slaves x "
       << r.threadsPerRank << " thread(s)) on " << r.cores << " cores; every time is the median of "
       << r.repeats << " runs [min-max]\n";
+  out << "  kernels: " << r.instructionSet << "\n";
   const SpeedupSetup& s = r.setup;
   if (s.startSeconds >= 0.0) {
     out << "  start (rank 0, before the command): ";

@@ -95,6 +95,7 @@ struct SpeedupReport {
   int threadsPerRank = 1;
   int repeats = 0;
   int prefetch = 0;
+  std::string instructionSet;  // the kernels' set on every rank, and why (JobInstructionSet)
   SpeedupSetup setup;
   LinkMeasurement link;
   std::vector<SerialPoint> serial;

@@ -11,6 +11,7 @@
 #include "master/runtime/ScheduleNames.h"
 #include "scene/SettingLimits.h"
 #include "scene/SettingNames.h"
+#include "util/InstructionSet.h"
 #include "util/MemorySize.h"
 
 namespace prism {
@@ -93,6 +94,21 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
            "it saves)");
   addNamed(render, "--triangle-test", o.triangleTest, kTriangleTestNames,
            "Ray/triangle intersector: moller_trumbore (default), plane_inside or watertight");
+  render
+      ->add_option_function<std::string>(
+          "--isa",
+          [&o](const std::string& text) {
+            const std::optional<InstructionSet> isa = parseInstructionSet(text);
+            if (!isa) {
+              throw CLI::ValidationError("--isa", "unknown instruction set '" + text +
+                                                      "' (expected auto, x86-64, v2, v3 or v4)");
+            }
+            o.instructionSet = *isa;
+          },
+          "Instruction set of the ray kernels on every rank: auto (default: the best every rank "
+          "runs), x86-64 (the baseline, SSE2), v2, v3 (AVX2) or v4 (AVX-512); refused where a "
+          "rank's CPU lacks it. The run summary says which ran (docs/performance.md)")
+      ->option_text("auto|x86-64|v2|v3|v4");
   render
       ->add_option("--tile-size", o.distribution.tileSize,
                    "Tile edge in pixels (default 0: automatic)")

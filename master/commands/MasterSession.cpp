@@ -46,6 +46,10 @@ bool MasterSession::load(const std::function<void()>& check) {
     const auto start = SteadyClock::now();
     description_ = loadSceneWithOverrides(options_);
     setUp_.parseSeconds = secondsSince(start);
+    // After the parse, which the slaves' start-up overlaps: their Hellos are waiting by now.
+    setUp_.instructionSet =
+        chooseJobInstructionSet(transport_, options_.instructionSet, kSceneBroadcastTimeoutSeconds);
+    description_.render.instructionSet = setUp_.instructionSet.chosen;
     return true;
   } catch (const std::exception& e) {
     refuse(e.what());

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "master/commands/RenderOptions.h"
+#include "master/runtime/JobInstructionSet.h"
 #include "master/runtime/WorkDispatcher.h"
 #include "scene/Scene.h"
 #include "scene/SceneDescription.h"
@@ -42,6 +43,7 @@ struct SessionSetUp {
   double broadcastSeconds = 0.0;
   size_t broadcastBytes = 0;
   double buildSeconds = 0.0;
+  JobInstructionSet instructionSet;  // what the kernels run on every rank, and why
 };
 
 class MasterSession {
@@ -53,8 +55,9 @@ class MasterSession {
   MasterSession& operator=(const MasterSession&) = delete;
 
   // Runs the command's own checks of its arguments (output paths: `check` throws to refuse),
-  // then loads the scene. On failure the error is printed ("prism: error: ..."), the slaves
-  // get it instead of a scene and stop, and false is returned: the command exits with 1.
+  // then loads the scene and chooses the job's instruction set from every rank's Hello. On failure
+  // the error is printed ("prism: error: ..."), the slaves get it instead of a scene and stop, and
+  // false is returned: the command exits with 1.
   bool load(const std::function<void()>& check = {});
   // Refuses the run before any scene is loaded, as load() does on failure. Returns 1.
   int refuse(const std::string& why);

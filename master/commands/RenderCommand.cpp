@@ -120,6 +120,7 @@ int renderAndWrite(MasterSession& session, const std::string& output, SteadyCloc
     summary.broadcastSeconds = setUp.broadcastSeconds;
     summary.broadcastBytes = setUp.broadcastBytes;
     summary.buildSeconds = setUp.buildSeconds;
+    summary.instructionSet = setUp.instructionSet.describe();
     summary.writeSeconds = writeSeconds;
     summary.scenePath = options.scenePath;
     summary.outputPath = output;

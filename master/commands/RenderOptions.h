@@ -21,6 +21,8 @@ struct RenderOptions {
   std::optional<uint64_t> seed;
   std::optional<float> exposure;
   std::optional<TriangleTest> triangleTest;
+  // The kernels' instruction set: Auto (the best every rank runs) or one forced with --isa.
+  InstructionSet instructionSet = InstructionSet::Auto;
   // The camera's position and look-at point (what the viewer prints for the view it saved).
   std::optional<Vec3> cameraPosition, lookAt;
   // Caustics: override the scene's `caustics` section.

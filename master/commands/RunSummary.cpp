@@ -183,6 +183,7 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
       << formatBytes(static_cast<double>(g.accelerationBytes())) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "
       << milliseconds(g.bvh.seconds) << " (scene build " << milliseconds(s.buildSeconds) << ")\n"
+      << "kernels   " << s.instructionSet << "\n"
       << "image     " << r.width << "x" << r.height << ", " << r.samplesPerPixel
       << " spp, max depth " << r.maxDepth << ", " << f.tileCount << " tiles of " << f.tileSize
       << " px\n";

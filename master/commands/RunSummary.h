@@ -24,6 +24,7 @@ struct RunSummary {
   double broadcastSeconds = 0.0;  // MPI runs only
   size_t broadcastBytes = 0;
   double buildSeconds = 0.0;
+  std::string instructionSet;  // JobInstructionSet::describe(): the kernels' set, and why
   double writeSeconds = 0.0;
   double totalSeconds = 0.0;
 };

@@ -188,6 +188,7 @@ void recordSetUp(MasterSession& session, SpeedupReport& report) {
   report.setup.broadcastSeconds = setUp.broadcastSeconds;
   report.setup.broadcastBytes = setUp.broadcastBytes;
   report.setup.buildSeconds = setUp.buildSeconds;
+  report.instructionSet = setUp.instructionSet.describe();
   const RenderSettings& settings = session.scene().settings();
   report.width = settings.width;
   report.height = settings.height;

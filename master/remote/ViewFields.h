@@ -71,9 +71,9 @@ template <>
 struct Fields<ViewerStart> {
   static void fields(auto& self, auto&& visit) {
     auto& [sceneName, width, height, exposure, home, view, resume, causticMapsRefusal,
-           lightSpaceRefusal] = self;
+           lightSpaceRefusal, instructionSet] = self;
     visit(sceneName, width, height, exposure, home, view, flag(resume, "resume flag"),
-          causticMapsRefusal, lightSpaceRefusal);
+          causticMapsRefusal, lightSpaceRefusal, instructionSet);
   }
   // A frame of 1 to 16384 pixels a side, a positive finite exposure.
   static void check(const ViewerStart& start);

@@ -220,6 +220,8 @@ class LiveRenderer final : private FrameListener {
   std::shared_ptr<const CausticMapEstimator> causticMaps(bool blur);
   // Why the scene's caustic maps would not fit in LiveOptions::memoryLimit; nothing when they do.
   const std::optional<std::string>& causticMapsRefusal() const { return mapsRefusal_; }
+  // The scene rank 0 renders with (its kernels' instruction set is the job's).
+  const Scene& scene() const { return scene_; }
 
   // The seed of full-resolution pass p ≥ 1: pass 1 keeps the scene's seed.
   static uint64_t passSeed(uint64_t sceneSeed, int pass);

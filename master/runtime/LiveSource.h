@@ -31,6 +31,8 @@ struct ViewerStart {
   std::string causticMapsRefusal;
   // Why the light-space images of the caustic maps cannot be shown here ("" : they can).
   std::string lightSpaceRefusal;
+  // The ray kernels' instruction set on every rank ("x86-64-v4"; util/InstructionSet.h).
+  std::string instructionSet;
 };
 
 // Called when news waits to be taken. urgent: a pass began or completed (a viewer shows that at

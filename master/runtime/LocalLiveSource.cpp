@@ -21,6 +21,9 @@ ViewerStart LocalLiveSource::startOf(const SceneDescription& description,
   start.home = description.camera;
   start.view = initialView(description);
   start.causticMapsRefusal = renderer.causticMapsRefusal().value_or("");
+  // Rank 0 chose it for the job (master/runtime/JobInstructionSet.h) before the scene went out;
+  // its scene runs it (Auto resolved).
+  start.instructionSet = instructionSetName(renderer.scene().instructionSet());
   return start;
 }
 

@@ -33,8 +33,8 @@
 #include <thread>
 #include <vector>
 
-#include "accel/Simd.h"
 #include "math/Random.h"
+#include "math/Simd.h"
 #include "parse/ObjLoader.h"
 #include "scene/Scene.h"
 #include "tests/common/geometry/TestMeshes.h"
@@ -421,9 +421,11 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
   const Scene prismWatertight(watertightDescription, Traversal::WideSimd);
   const Scene prismLeaves(d, Traversal::WideScalarLeaves);
   const Scene prismBinary(d, Traversal::BinaryScalar);
-  // The packet walks held to four rays a vector (SSE2), beside the AVX2 walk chosen at run time.
-  Scene prismFourLanes(d, Traversal::WideSimd);
-  prismFourLanes.setPacketLanes(4);
+  // The baseline's kernels (x86-64, SSE2), beside the best set this CPU runs, chosen at run time.
+  Scene prismBaseline(d, Traversal::WideSimd);
+  prismBaseline.useInstructionSet(InstructionSet::Baseline);
+  const bool baselineApart = prism.instructionSet() != InstructionSet::Baseline;
+  const std::string chosen = std::string(" (") + instructionSetName(prism.instructionSet()) + ")";
 
   const Aabb bounds = meshBounds(mesh);
   const int width = options.quick ? 256 : 1024, height = options.quick ? 192 : 768;
@@ -461,7 +463,10 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
         return hits;
       };
     };
-    contenders.push_back({"Prism wide+SIMD", prismTracer(prism), {}, {}});
+    contenders.push_back({"Prism wide+SIMD" + chosen, prismTracer(prism), {}, {}});
+    if (baselineApart) {
+      contenders.push_back({"Prism wide+SIMD (x86-64)", prismTracer(prismBaseline), {}, {}});
+    }
     // Eight consecutive rays at a time: half a 4 × 4 pixel tile for primary and shadow rays.
     auto prismPackets = [shadow](const Scene& scene) -> Tracer {
       return [&scene, shadow](const std::vector<Ray>& rays, size_t b, size_t e) {
@@ -480,13 +485,9 @@ void benchmarkMesh(const MeshDesc& mesh, const Options& options) {
         return hits;
       };
     };
-    contenders.push_back({std::string("Prism packet8") +
-                              (prism.packetLanes() == 8 ? " (AVX2, chosen at run time)" : ""),
-                          prismPackets(prism),
-                          {},
-                          {}});
-    if (prism.packetLanes() == 8) {
-      contenders.push_back({"Prism packet8 (SSE2)", prismPackets(prismFourLanes), {}, {}});
+    contenders.push_back({"Prism packet8" + chosen, prismPackets(prism), {}, {}});
+    if (baselineApart) {
+      contenders.push_back({"Prism packet8 (x86-64)", prismPackets(prismBaseline), {}, {}});
     }
     contenders.push_back({"Prism watertight", prismTracer(prismWatertight), {}, {}});
     if (options.withVariants) {
@@ -650,10 +651,9 @@ int run(int argc, char** argv) {
     }
   }
   std::printf(
-      "# Prism (%s kernels, packets %s) against Embree %d.%d.%d (device config \"%s\"); %d "
-      "rounds, medians\n",
-      simd::compiledInstructionSet(),
-      simd::cpuHasAvx2() ? "avx2 chosen at run time" : "as the kernels", RTC_VERSION_MAJOR,
+      "# Prism (%s kernels, the best this CPU runs; x86-64 beside them) against Embree %d.%d.%d "
+      "(device config \"%s\"); %d rounds, medians\n",
+      instructionSetName(bestInstructionSet(runnableInstructionSets())), RTC_VERSION_MAJOR,
       RTC_VERSION_MINOR, RTC_VERSION_PATCH, options.embreeConfig.c_str(), options.runs);
   std::vector<MeshDesc> meshes;
   if (options.generatedMeshes) {

@@ -27,10 +27,10 @@ run() {  # NAME COMMAND...: one run, its realtime line parsed into a row
     tail -5 "$out/log" >&2
     return 1
   fi
-  sed -n "s/^realtime  \([0-9.]*\) frames\/s at \([0-9x]*\), frame time median \([0-9.]*\) ms, p95 \([0-9.]*\) ms, \([0-9]*\) frames at full resolution/$name \1 \3 \4 \5/p" \
+  sed -n "s/^realtime  \([0-9.]*\) frames\/s at \([0-9x]*\), frame time median \([0-9.]*\) ms, p95 \([0-9.]*\) ms, \([0-9]*\) frames at full resolution, \([0-9.]*\) Mrays\/s/$name \1 \3 \4 \5 \6/p" \
     "$out/log" | tee -a "$out/rows"
 }
-echo "variant fps median_ms p95_ms full_res_frames"
+echo "variant fps median_ms p95_ms full_res_frames mrays_per_s"
 for ((round = 1; round <= rounds; round++)); do
   run 1x2 "$prism" view "${args[@]}" --threads 2 "${moves[@]}"
   run 1x2-nopipe "$prism" view "${args[@]}" --threads 2 --no-pipeline "${moves[@]}"

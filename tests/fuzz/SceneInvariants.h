@@ -4,8 +4,8 @@
 #pragma once
 
 #include "fuzz/Harnesses.h"
-#include "scene/SceneDescription.h"
 #include "scene/FileLoc.h"
+#include "scene/SceneDescription.h"
 
 namespace prism::fuzz {
 

@@ -30,6 +30,7 @@
 #include "master/runtime/LocalLiveSource.h"
 #include "master/runtime/ResourceCheck.h"
 #include "parse/SceneLoader.h"
+#include "util/InstructionSet.h"
 
 namespace prism {
 namespace {
@@ -352,6 +353,7 @@ TEST(MainWindow, StatsPanelReceivesPerRankNumbers) {
   s.lastPassBusySeconds = 2.0;
   s.totalThreads = 4;
   StatsPanel panel;
+  panel.setInstructionSet("x86-64-v3");
   panel.showStats(s);
   ASSERT_EQ(panel.rankTable()->rowCount(), 3);
   EXPECT_EQ(panel.rankTable()->item(1, 2)->text(), "20");
@@ -361,6 +363,7 @@ TEST(MainWindow, StatsPanelReceivesPerRankNumbers) {
   ASSERT_EQ(panel.liveSpeedup()->count(), 1);
   EXPECT_EQ(panel.liveSpeedup()->at(0), QPointF(4.0, 4.0));  // 2 thread-s in 0.5 s on 4 threads
   EXPECT_TRUE(panel.summaryText().contains("efficiency 1.00"));
+  EXPECT_TRUE(panel.summaryText().contains("kernels      x86-64-v3\n"));
 
   panel.setSpeedupTable({{1, 4.0, 1.0, 1.0}, {2, 2.5, 1.6, 0.8}}, "x.csv");
   ASSERT_EQ(panel.csvSpeedup()->count(), 2);
@@ -384,6 +387,11 @@ TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
   ASSERT_TRUE(waitUntil([&] {
     return w.statsPanel()->summaryText().contains("photons/s (20000 per pass)");
   })) << w.statsPanel()->summaryText().toStdString();
+  // The job's kernels: with one process, the best this CPU runs.
+  const QString kernels = QString("kernels      ") +
+                          instructionSetName(bestInstructionSet(runnableInstructionSets())) + "\n";
+  EXPECT_TRUE(w.statsPanel()->summaryText().contains(kernels))
+      << w.statsPanel()->summaryText().toStdString();
 
   const uint64_t view = w.viewId();
   const uint32_t frame = w.frame().frame();

@@ -107,8 +107,10 @@ TEST_F(Viewer, TheMoveBenchmarkPrintsItsLineForScripts) {
   ASSERT_EQ(run.exitCode, 0) << run.output;
   const std::regex line(
       R"re((^|\n)realtime  [0-9.]+ frames/s at 96x54, frame time median [0-9.]+ ms, )re"
-      R"re(p95 [0-9.]+ ms, [0-9]+ frames at full resolution\n)re");
-  EXPECT_TRUE(std::regex_search(run.output, line)) << run.output;
+      R"re(p95 [0-9.]+ ms, [0-9]+ frames at full resolution, ([0-9.]+) Mrays/s\n)re");
+  std::smatch found;
+  ASSERT_TRUE(std::regex_search(run.output, found, line)) << run.output;
+  EXPECT_GT(std::stod(found[2].str()), 0.0) << run.output;  // rays were traced while moving
   EXPECT_NE(run.output.find("benchmark  6 camera moves, one every 150 ms"), std::string::npos)
       << run.output;
   const std::regex latency(R"re(\nlatency    median [0-9.e+-]+ ms, p95 [0-9.e+-]+ ms )re"

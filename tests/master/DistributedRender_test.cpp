@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "PrismProcess.h"
+#include "SamePixels.h"
 #include "image/ImageIo.h"
 
 namespace prism {
@@ -24,10 +25,7 @@ namespace {
 const std::string kScene =
     std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 96 -H 54 --spp 2";
 
-bool samePixels(const ImageRgb& a, const ImageRgb& b) {
-  return a.width == b.width && a.height == b.height &&
-         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
-}
+using test::samePixels;
 
 class DistributedRender : public test::ScratchFolderTest {
  protected:

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cluster/DistributionOptions.h"
+#include "master/runtime/JobInstructionSet.h"
 #include "scene/SceneDescription.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
@@ -26,12 +27,20 @@ inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitC
   });
 }
 
+// Rank 0's side of the start of a job whose slaves have started: their Hellos, the job's
+// instruction set chosen from them (the best all run), and the scene broadcast with it.
+inline void sendSceneAsRankZero(LoopbackNetwork& network, SceneDescription d) {
+  d.render.instructionSet =
+      chooseJobInstructionSet(&network.endpoint(0), d.render.instructionSet, 10.0).chosen;
+  std::vector<uint8_t> bytes = wire::encodeScene(d);
+  network.endpoint(0).broadcast(bytes, 10.0);
+}
+
 // A real slave on rank 1 of `network` that has been sent the scene, as rank 0 sends it.
 inline std::thread startRealSlaveWithScene(LoopbackNetwork& network, const SceneDescription& d,
                                            int* exitCode, const MemoryLimit& memoryLimit = {}) {
   std::thread slave = startRealSlave(network, 1, exitCode, memoryLimit);
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
+  sendSceneAsRankZero(network, d);
   return slave;
 }
 

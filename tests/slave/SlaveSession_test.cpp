@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "slave/SlaveUnderTest.h"
+#include "util/InstructionSet.h"
 
 namespace prism {
 namespace {
@@ -13,13 +14,18 @@ namespace {
 using test::SlaveUnderTest;
 using Type = wire::MessageType;
 
-TEST(SlaveSession, SaysReadyWithItsThreadsOnceTheSceneIsBuilt) {
+// First what its CPU runs (before the scene, so rank 0 can choose the job's instruction set),
+// then Ready once the scene is built.
+TEST(SlaveSession, SaysHelloFirstAndReadyWithItsThreadsOnceTheSceneIsBuilt) {
   SlaveUnderTest slave;
   slave.broadcast(test::smallScene());
+  ASSERT_TRUE(slave.hello());
+  EXPECT_EQ(slave.hello()->instructionSets, runnableInstructionSets());
+  EXPECT_EQ(slave.hello()->cpu, cpuModelName());
   const std::optional<wire::Message> ready = slave.next(Type::Ready);
   ASSERT_TRUE(ready);
   EXPECT_EQ(wire::decode<wire::ReadyMessage>(*ready).threads, 1);
-  EXPECT_EQ(slave.seen().front(), Type::Ready);  // nothing before it
+  EXPECT_EQ(slave.seen().front(), Type::Ready);  // nothing between Hello and Ready
 }
 
 TEST(SlaveSession, AShutdownIsAcknowledgedAndTheSessionEnds) {

@@ -71,10 +71,22 @@ class SlaveUnderTest {
   LoopbackNetwork& network() { return network_; }
 
   void broadcast(const SceneDescription& d) { broadcastBytes(wire::encodeScene(d)); }
+  // As rank 0 does: the slave's Hello first (master/runtime/JobInstructionSet.h), kept apart
+  // from seen(), then the broadcast.
   void broadcastBytes(std::vector<uint8_t> bytes) {
+    if (const auto incoming = master().waitForMessage(10.0)) {
+      const wire::Message message = wire::decodeMessage(incoming->bytes);
+      if (message.type == wire::MessageType::Hello) {
+        hello_ = wire::decode<wire::HelloMessage>(message);
+      } else {
+        seen_.push_back(message.type);
+      }
+    }
     broadcast_ = true;
     master().broadcast(bytes, 10.0);
   }
+  // The slave's Hello, once a broadcast took it.
+  const std::optional<wire::HelloMessage>& hello() const { return hello_; }
   void send(std::vector<uint8_t> bytes) { master().send(1, std::move(bytes)); }
 
   // The next message of `type` the slave sends within timeoutSeconds; every message read on the
@@ -117,6 +129,7 @@ class SlaveUnderTest {
  private:
   LoopbackNetwork network_{2};
   bool broadcast_ = false;
+  std::optional<wire::HelloMessage> hello_;
   SlaveEnd end_{-1};
   std::vector<wire::MessageType> seen_;
   std::vector<std::vector<uint8_t>> raw_;

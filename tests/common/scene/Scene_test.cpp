@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "../geometry/TestMeshes.h"
+#include "accel/PrimitiveRef.h"
 #include "master/runtime/FrameRenderer.h"
 #include "math/Random.h"
 #include "parse/SceneLoader.h"
-#include "scene/PrimitiveRef.h"
 
 namespace prism {
 namespace {
@@ -566,23 +566,21 @@ SceneDescription spheresOverAPlane() {
 // Packets of eight give each ray the answer it gets alone, bit for bit (t, primitive, u, v):
 // coherent packets (a 4 × 2 pixel block of a camera; from below the floor plane, shadow-like
 // packets towards a point) and incoherent ones (random rays), some rays dead (tMax < tMin),
-// under both triangle tests the packs serve and in a scene of spheres over a plane, with four
-// rays to a vector (SSE2) and, where the CPU has AVX2, eight (the walk compiled for AVX2, chosen
-// at run time).
+// under both triangle tests the packs serve and in a scene of spheres over a plane, with the
+// kernels of every instruction set this CPU runs (four rays to a vector up to x86-64-v2, eight
+// from x86-64-v3 on).
 TEST(SceneTraversal, PacketsOfEightAnswerAsSingleRays) {
   std::vector<std::pair<std::string, SceneDescription>> scenes;
   scenes.emplace_back("meshes, Moller-Trumbore", traversalScene(TriangleTest::MollerTrumbore));
   scenes.emplace_back("meshes, watertight", traversalScene(TriangleTest::Watertight));
   scenes.emplace_back("spheres over a plane", spheresOverAPlane());
-  std::vector<int> laneCounts{4};
-  if (simd::cpuHasAvx2()) laneCounts.push_back(8);
   for (const auto& [name, d] : scenes) {
     int hits = 0, sphereHits = 0, blockedCount = 0, planeHits[2] = {0, 0};
-    for (int lanes : laneCounts) {
+    for (InstructionSet isa : instructionSetsIn(runnableInstructionSets())) {
       Scene scene(d);
-      scene.setPacketLanes(lanes);
-      ASSERT_EQ(scene.packetLanes(), lanes);
-      const std::string where = name + ", " + std::to_string(lanes) + " lanes, round ";
+      scene.useInstructionSet(isa);
+      ASSERT_EQ(scene.instructionSet(), isa);
+      const std::string where = name + ", " + instructionSetName(isa) + ", round ";
       Pcg32 rng(23, 4);
       for (int round = 0; round < 6000; ++round) {
         Ray rays[8];
@@ -678,15 +676,29 @@ TEST(SceneTraversal, CoherentDirectionsAgreeInSignAndSpreadLittle) {
   EXPECT_TRUE(Scene::coherentDirections(signs, 0x3u));
 }
 
-TEST(SceneTraversal, PacketLanesAreFourOrEight) {
+// The kernels are chosen per scene: Auto takes the best this process runs, a set it cannot
+// run is refused by name, and the packet tests take eight rays to a vector from x86-64-v3 on.
+TEST(SceneTraversal, KernelsOfEveryRunnableInstructionSet) {
   Scene scene(traversalScene(TriangleTest::MollerTrumbore));
-  EXPECT_EQ(scene.packetLanes(), simd::cpuHasAvx2() ? 8 : 4);
-  EXPECT_THROW(scene.setPacketLanes(16), std::invalid_argument);
-  if (!simd::cpuHasAvx2()) {
-    EXPECT_THROW(scene.setPacketLanes(8), std::invalid_argument);
+  EXPECT_EQ(scene.instructionSet(), bestInstructionSet(runnableInstructionSets()));
+  EXPECT_EQ(scene.settings().instructionSet, scene.instructionSet());  // Auto resolved
+  for (InstructionSet isa : instructionSetsIn(runnableInstructionSets())) {
+    scene.useInstructionSet(isa);
+    EXPECT_EQ(scene.instructionSet(), isa);
+    EXPECT_EQ(scene.packetLanes(), isa >= InstructionSet::V3 ? 8 : 4) << instructionSetName(isa);
   }
-  scene.setPacketLanes(4);
-  EXPECT_EQ(scene.packetLanes(), 4);
+  for (InstructionSet isa : {InstructionSet::V2, InstructionSet::V3, InstructionSet::V4}) {
+    if (runnableInstructionSets() & maskOf(isa)) continue;
+    try {
+      scene.useInstructionSet(isa);
+      ADD_FAILURE() << instructionSetName(isa) << " accepted on a CPU that cannot run it";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(instructionSetName(isa)), std::string::npos) << e.what();
+    }
+  }
+  SceneDescription d = traversalScene(TriangleTest::MollerTrumbore);
+  d.render.instructionSet = InstructionSet::Baseline;
+  EXPECT_EQ(Scene(d).instructionSet(), InstructionSet::Baseline);
 }
 
 }  // namespace

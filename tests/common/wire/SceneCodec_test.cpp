@@ -21,7 +21,15 @@ SceneDescription fullScene() {
   d.camera = {
       Projection::Orthographic, {1, 2, 3}, {-1, 0.5f, -0.0f}, {0, 0, 1}, 60.5f, 4.5f, 0.125f,
       {"everything.yaml", 2, 3}};
-  d.render = {321, 203, 16, 7, 0.01f, 12345678901234ull, 2.5f, TriangleTest::PlaneThenInside};
+  d.render = {321,
+              203,
+              16,
+              7,
+              0.01f,
+              12345678901234ull,
+              2.5f,
+              TriangleTest::PlaneThenInside,
+              InstructionSet::V3};
   d.caustics = {CausticMethod::PhotonMap,
                 0x1'0000'0007ull,
                 37,
@@ -179,6 +187,7 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
   EXPECT_EQ(a.render.seed, b.render.seed);
   EXPECT_SAME_FLOAT(a.render.exposure, b.render.exposure);
   EXPECT_EQ(a.render.triangleTest, b.render.triangleTest);
+  EXPECT_EQ(a.render.instructionSet, b.render.instructionSet);
 
   EXPECT_EQ(a.caustics.method, b.caustics.method);
   EXPECT_EQ(a.caustics.photons, b.caustics.photons);
@@ -316,9 +325,9 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(MeshDesc), 160u) << update;
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
-  EXPECT_EQ(sizeof(RenderSettings), 40u) << update;
+  EXPECT_EQ(sizeof(RenderSettings), 48u) << update;
   EXPECT_EQ(sizeof(CausticSettings), 88u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 824u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 832u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -339,6 +348,9 @@ TEST(SceneCodec, UnknownEnumValuesAreRejected) {
   d = fullScene();
   d.render.triangleTest = static_cast<TriangleTest>(-1);
   expectWireError(d, "invalid triangle test 4294967295");
+  d = fullScene();
+  d.render.instructionSet = static_cast<InstructionSet>(5);
+  expectWireError(d, "invalid instruction set 5");
   d = fullScene();
   d.caustics.method = static_cast<CausticMethod>(3);
   expectWireError(d, "invalid caustic method 3");

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <thread>
 
@@ -80,7 +81,14 @@ TEST_F(SpeedupCommand, ThreeRanksWriteEveryPointChartsAndProjection) {
             std::string::npos)
       << run.output;
 
+  EXPECT_NE(run.output.find("  kernels: x86-64"), std::string::npos) << run.output;
+
   const SpeedupOutputs files = speedupOutputs(prefix);
+  {
+    std::ifstream csv(files.csv);
+    const std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\n# kernels: x86-64"), std::string::npos) << text;
+  }
   const auto rows = csvRows(files.csv);
   ASSERT_EQ(rows.size(), 1u + 2 * 2) << "header + 2 schedules x p = 1, 2";
   EXPECT_EQ(rows[0], speedupCsvColumns());

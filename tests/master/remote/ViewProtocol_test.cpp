@@ -57,15 +57,15 @@ TEST(ViewProtocol, TheHeaderIsCheckedBeforeThePayload) {
   std::vector<uint8_t> hello = fuzz::viewExamples().front().second;
   // Another protocol version: its own error, which names both versions.
   std::vector<uint8_t> newer = hello;
-  newer[4] = 2;
+  newer[4] = static_cast<uint8_t>(kVersion + 1);
   try {
     decodeAll(newer);
     FAIL() << "a newer version was accepted";
   } catch (const VersionMismatch& e) {
-    EXPECT_EQ(e.version, 2);
-    EXPECT_STREQ(e.what(),
-                 "protocol version 2, this Prism speaks version 1: use the same Prism release on "
-                 "both sides");
+    EXPECT_EQ(e.version, kVersion + 1);
+    EXPECT_EQ(std::string(e.what()), "protocol version " + std::to_string(kVersion + 1) +
+                                         ", this Prism speaks version " + std::to_string(kVersion) +
+                                         ": use the same Prism release on both sides");
   }
   // A cluster message, or anything else.
   std::vector<uint8_t> other = hello;

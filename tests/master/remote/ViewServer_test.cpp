@@ -252,15 +252,15 @@ TEST(ViewServer, GarbageOtherVersionsAndOversizedLengthsAreRefused) {
             "not a Prism viewer message (it does not start with PRSV)");
   std::vector<uint8_t> hello = view::encode(view::HelloMessage{job.info().token, "test"});
   std::vector<uint8_t> newer = hello;
-  newer[4] = 2;
+  newer[4] = static_cast<uint8_t>(view::kVersion + 1);
+  const std::string speaks = ", this Prism speaks version " + std::to_string(view::kVersion) +
+                             ": use the same Prism release on both sides";
   EXPECT_EQ(reasonIn(sendRaw(job.info(), newer)),
-            "protocol version 2, this Prism speaks version 1: use the same Prism release on both "
-            "sides");
+            "protocol version " + std::to_string(view::kVersion + 1) + speaks);
   std::vector<uint8_t> older = hello;
-  older[4] = 0;
+  older[4] = static_cast<uint8_t>(view::kVersion - 1);
   EXPECT_EQ(reasonIn(sendRaw(job.info(), older)),
-            "protocol version 0, this Prism speaks version 1: use the same Prism release on both "
-            "sides");
+            "protocol version " + std::to_string(view::kVersion - 1) + speaks);
   std::vector<uint8_t> huge(hello.begin(), hello.begin() + view::kHeaderSize);
   for (int i = 0; i < 8; ++i) huge[8 + i] = i == 4 ? 1 : 0;  // 4 GiB of Hello
   EXPECT_EQ(reasonIn(sendRaw(job.info(), huge)), "Hello of 4294967296 bytes, the limit is 4096");

@@ -263,8 +263,7 @@ TEST(WorkDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   for (int r = 1; r < 3; ++r) {
     slaves.push_back(test::startRealSlave(network, r, &exitCodes[static_cast<size_t>(r)]));
   }
-  std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
+  test::sendSceneAsRankZero(network, d);
   // Rank 0 renders no tiles here, so the slaves' share cannot depend on how fast they start.
   const FrameOptions distributed = options(false, 2.0, 60.0);
   WorkDispatcher dispatcher(scene, &network.endpoint(0), distributed.distribution);

@@ -22,6 +22,15 @@ using Int4 = int32_t __attribute__((vector_size(16)));
 using Float8 = float __attribute__((vector_size(32)));
 using Int8 = int32_t __attribute__((vector_size(32)));
 
+// The vector of the packet walks' tests (accel/PacketWalk.cpp): eight rays where AVX2 compares
+// them in one instruction, else four (GCC splits an eight-lane comparison without AVX into one
+// scalar comparison per lane). A kernel compiled per instruction set gets its set's width.
+#if defined(__AVX2__)
+using PacketVector = Float8;
+#else
+using PacketVector = Float4;
+#endif
+
 template <class V>
 inline V load(const float* p) {
   V v;
@@ -263,17 +272,6 @@ inline bool cpuRunsThisBuild() {
 #endif
 #endif
   return true;
-}
-
-// Whether this CPU has AVX2 (and the operating system keeps its registers), so kernels compiled
-// for it with a target attribute may run. Asked once.
-inline bool cpuHasAvx2() {
-#if defined(__x86_64__) || defined(__i386__)
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-#else
-  return false;
-#endif
 }
 
 }  // namespace prism::simd

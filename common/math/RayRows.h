@@ -6,8 +6,8 @@
 
 #include <cstddef>
 
-#include "accel/Simd.h"
 #include "math/Ray.h"
+#include "math/Simd.h"
 
 namespace prism::simd {
 

@@ -1,4 +1,4 @@
-#include "accel/Simd.h"
+#include "math/Simd.h"
 
 #include <gtest/gtest.h>
 
