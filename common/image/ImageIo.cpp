@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <array>
 #include <filesystem>
 #include <stdexcept>
 
@@ -10,7 +9,6 @@
 #include "image/OiioModule.h"
 #include "image/PngFile.h"
 #include "image/ToneMap.h"
-#include "util/HugePages.h"
 
 namespace prism {
 namespace {
@@ -50,26 +48,6 @@ std::vector<uint8_t> displayBytes(const ImageRgb& image, float exposure) {
 // Integer formats hold display-encoded (sRGB) values; float formats hold linear radiance.
 void linearise(ImageRgb& image) {
   for (Color& c : image.pixels) c = Color(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z));
-}
-
-// Display-encoded bytes to linear radiance: byte·(1/255), as OpenImageIO converts bytes to floats,
-// then the sRGB curve. A byte has 256 values, so the curve is evaluated once per value, not
-// once per channel (pow() for every texel was 60 ms of reading the default scene's sky).
-ImageRgb linearFromBytes(const PngBytes& png) {
-  std::array<float, 256> linear;
-  for (int b = 0; b < 256; ++b) linear[b] = srgbToLinear(static_cast<float>(b) * (1.0f / 255.0f));
-  ImageRgb image;
-  image.width = png.width;
-  image.height = png.height;
-  // On huge pages where it is large (a 1024² sky face is 12 MiB of floats): in 4 KiB pages the
-  // first touches of the default scene's six faces were a third of its start-up.
-  reserveOnHugePages(image.pixels, static_cast<size_t>(png.width) * png.height);
-  image.pixels.resize(static_cast<size_t>(png.width) * png.height);
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    const uint8_t* p = &png.rgb[3 * i];
-    image.pixels[i] = Color(linear[p[0]], linear[p[1]], linear[p[2]]);
-  }
-  return image;
 }
 
 void writeWithOpenImageIo(const ImageRgb& image, const std::string& path,
@@ -201,11 +179,20 @@ std::string readImageText(const std::string& path, const std::string& name) {
   return {};
 }
 
+std::optional<SrgbImage> readSrgbImage(const std::string& path) {
+  if (formatOf(path) != Format::kPng) return std::nullopt;
+  try {
+    return readPng(path);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot read image '" + path + "': " + e.what());
+  }
+}
+
 ImageRgb readImage(const std::string& path) {
   try {
     switch (formatOf(path)) {
       case Format::kPng:
-        if (auto png = readPng(path)) return linearFromBytes(*png);
+        if (auto png = readPng(path)) return linearFromSrgb(*png);
         break;  // a PNG of another kind
       case Format::kExr:
         if (auto exr = readExr(path)) return std::move(*exr);

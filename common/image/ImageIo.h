@@ -5,11 +5,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "image/ImageRgb.h"
+#include "image/SrgbImage.h"
 
 namespace prism {
 
@@ -33,6 +35,11 @@ std::string readImageText(const std::string& path, const std::string& name);
 // Reads any format OpenImageIO knows into linear RGB (sRGB-encoded 8-bit files are linearised).
 // Throws std::runtime_error naming the file.
 ImageRgb readImage(const std::string& path);
+
+// The file's bytes where it is an 8-bit sRGB image that libpng reads (RGB or grey PNG), for
+// callers that keep them as bytes (cube-map faces); nullopt for any other file (readImage reads
+// those). Throws std::runtime_error naming the file for a missing or corrupt PNG.
+std::optional<SrgbImage> readSrgbImage(const std::string& path);
 
 // readImage through OpenImageIO whatever the format (loads the module): what readImage gives for
 // formats libpng and OpenEXR do not read here, and the yardstick the tests hold those readers to.

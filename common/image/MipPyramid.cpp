@@ -1,7 +1,10 @@
 #include "image/MipPyramid.h"
 
 #include <algorithm>
+#include <array>
 #include <utility>
+
+#include "util/HugePages.h"
 
 namespace prism {
 
@@ -27,20 +30,23 @@ std::vector<std::vector<Tap>> boxTaps(int from, int to) {
   return taps;
 }
 
-}  // namespace
-
-ImageRgb halved(const ImageRgb& image) {
+// The level above a source of width × height texels read by source.at(x, y) (a Color).
+template <class Source>
+ImageRgb halvedFrom(const Source& image) {
   const int width = std::max(1, image.width / 2), height = std::max(1, image.height / 2);
   if (image.width == 2 * width && image.height == 2 * height) {
     // Even sides (every level of a power-of-two face): each texel the mean of a 2 × 2 block,
-    // in one pass.
-    ImageRgb result(width, height);
+    // in one pass, appended (not written over zeros: the zeroing and its page faults cost as
+    // much as the averaging).
+    ImageRgb result;
+    result.width = width;
+    result.height = height;
+    reserveOnHugePages(result.pixels, static_cast<size_t>(width) * height);
     for (int y = 0; y < height; ++y) {
-      const Color* top = &image.pixels[static_cast<size_t>(2 * y) * image.width];
-      const Color* bottom = top + image.width;
-      Color* out = &result.pixels[static_cast<size_t>(y) * width];
       for (int x = 0; x < width; ++x) {
-        out[x] = 0.25f * ((top[2 * x] + top[2 * x + 1]) + (bottom[2 * x] + bottom[2 * x + 1]));
+        result.pixels.push_back(0.25f *
+                                ((image.at(2 * x, 2 * y) + image.at(2 * x + 1, 2 * y)) +
+                                 (image.at(2 * x, 2 * y + 1) + image.at(2 * x + 1, 2 * y + 1))));
       }
     }
     return result;
@@ -66,6 +72,23 @@ ImageRgb halved(const ImageRgb& image) {
   return result;
 }
 
+// An 8-bit image read as radiance, texel by texel (no float copy of a whole face).
+struct SrgbSource {
+  const SrgbImage& image;
+  const std::array<float, 256>& linear = linearOfSrgbByte();
+  int width = image.width, height = image.height;
+  Color at(int x, int y) const {
+    const uint8_t* p = &image.rgb[3 * (static_cast<size_t>(y) * width + x)];
+    return Color(linear[p[0]], linear[p[1]], linear[p[2]]);
+  }
+};
+
+}  // namespace
+
+ImageRgb halved(const ImageRgb& image) {
+  return halvedFrom(image);
+}
+
 uint64_t mipLevelsTexels(int width, int height) {
   uint64_t texels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
   while (width > 1 || height > 1) {
@@ -83,6 +106,20 @@ std::vector<ImageRgb> mipLevels(ImageRgb image) {
     levels.push_back(halved(levels.back()));
   }
   return levels;
+}
+
+std::vector<SrgbTexels> srgbMipLevels(const SrgbImage& image) {
+  std::vector<SrgbTexels> levels;
+  levels.push_back(packedTexels(image));
+  if (image.width <= 1 && image.height <= 1) return levels;
+  // Each level averages the radiance of the level below before that was rounded to bytes, so
+  // the roundings do not add up over the levels; only the bytes are kept.
+  ImageRgb level = halvedFrom(SrgbSource{image});
+  for (;;) {
+    levels.push_back(packedTexels(level));
+    if (level.width <= 1 && level.height <= 1) return levels;
+    level = halved(level);
+  }
 }
 
 }  // namespace prism

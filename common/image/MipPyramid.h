@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "image/ImageRgb.h"
+#include "image/SrgbImage.h"
 
 namespace prism {
 
@@ -23,6 +24,10 @@ ImageRgb halved(const ImageRgb& image);
 
 // image (level 0) and every level above it, the last 1x1.
 std::vector<ImageRgb> mipLevels(ImageRgb image);
+
+// The same for an 8-bit sRGB image: level 0 its bytes, each level above averaged over the
+// radiance of the one below and kept as the nearest sRGB bytes (packedTexels).
+std::vector<SrgbTexels> srgbMipLevels(const SrgbImage& image);
 
 // The texels of mipLevels() of a width × height image, all levels (about 4/3 of the image's).
 uint64_t mipLevelsTexels(int width, int height);

@@ -163,12 +163,12 @@ void writePng(const std::string& path, int width, int height, const uint8_t* rgb
   }
 }
 
-std::optional<PngBytes> readPng(const std::string& path) {
+std::optional<SrgbImage> readPng(const std::string& path) {
   const File file = openFile(path, "rb");
   PngReader reader(file.get());
   if (!reader.readInfo()) throw std::runtime_error(reader.error());
   if (!reader.isPlain()) return std::nullopt;
-  PngBytes pixels;
+  SrgbImage pixels;
   pixels.width = reader.width();
   pixels.height = reader.height();
   pixels.rgb.resize(static_cast<size_t>(pixels.width) * pixels.height * 3);

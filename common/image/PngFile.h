@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "image/ImageIo.h"
+#include "image/SrgbImage.h"
 
 namespace prism {
 
@@ -30,12 +31,7 @@ void writePng(const std::string& path, int width, int height, const uint8_t* rgb
 // The decoded bytes of an 8-bit RGB or grey PNG, expanded to RGB; nullopt when the file is a PNG
 // of another kind (OpenImageIO reads those). Throws std::runtime_error for a missing, unreadable
 // or corrupt file.
-struct PngBytes {
-  int width = 0;
-  int height = 0;
-  std::vector<uint8_t> rgb;
-};
-std::optional<PngBytes> readPng(const std::string& path);
+std::optional<SrgbImage> readPng(const std::string& path);
 
 // The text chunk (tEXt, zTXt or iTXt before the image data) named name ("ImageDescription" looks
 // for "Description"); nullopt when there is none or the file is not a readable PNG.

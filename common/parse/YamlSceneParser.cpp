@@ -7,10 +7,12 @@
 // the command line shares.
 #include "parse/YamlSceneParser.h"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -251,9 +253,14 @@ class YamlSceneReader : private CheckedYaml {
     }
     // The six decodes are independent (default.yaml's 320² PNGs take 4-6 ms each): they run on
     // the cores at once, and a failure is reported below for the first failing face in order.
+    // 8-bit faces are kept as their bytes, the others as radiance.
     parallelFor(kFaces, 0, [&](uint64_t i) {
       try {
-        cube.faces[i] = readImage(files[i]);
+        if (std::optional<SrgbImage> bytes = readSrgbImage(files[i])) {
+          cube.srgbFaces[i] = std::move(*bytes);
+        } else {
+          cube.faces[i] = readImage(files[i]);
+        }
       } catch (const std::exception& error) {
         readErrors[i] = error.what();
         if (readErrors[i].empty()) readErrors[i] = "unreadable";
@@ -263,15 +270,25 @@ class YamlSceneReader : private CheckedYaml {
       const Entry& face = faces.require(kCubeMapKeys[i]);
       if (!readErrors[i].empty())
         fail(loc(face), "cube-map face '" + face.key + "': " + readErrors[i]);
-      const ImageRgb& image = cube.faces[i];
-      if (image.width <= 0 || image.width != image.height) {
-        fail(loc(face), "cube-map face '" + face.key + "' is " + std::to_string(image.width) + "x" +
-                            std::to_string(image.height) + "; faces must be square");
+      const int width = cube.srgbFaces[i].width + cube.faces[i].width;  // one of them is 0
+      const int height = cube.srgbFaces[i].height + cube.faces[i].height;
+      const int firstWidth = cube.srgbFaces[0].width + cube.faces[0].width;
+      if (width <= 0 || width != height) {
+        fail(loc(face), "cube-map face '" + face.key + "' is " + std::to_string(width) + "x" +
+                            std::to_string(height) + "; faces must be square");
       }
-      if (i > 0 && image.width != cube.faces[0].width) {
-        fail(loc(face), "cube-map face '" + face.key + "' is " + std::to_string(image.width) +
-                            " pixels wide but 'px' is " + std::to_string(cube.faces[0].width) +
+      if (i > 0 && width != firstWidth) {
+        fail(loc(face), "cube-map face '" + face.key + "' is " + std::to_string(width) +
+                            " pixels wide but 'px' is " + std::to_string(firstWidth) +
                             "; all faces must be the same size");
+      }
+    }
+    // All six as bytes, or all as radiance (a face of another kind among 8-bit ones).
+    const auto isBytes = [](const SrgbImage& face) { return !face.empty(); };
+    if (!std::all_of(cube.srgbFaces.begin(), cube.srgbFaces.end(), isBytes)) {
+      for (size_t i = 0; i < kFaces; ++i) {
+        if (isBytes(cube.srgbFaces[i])) cube.faces[i] = linearFromSrgb(cube.srgbFaces[i]);
+        cube.srgbFaces[i] = SrgbImage();
       }
     }
     scene_.environment = std::move(cube);

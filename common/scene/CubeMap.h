@@ -2,7 +2,9 @@
 // escaping rays (background, reflections, refractions). Face order and orientation follow the
 // OpenGL convention (+X, -X, +Y, -Y, +Z, -Z), so maps made for OpenGL load unchanged.
 //
-// Each face keeps a mip pyramid (image/MipPyramid.h, box filtered), built once with the scene.
+// Each face keeps a mip pyramid (image/MipPyramid.h, box filtered), built once with the scene:
+// as packed sRGB bytes where the faces came from 8-bit files (a quarter of floats' size in the
+// caches), else as floats.
 // A ray that carries its footprint (how its direction changes per pixel) reads the levels whose
 // texels match the footprint, blending the two nearest (trilinear, as OpenGL's
 // LINEAR_MIPMAP_LINEAR picks them); a ray without one reads the finest level. Bilinear blends
@@ -10,6 +12,7 @@
 // cube-map filtering), so coarse levels show no seams along the cube's edges.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -45,21 +48,24 @@ class CubeMap {
 
   // Level 0 is the finest (the faces as loaded), the last 1x1; each level is
   // halved(the level below).
-  int levelCount() const { return static_cast<int>(levels_.size()); }
-  const ImageRgb& face(int level, int face) const { return levels_[level][face]; }
+  int levelCount() const;
+  struct FaceSize {
+    int width, height;
+  };
+  FaceSize faceSize(int level, int face) const;
+  // Texel (x, y) of a face at a level, inside the face (no scale applied).
+  Color texelAt(int level, int face, int x, int y) const;
+  // Whether the faces are kept as packed sRGB bytes (read from 8-bit files) rather than floats.
+  bool keepsBytes() const { return !srgbLevels_.empty(); }
   // Bilinearly filtered radiance of one level (no scale applied); u, v in [0, 1] across the
   // face, as facePoint's s, t over the face's size in texels. Texels past the face's edge are
   // read from the neighbouring face.
   Color bilinear(int level, int face, float u, float v) const;
 
  private:
-  // Texel (x, y) of a face at a level; x or y one past the face's edge (-1 or size) reads the
-  // nearest texel of the neighbouring face the direction through it meets.
-  Color texel(int level, int face, int x, int y) const;
-  // bilinear(), inlined into the lookups.
-  Color blend(int level, int face, float u, float v) const;
-
-  std::vector<std::array<ImageRgb, 6>> levels_;
+  // The pyramids of the six faces, level by level: one of the two is empty.
+  std::vector<std::array<ImageRgb, 6>> linearLevels_;
+  std::vector<std::array<SrgbTexels, 6>> srgbLevels_;
   float scale_;
 };
 

@@ -22,10 +22,20 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
   const uint64_t primitives = d.spheres.size() + d.planes.size() + coneParts;
   bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
   if (d.environment) {
-    for (const ImageRgb& face : d.environment->faces) {
-      // The description's copy, its wire copy and the scene's with its mip levels.
-      const uint64_t texels = 2 * face.pixels.size() + mipLevelsTexels(face.width, face.height);
-      bytes = saturatingAdd(bytes, saturatingMultiply(texels, sizeof(Color)));
+    const CubeMapDesc& cube = *d.environment;
+    for (int f = 0; f < 6; ++f) {
+      const int width = cube.faceWidth(f), height = cube.faceHeight(f);
+      const uint64_t texels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+      // The description's copy, its wire copy and the scene's with its mip levels: as 3 bytes,
+      // 3 bytes and packed 4-byte texels (while the levels above the finest are built, a float
+      // copy of the second level) where the faces are kept as bytes, else as floats.
+      const uint64_t pyramid = mipLevelsTexels(width, height);
+      const uint64_t faceBytes =
+          cube.keptAsBytes() ? saturatingAdd(saturatingAdd(saturatingMultiply(2 * texels, 3),
+                                                           saturatingMultiply(pyramid, 4)),
+                                             saturatingMultiply(texels / 4, sizeof(Color)))
+                             : saturatingMultiply(2 * texels + pyramid, sizeof(Color));
+      bytes = saturatingAdd(bytes, faceBytes);
     }
   }
   return bytes;

@@ -13,6 +13,7 @@
 #include "geometry/MaterialId.h"
 #include "geometry/TriangleTest.h"
 #include "image/ImageRgb.h"
+#include "image/SrgbImage.h"
 #include "math/Vec.h"
 #include "scene/FileLoc.h"
 #include "util/InstructionSet.h"
@@ -113,11 +114,23 @@ struct MeshDesc {
   size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// Six faces in the OpenGL cube-map order +X, -X, +Y, -Y, +Z, -Z.
+// Six faces in the OpenGL cube-map order +X, -X, +Y, -Y, +Z, -Z. Faces read from 8-bit sRGB
+// files stay bytes (srgbFaces: a quarter of floats' size on the wire and in the scene's mip
+// pyramids); faces of any other kind are linear radiance (faces). Either all six srgbFaces hold
+// pixels and faces are empty, or the other way round.
 struct CubeMapDesc {
   std::array<ImageRgb, 6> faces;
+  std::array<SrgbImage, 6> srgbFaces;
   std::array<std::string, 6> paths;
   float scale = 1.0f;  // multiplies the stored radiance
+
+  bool keptAsBytes() const { return !srgbFaces[0].empty(); }
+  int faceWidth(int face) const {
+    return keptAsBytes() ? srgbFaces[face].width : faces[face].width;
+  }
+  int faceHeight(int face) const {
+    return keptAsBytes() ? srgbFaces[face].height : faces[face].height;
+  }
 };
 
 // Names and limits of these settings: SettingNames.h, SettingLimits.h; validate() checks them

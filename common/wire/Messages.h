@@ -40,7 +40,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
 // 11: PhotonRadiiJob, PhotonRadiiShare and PhotonRadii (the ranks find a map's radii together).
 // 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
-inline constexpr uint16_t kVersion = 12;
+// 13: cube-map faces read from 8-bit files travel as their sRGB bytes.
+inline constexpr uint16_t kVersion = 13;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 

@@ -50,15 +50,17 @@ void checkMaterials(const std::vector<Desc>& items, const char* kind, size_t mat
   }
 }
 
-void checkImage(const ImageRgb& image, const std::string& what) {
-  if (image.width < 0 || image.height < 0) {
-    throw WireError(what + " has negative size " + std::to_string(image.width) + "x" +
-                    std::to_string(image.height));
+// width × height pixels of perPixel values each (floats' pixels: 1, bytes: 3); sizes not negative.
+void checkImageSize(int width, int height, size_t values, size_t perPixel,
+                    const std::string& what) {
+  if (width < 0 || height < 0) {
+    throw WireError(what + " has negative size " + std::to_string(width) + "x" +
+                    std::to_string(height));
   }
-  if (image.pixels.size() != static_cast<size_t>(image.width) * static_cast<size_t>(image.height)) {
-    throw WireError(what + " is " + std::to_string(image.width) + "x" +
-                    std::to_string(image.height) + " but carries " +
-                    std::to_string(image.pixels.size()) + " pixels");
+  if (values != static_cast<size_t>(width) * static_cast<size_t>(height) * perPixel) {
+    throw WireError(what + " is " + std::to_string(width) + "x" + std::to_string(height) +
+                    " but carries " + std::to_string(values) +
+                    (perPixel == 1 ? " pixels" : " bytes"));
   }
 }
 
@@ -81,11 +83,20 @@ void Fields<CausticSettings>::check(const CausticSettings& caustics) {
 }
 
 void Fields<CubeMapDesc>::check(const CubeMapDesc& cube) {
+  const bool bytes = cube.keptAsBytes();
   for (size_t i = 0; i < cube.faces.size(); ++i) {
     const std::string what = "cube-map face " + std::to_string(i);
-    checkImage(cube.faces[i], what);
-    // CubeMap::texel clamps into [0, width - 1]: an empty face would be indexed at -1.
-    if (cube.faces[i].width == 0 || cube.faces[i].height == 0) throw WireError(what + " is empty");
+    const ImageRgb& linear = cube.faces[i];
+    const SrgbImage& srgb = cube.srgbFaces[i];
+    checkImageSize(linear.width, linear.height, linear.pixels.size(), 1, what);
+    checkImageSize(srgb.width, srgb.height, srgb.rgb.size(), 3, what);
+    // CubeMap reads one kind for all six faces, and clamps into [0, width - 1]: an empty face
+    // would be indexed at -1.
+    const bool hasLinear = !linear.pixels.empty(), hasBytes = !srgb.rgb.empty();
+    if (hasLinear && hasBytes) throw WireError(what + " carries both floats and bytes");
+    if (bytes ? !hasBytes : !hasLinear) {
+      throw WireError(what + (hasLinear || hasBytes ? " is not of face 0's kind" : " is empty"));
+    }
   }
 }
 

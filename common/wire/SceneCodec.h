@@ -40,9 +40,15 @@ struct Fields<ImageRgb> {
 };
 
 template <>
+struct Fields<SrgbImage> {
+  PRISM_WIRE_FIELDS(width, height, rgb)
+};
+
+template <>
 struct Fields<CubeMapDesc> {
-  PRISM_WIRE_FIELDS(faces, paths, scale)
-  // Each face non-empty (CubeMap::texel would index -1) with width × height pixels.
+  PRISM_WIRE_FIELDS(faces, srgbFaces, paths, scale)
+  // Each face non-empty (CubeMap::texel would index -1) with width × height pixels, all six of
+  // one kind (floats or bytes).
   static void check(const CubeMapDesc& cube);
 };
 

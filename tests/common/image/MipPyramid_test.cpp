@@ -81,5 +81,27 @@ TEST(MipPyramid, EveryLevelKeepsTheMeanDownToOneTexel) {
   EXPECT_EQ(mipLevelsTexels(1024, 1024), (uint64_t{1} << 22) / 3);  // (4^11 - 1) / 3
 }
 
+TEST(MipPyramid, BytePyramidsAreTheFloatPyramidRoundedToBytes) {
+  // Level 0 keeps the bytes; each level above is the float pyramid of the decoded image, each
+  // texel rounded to its nearest sRGB byte (not the bytes of rounded levels averaged again).
+  for (const auto& [width, height] : {std::pair{16, 16}, std::pair{12, 7}}) {
+    SrgbImage image{width, height, {}};
+    Pcg32 rng(11, 4);
+    for (int i = 0; i < 3 * width * height; ++i) {
+      image.rgb.push_back(static_cast<uint8_t>(rng.nextUint() & 0xff));
+    }
+    const std::vector<SrgbTexels> bytes = srgbMipLevels(image);
+    const std::vector<ImageRgb> floats = mipLevels(linearFromSrgb(image));
+    ASSERT_EQ(bytes.size(), floats.size());
+    EXPECT_EQ(bytes[0].texels, packedTexels(image).texels);
+    for (size_t i = 1; i < bytes.size(); ++i) {
+      EXPECT_EQ(bytes[i].width, floats[i].width);
+      EXPECT_EQ(bytes[i].height, floats[i].height);
+      EXPECT_EQ(bytes[i].texels, packedTexels(floats[i]).texels)
+          << width << "x" << height << " level " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prism

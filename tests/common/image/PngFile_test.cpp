@@ -23,7 +23,7 @@ TEST_F(PngFileTest, BytesRoundTripExactlyForEveryEncoding) {
   for (int level : {0, 1, 3, 9}) {
     for (int filters : {PNG_FILTER_NONE, PNG_FILTER_SUB, PNG_FILTER_PAETH, PNG_ALL_FILTERS}) {
       writePng(path("a.png"), 5, 3, rgb.data(), {}, PngEncoding{level, filters});
-      const std::optional<PngBytes> back = readPng(path("a.png"));
+      const std::optional<SrgbImage> back = readPng(path("a.png"));
       ASSERT_TRUE(back.has_value());
       EXPECT_EQ(back->width, 5);
       EXPECT_EQ(back->height, 3);
@@ -64,7 +64,7 @@ TEST_F(PngFileTest, GreyPngsReadAsRgb) {
   image.format = PNG_FORMAT_GRAY;
   const uint8_t grey[2] = {7, 200};
   ASSERT_TRUE(png_image_write_to_file(&image, path("g.png").c_str(), 0, grey, 0, nullptr));
-  const std::optional<PngBytes> back = readPng(path("g.png"));
+  const std::optional<SrgbImage> back = readPng(path("g.png"));
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->rgb, (std::vector<uint8_t>{7, 7, 7, 200, 200, 200}));
 }

@@ -529,9 +529,15 @@ TEST(YamlSceneParser, TheFirstUnreadableCubeMapFaceInOrderIsReported) {
   ASSERT_TRUE(s.environment.has_value());
   const char* names[] = {"px", "nx", "py", "ny", "pz", "nz"};
   for (size_t i = 0; i < 6; ++i) {  // each face is its own file's pixels, in its own slot
-    const ImageRgb alone = readImage(dataPath("scenes/" + sky + names[i] + ".png"));
-    EXPECT_GT(alone.width, 0);
-    EXPECT_TRUE(s.environment->faces[i].pixels == alone.pixels) << names[i];
+    // 8-bit PNG faces are kept as their bytes, which decode to what readImage gives.
+    const std::string file = dataPath("scenes/" + sky + names[i] + ".png");
+    const std::optional<SrgbImage> bytes = readSrgbImage(file);
+    ASSERT_TRUE(bytes) << names[i];
+    EXPECT_GT(bytes->width, 0);
+    EXPECT_TRUE(s.environment->faces[i].pixels.empty()) << names[i];
+    EXPECT_EQ(s.environment->srgbFaces[i].rgb, bytes->rgb) << names[i];
+    EXPECT_TRUE(linearFromSrgb(s.environment->srgbFaces[i]).pixels == readImage(file).pixels)
+        << names[i];
   }
 }
 
@@ -579,6 +585,31 @@ TEST_F(YamlEnvironment, LoadsSixFacesInOpenGlOrder) {
   }
   EXPECT_EQ(s.environment->paths[0], "sky/px.exr");
   EXPECT_EQ(s.environment->paths[5], "sky/nz.exr");
+}
+
+TEST_F(YamlEnvironment, AFloatFaceAmongPngFacesMakesThemAllRadiance) {
+  // Five 8-bit PNG faces and one EXR: all six become radiance, the PNGs decoded as readImage
+  // decodes them.
+  writeFaces({4, 4, 4, 4, 4, 4});
+  const char* names[] = {"px", "nx", "py", "ny", "pz"};
+  for (const char* name : names) {
+    ImageRgb face(4, 4);
+    for (Color& c : face.pixels) c = Color(0.2f, 0.5f, 0.9f);
+    writeImage(face, (dir_ / "sky" / (std::string(name) + ".png")).string());
+  }
+  const std::string path = write("scene.yaml", R"(environment:
+  cubemap: {px: sky/px.png, nx: sky/nx.png, py: sky/py.png,
+            ny: sky/ny.png, pz: sky/pz.png, nz: sky/nz.exr}
+)");
+  const SceneDescription s = parseYamlScene(readTextFile(path), path);
+  ASSERT_TRUE(s.environment);
+  EXPECT_FALSE(s.environment->keptAsBytes());
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_TRUE(s.environment->srgbFaces[i].empty()) << i;
+    const std::string file =
+        (dir_ / "sky" / (i < 5 ? std::string(names[i]) + ".png" : "nz.exr")).string();
+    EXPECT_TRUE(s.environment->faces[i].pixels == readImage(file).pixels) << i;
+  }
 }
 
 TEST_F(YamlEnvironment, FacesMustBeSquareAndAlike) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "image/SrgbImage.h"
 #include "math/Random.h"
 
 namespace prism {
@@ -219,12 +220,49 @@ TEST(CubeMap, FootprintsBlendTheTwoLevelsAboutTheirLevelOfDetail) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], 1e-5f);
 
   // A footprint wider than the face reads the face's mean (the 1x1 level) at its centre.
-  const Color mean = cube.face(cube.levelCount() - 1, 5).at(0, 0);
+  const Color mean = cube.texelAt(cube.levelCount() - 1, 5, 0, 0);
   glm::dvec3 sum(0.0);
   for (const Color& c : d.faces[5].pixels) sum += glm::dvec3(c);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], sum[c] / (32.0 * 32.0), 1e-5);
   const Color wide = cube.lookup(dir, {3.0f, 0, 0}, {0, 3.0f, 0});
   for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(wide[c], mean[c]);
+}
+
+TEST(CubeMap, FacesKeptAsBytesReadAsTheirRadiance) {
+  // The same random 8-bit faces kept as bytes and as decoded floats: the finest level's lookups
+  // agree bit for bit (the same radiance blended the same way), the coarser levels to within half
+  // an sRGB step of the brightest texel (each level rounded to bytes once, from floats).
+  CubeMapDesc bytes, floats;
+  Pcg32 rng(12, 5);
+  for (int f = 0; f < 6; ++f) {
+    bytes.srgbFaces[f] = SrgbImage{16, 16, {}};
+    for (int i = 0; i < 3 * 16 * 16; ++i) {
+      bytes.srgbFaces[f].rgb.push_back(static_cast<uint8_t>(rng.nextUint() & 0xff));
+    }
+    floats.faces[f] = linearFromSrgb(bytes.srgbFaces[f]);
+  }
+  bytes.scale = floats.scale = 1.5f;
+  ASSERT_TRUE(bytes.keptAsBytes());
+  const CubeMap fromBytes(bytes), fromFloats(floats);
+  EXPECT_TRUE(fromBytes.keepsBytes());
+  EXPECT_FALSE(fromFloats.keepsBytes());
+  ASSERT_EQ(fromBytes.levelCount(), fromFloats.levelCount());
+  int mismatches = 0;
+  float worst = 0.0f;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 dir =
+        glm::normalize(Vec3(2.0f * rng.nextFloat() - 1.0f, 2.0f * rng.nextFloat() - 1.0f,
+                            2.0f * rng.nextFloat() - 1.0f));
+    mismatches += !sameBits(fromBytes.lookup(dir), fromFloats.lookup(dir));
+    const Steps wide = stepsAcross(dir, 0.05f + 0.5f * rng.nextFloat());
+    const Color a = fromBytes.lookup(dir, wide.dx, wide.dy);
+    const Color b = fromFloats.lookup(dir, wide.dx, wide.dy);
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(a[c] - b[c]));
+  }
+  EXPECT_EQ(mismatches, 0);
+  // Half a byte's step at the top of the range, 0.0045, times the scale.
+  EXPECT_LT(worst, 1.5f * 0.0045f);
+  EXPECT_GT(worst, 0.0f);  // the coarse levels are rounded
 }
 
 TEST(CubeMap, LookupsAreContinuousAcrossFaceEdges) {

@@ -29,6 +29,13 @@ TEST(GeometryMemory, CountsCubeMapFacesWithTheirMipLevels) {
   // Six faces of 12-byte texels: the description's 256 and its wire copy's, and the scene's
   // 256 + 64 + 16 + 4 + 1 with the levels.
   EXPECT_EQ(geometryMemoryBytes(d), 6u * 12u * (2u * 256u + 341u));
+  // Faces kept as bytes: 3-byte texels in the description and on the wire, 4-byte packed
+  // levels, and the float copy of the 8x8 level while the levels above are made.
+  for (int f = 0; f < 6; ++f) {
+    d.environment->faces[f] = ImageRgb();
+    d.environment->srgbFaces[f] = SrgbImage{16, 16, std::vector<uint8_t>(3 * 256)};
+  }
+  EXPECT_EQ(geometryMemoryBytes(d), 6u * (3u * 2u * 256u + 4u * 341u + 12u * 64u));
 }
 
 TEST(GeometryMemory, CountsEachPartASlantedConeEntersTheBvhAs) {

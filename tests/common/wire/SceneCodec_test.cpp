@@ -214,6 +214,9 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
   if (a.environment) {
     for (int i = 0; i < 6; ++i) {
       expectSameImage(a.environment->faces[i], b.environment->faces[i]);
+      EXPECT_EQ(a.environment->srgbFaces[i].width, b.environment->srgbFaces[i].width);
+      EXPECT_EQ(a.environment->srgbFaces[i].height, b.environment->srgbFaces[i].height);
+      EXPECT_EQ(a.environment->srgbFaces[i].rgb, b.environment->srgbFaces[i].rgb);
       EXPECT_EQ(a.environment->paths[i], b.environment->paths[i]);
     }
     EXPECT_SAME_FLOAT(a.environment->scale, b.environment->scale);
@@ -324,10 +327,11 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(ConeDesc), 88u) << update;
   EXPECT_EQ(sizeof(MeshDesc), 160u) << update;
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
-  EXPECT_EQ(sizeof(CubeMapDesc), 392u) << update;
+  EXPECT_EQ(sizeof(SrgbImage), 32u) << update;
+  EXPECT_EQ(sizeof(CubeMapDesc), 584u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 48u) << update;
   EXPECT_EQ(sizeof(CausticSettings), 88u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 832u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 1024u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -454,6 +458,47 @@ TEST(SceneCodec, ImagesMustHoldWidthTimesHeightPixels) {
   d.environment->faces[1].width = -2;
   d.environment->faces[1].height = -2;
   expectWireError(d, "cube-map face 1 has negative size -2x-2");
+}
+
+// fullScene()'s cube map with its faces as 8-bit bytes.
+SceneDescription sceneWithByteFaces() {
+  SceneDescription d = fullScene();
+  for (int i = 0; i < 6; ++i) {
+    const int size = i % 2 + 1;
+    d.environment->faces[i] = ImageRgb();
+    d.environment->srgbFaces[i] = SrgbImage{size, size, {}};
+    for (int b = 0; b < 3 * size * size; ++b) {
+      d.environment->srgbFaces[i].rgb.push_back(static_cast<uint8_t>(40 * i + b));
+    }
+  }
+  return d;
+}
+
+TEST(SceneCodec, CubeMapFacesTravelAsBytes) {
+  const SceneDescription d = sceneWithByteFaces();
+  const SceneDescription back = decodeBytes(payloadOf(d));
+  ASSERT_TRUE(back.environment && back.environment->keptAsBytes());
+  expectSameScene(d, back);
+}
+
+TEST(SceneCodec, CubeMapFacesAreAllFloatsOrAllBytes) {
+  SceneDescription d = sceneWithByteFaces();
+  d.environment->srgbFaces[4].rgb.pop_back();
+  expectWireError(d, "cube-map face 4 is 1x1 but carries 2 bytes");
+  d = sceneWithByteFaces();
+  d.environment->faces[2] = ImageRgb(1, 1);
+  expectWireError(d, "cube-map face 2 carries both floats and bytes");
+  d = sceneWithByteFaces();
+  d.environment->srgbFaces[5] = SrgbImage();
+  d.environment->faces[5] = ImageRgb(2, 2);
+  expectWireError(d, "cube-map face 5 is not of face 0's kind");
+  d = fullScene();
+  d.environment->faces[3] = ImageRgb();
+  d.environment->srgbFaces[3] = SrgbImage{2, 2, std::vector<uint8_t>(12)};
+  expectWireError(d, "cube-map face 3 is not of face 0's kind");
+  d = sceneWithByteFaces();
+  d.environment->srgbFaces[1] = SrgbImage();
+  expectWireError(d, "cube-map face 1 is empty");
 }
 
 TEST(SceneCodec, RenderSettingsThatCannotRenderAreRejected) {
