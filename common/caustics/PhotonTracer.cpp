@@ -16,6 +16,9 @@ namespace {
 // Keeps photon streams apart from the pixel streams, which are keyed by (x, y).
 constexpr uint64_t kPhotonStreamBase = 0x5048'4f54'0000'0000ULL;  // "PHOT"
 
+// The Halton bases of the stratified roulette decisions, after emission's 2, 3 and 5.
+constexpr uint32_t kRouletteBases[kStratifiedRoulette] = {7, 11, 13, 17};
+
 }  // namespace
 
 PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
@@ -52,6 +55,7 @@ PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
   for (PhotonLightPlan& plan : plans_) {
     Pcg32 shift = Pcg32::forKey(scene.settings().seed, plan.light, kPhotonStreamBase - 1);
     for (float& s : plan.emissionShift) s = shift.nextFloat();
+    for (float& s : plan.rouletteShift) s = shift.nextFloat();
     plan.first = first;
     first += plan.count;
     if (plan.count > 0) {
@@ -82,7 +86,7 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   const PointLightDesc& light = scene_.lights()[plan.light];
   // Emission follows the light's Halton sequence, continued from pass to pass so that all the
   // passes together stay evenly spread; a per-light rotation keyed by the seed decorrelates
-  // lights. Roulette below uses the photon's own random stream.
+  // lights. Roulette below takes the point's further coordinates, then the photon's own stream.
   const uint64_t sequenceIndex = static_cast<uint64_t>(pass) * plan.count + (index - plan.first);
   const float u0 = rotateUnit(radicalInverse(2, sequenceIndex), plan.emissionShift[0]);
   const float u1 = rotateUnit(radicalInverse(3, sequenceIndex), plan.emissionShift[1]);
@@ -90,6 +94,7 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   Ray ray{light.position, plan.map.sample(u0, u1, u2)};
   Color power = plan.powerPerPhoton;
 
+  int decisions = 0;  // roulette decisions taken so far
   for (int bounce = 0;; ++bounce) {
     HitRecord hit;
     if (!scene_.intersect(ray, hit)) {
@@ -119,7 +124,11 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
       reflectP /= sum;
       transmitP /= sum;
     }
-    const float u = rng.nextFloat();
+    const float u = decisions < kStratifiedRoulette
+                        ? rotateUnit(radicalInverse(kRouletteBases[decisions], sequenceIndex),
+                                     plan.rouletteShift[decisions])
+                        : rng.nextFloat();
+    ++decisions;
     Vec3 direction;
     if (u < reflectP) {
       power *= split.reflectWeight / reflectP;
