@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
@@ -25,6 +26,18 @@ struct CellRotation {
   float position[2];
   float roulette[kStratifiedRoulette];
 };
+
+// The integer coprime to `cells` nearest cells · (√5 − 1)/2: stepping by it visits every cell once
+// a round, consecutive steps far apart and any run of them spread evenly (Weyl's golden-ratio
+// sequence, as integers).
+uint64_t goldenCellStride(uint64_t cells) {
+  if (cells <= 2) return 1;
+  const auto stride = static_cast<uint64_t>(std::llround(0.6180339887498949 * cells));
+  for (uint64_t d = 0;; ++d) {
+    if (stride + d < cells && std::gcd(stride + d, cells) == 1) return stride + d;
+    if (d < stride && std::gcd(stride - d, cells) == 1) return stride - d;
+  }
+}
 
 CellRotation cellRotation(uint64_t seed, size_t light, uint64_t cell) {
   Pcg32 rng =
@@ -69,6 +82,7 @@ PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
 
   uint64_t first = 0;
   for (PhotonLightPlan& plan : plans_) {
+    plan.cellStride = goldenCellStride(plan.map.coveredCellCount());
     plan.first = first;
     first += plan.count;
     if (plan.count > 0) {
@@ -101,7 +115,8 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   // to pass so that all the passes together stay evenly spread (see PhotonTracer.h).
   const uint64_t sequenceIndex = static_cast<uint64_t>(pass) * plan.count + (index - plan.first);
   const uint64_t cells = plan.map.coveredCellCount();
-  const uint64_t cell = sequenceIndex % cells, inCell = sequenceIndex / cells;
+  const uint64_t cell = (sequenceIndex % cells) * plan.cellStride % cells;  // cells < 2^32
+  const uint64_t inCell = sequenceIndex / cells;
   const CellRotation rotation = cellRotation(scene_.settings().seed, plan.light, cell);
   const float u1 = rotateUnit(radicalInverse(2, inCell), rotation.position[0]);
   const float u2 = rotateUnit(sobolSecond(inCell), rotation.position[1]);

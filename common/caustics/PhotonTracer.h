@@ -10,9 +10,11 @@
 // photon's power is multiplied by weight / probability, so colourless glass and mirrors leave it
 // unchanged and the estimate stays unbiased.
 //
-// Emission is stratified twice. Photons go round the light's marked cells of the projection map
-// in turn (sequence index s = p · n + i − first, n the light's photons per pass: cell s mod c of
-// c), so every cell gets its share to one photon; within its cell, photon s is point s div c of
+// Emission is stratified twice. Photons go round the light's c marked cells of the projection
+// map in turn (sequence index s = p · n + i − first, n the light's photons per pass), so every
+// cell gets its share to one photon; the round visits cell (s mod c) · g mod c, g the integer
+// coprime to c nearest c times the golden ratio's fraction, so that fewer photons than cells still
+// spread over all of them, not over the first few. Within its cell, photon s is point s div c of
 // a (0, 2)-sequence (math/LowDiscrepancy.h), rotated by an offset of that cell's keyed by the
 // seed. The photons under any small patch of a caster then number its area's share to about
 // one photon, where the Halton sequence over the whole map (its bases 3 and 5 spread a few
@@ -44,6 +46,7 @@ struct PhotonLightPlan {
   ProjectionMap map;
   uint64_t first = 0, count = 0;  // photon indices [first, first + count)
   Color powerPerPhoton{0.0f};     // W
+  uint64_t cellStride = 1;  // g above: consecutive photons' cells lie this far apart in the list
 };
 
 class PhotonTracer {

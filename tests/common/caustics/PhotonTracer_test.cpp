@@ -87,6 +87,29 @@ TEST(PhotonTracerRoulette, TheShareKeptInEverySmallRegionIsTheProbabilityNotARan
   EXPECT_LT(chi2 / bins, 0.7) << "χ² per bin over " << bins << " bins";
 }
 
+// Fewer photons than marked cells (about 9 000 for this ball): they must still spread over the
+// whole cap the ball fills, not over the first cells of the map's list (its rim, in rows of
+// constant latitude). Half of them land within the radius that holds half of 200 000 photons.
+TEST(PhotonTracerEmission, FewerPhotonsThanCellsStillSpreadOverTheWholeCap) {
+  const Scene scene(test::ballOverFloorScene(1.0f));
+  const auto radiiFromAxis = [&](uint64_t count) {
+    const PhotonTracer tracer(scene, count, 16);
+    std::vector<float> r;
+    for (const Photon& p : tracePhotons(tracer, 0, 0, count, 2))
+      r.push_back(std::hypot(p.position.x, p.position.z));
+    return r;
+  };
+  std::vector<float> many = radiiFromAxis(200000);
+  std::nth_element(many.begin(), many.begin() + many.size() / 2, many.end());
+  const float median = many[many.size() / 2];
+  const std::vector<float> few = radiiFromAxis(2000);
+  ASSERT_GT(few.size(), 1500u);
+  const double inside = static_cast<double>(std::count_if(
+                            few.begin(), few.end(), [median](float r) { return r < median; })) /
+                        static_cast<double>(few.size());
+  EXPECT_NEAR(inside, 0.5, 0.05);
+}
+
 // ---- energy ---------------------------------------------------------------------------------
 
 // A sphere of radius 1 at (0, 2, 0) made of "glass" of index 1 (transmittance 1, Fresnel on: at
