@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "math/LowDiscrepancy.h"
 #include "math/Random.h"
@@ -15,6 +16,37 @@ namespace {
 
 // Keeps photon streams apart from the pixel streams, which are keyed by (x, y).
 constexpr uint64_t kPhotonStreamBase = 0x5048'4f54'0000'0000ULL;  // "PHOT"
+
+// The Halton bases of the stratified roulette decisions: coprime to 2, so that the photons of a
+// cell within one of its (0, 2)-sequence's boxes (indices in one class mod 2^m) spread over them.
+constexpr uint32_t kRouletteBases[kStratifiedRoulette] = {3, 5, 7, 11};
+
+// One cell's rotation of its points: two for the position, then one per roulette decision.
+struct CellRotation {
+  float position[2];
+  float roulette[kStratifiedRoulette];
+};
+
+// The integer coprime to `cells` nearest cells · (√5 − 1)/2: stepping by it visits every cell once
+// a round, consecutive steps far apart and any run of them spread evenly (Weyl's golden-ratio
+// sequence, as integers).
+uint64_t goldenCellStride(uint64_t cells) {
+  if (cells <= 2) return 1;
+  const auto stride = static_cast<uint64_t>(std::llround(0.6180339887498949 * cells));
+  for (uint64_t d = 0;; ++d) {
+    if (stride + d < cells && std::gcd(stride + d, cells) == 1) return stride + d;
+    if (d < stride && std::gcd(stride - d, cells) == 1) return stride - d;
+  }
+}
+
+CellRotation cellRotation(uint64_t seed, size_t light, uint64_t cell) {
+  Pcg32 rng =
+      Pcg32::forKey(seed, (static_cast<uint64_t>(light) << 32) | cell, kPhotonStreamBase - 1);
+  CellRotation r;
+  for (float& s : r.position) s = rng.nextFloat();
+  for (float& s : r.roulette) s = rng.nextFloat();
+  return r;
+}
 
 }  // namespace
 
@@ -50,8 +82,7 @@ PhotonTracer::PhotonTracer(const Scene& scene, uint64_t photons, int maxBounces)
 
   uint64_t first = 0;
   for (PhotonLightPlan& plan : plans_) {
-    Pcg32 shift = Pcg32::forKey(scene.settings().seed, plan.light, kPhotonStreamBase - 1);
-    for (float& s : plan.emissionShift) s = shift.nextFloat();
+    plan.cellStride = goldenCellStride(plan.map.coveredCellCount());
     plan.first = first;
     first += plan.count;
     if (plan.count > 0) {
@@ -80,16 +111,19 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   ++stats.emitted;
   Pcg32 rng = Pcg32::forKey(scene_.settings().seed, index, kPhotonStreamBase + pass);
   const PointLightDesc& light = scene_.lights()[plan.light];
-  // Emission follows the light's Halton sequence, continued from pass to pass so that all the
-  // passes together stay evenly spread; a per-light rotation keyed by the seed decorrelates
-  // lights. Roulette below uses the photon's own random stream.
+  // Round the marked cells in turn, then along the cell's own (0, 2)-sequence, continued from pass
+  // to pass so that all the passes together stay evenly spread (see PhotonTracer.h).
   const uint64_t sequenceIndex = static_cast<uint64_t>(pass) * plan.count + (index - plan.first);
-  const float u0 = rotateUnit(radicalInverse(2, sequenceIndex), plan.emissionShift[0]);
-  const float u1 = rotateUnit(radicalInverse(3, sequenceIndex), plan.emissionShift[1]);
-  const float u2 = rotateUnit(radicalInverse(5, sequenceIndex), plan.emissionShift[2]);
-  Ray ray{light.position, plan.map.sample(u0, u1, u2)};
+  const uint64_t cells = plan.map.coveredCellCount();
+  const uint64_t cell = (sequenceIndex % cells) * plan.cellStride % cells;  // cells < 2^32
+  const uint64_t inCell = sequenceIndex / cells;
+  const CellRotation rotation = cellRotation(scene_.settings().seed, plan.light, cell);
+  const float u1 = rotateUnit(radicalInverse(2, inCell), rotation.position[0]);
+  const float u2 = rotateUnit(sobolSecond(inCell), rotation.position[1]);
+  Ray ray{light.position, plan.map.sampleCell(cell, u1, u2)};
   Color power = plan.powerPerPhoton;
 
+  int decisions = 0;  // roulette decisions taken so far
   for (int bounce = 0;; ++bounce) {
     HitRecord hit;
     if (!scene_.intersect(ray, hit)) {
@@ -119,7 +153,11 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
       reflectP /= sum;
       transmitP /= sum;
     }
-    const float u = rng.nextFloat();
+    const float u = decisions < kStratifiedRoulette
+                        ? rotateUnit(radicalInverse(kRouletteBases[decisions], inCell),
+                                     rotation.roulette[decisions])
+                        : rng.nextFloat();
+    ++decisions;
     Vec3 direction;
     if (u < reflectP) {
       power *= split.reflectWeight / reflectP;

@@ -10,10 +10,20 @@
 // photon's power is multiplied by weight / probability, so colourless glass and mirrors leave it
 // unchanged and the estimate stays unbiased.
 //
-// Photon i of pass p leaves its light along Halton point (p · n + i − first) of that light (n its
-// photons per pass), evenly spread like a jittered grid, and draws its roulette decisions from
-// its own random stream keyed by (seed, i, p): the photons traced do not depend on how the index
-// range is split between threads or ranks.
+// Emission is stratified twice. Photons go round the light's c marked cells of the projection
+// map in turn (sequence index s = p · n + i − first, n the light's photons per pass), so every
+// cell gets its share to one photon; the round visits cell (s mod c) · g mod c, g the integer
+// coprime to c nearest c times the golden ratio's fraction, so that fewer photons than cells still
+// spread over all of them, not over the first few. Within its cell, photon s is point s div c of
+// a (0, 2)-sequence (math/LowDiscrepancy.h), rotated by an offset of that cell's keyed by the
+// seed. The photons under any small patch of a caster then number its area's share to about
+// one photon, where the Halton sequence over the whole map (its bases 3 and 5 spread a few
+// hundred points per cell unevenly) left them nearly as uneven as random ones. The photon's first
+// kStratifiedRoulette roulette decisions take further coordinates of its cell's sequence (Halton
+// bases 3, 5, 7, 11, rotated the same way), so that among the photons through a small patch the
+// share reflected, refracted and absorbed is the probabilities' and not a random draw of them.
+// Later decisions come from the photon's own random stream keyed by (seed, i, p). The photons
+// traced do not depend on how the index range is split between threads or ranks.
 #pragma once
 
 #include <atomic>
@@ -27,13 +37,16 @@
 
 namespace prism {
 
+// Roulette decisions along a photon's path that follow its cell's sequence (see above).
+constexpr int kStratifiedRoulette = 4;
+
 // One light's share of the photons of a pass.
 struct PhotonLightPlan {
   size_t light = 0;  // index into Scene::lights()
   ProjectionMap map;
-  uint64_t first = 0, count = 0;                // photon indices [first, first + count)
-  Color powerPerPhoton{0.0f};                   // W
-  float emissionShift[3] = {0.0f, 0.0f, 0.0f};  // rotation of the light's Halton points
+  uint64_t first = 0, count = 0;  // photon indices [first, first + count)
+  Color powerPerPhoton{0.0f};     // W
+  uint64_t cellStride = 1;  // g above: consecutive photons' cells lie this far apart in the list
 };
 
 class PhotonTracer {

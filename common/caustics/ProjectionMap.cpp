@@ -138,7 +138,10 @@ double ProjectionMap::coveredSolidAngle() const {
 
 Vec3 ProjectionMap::sample(float u0, float u1, float u2) const {
   const size_t n = covered_.size();
-  const size_t pick = std::min(static_cast<size_t>(static_cast<double>(u0) * n), n - 1);
+  return sampleCell(std::min(static_cast<size_t>(static_cast<double>(u0) * n), n - 1), u1, u2);
+}
+
+Vec3 ProjectionMap::sampleCell(size_t pick, float u1, float u2) const {
   const uint32_t cell = covered_[pick];
   const int row = static_cast<int>(cell / static_cast<uint32_t>(columns_));
   const int column = static_cast<int>(cell % static_cast<uint32_t>(columns_));

@@ -29,6 +29,9 @@ class ProjectionMap {
 
   // A direction uniformly distributed over the marked cells, from three uniform numbers.
   Vec3 sample(float u0, float u1, float u2) const;
+  // A direction in marked cell `cell` (0 ≤ cell < coveredCellCount()), uniformly distributed over
+  // it for (u1, u2) uniform in [0, 1)².
+  Vec3 sampleCell(size_t cell, float u1, float u2) const;
 
  private:
   int rows_, columns_;

@@ -20,6 +20,19 @@ inline double radicalInverse(uint32_t base, uint64_t i) {
   return result;
 }
 
+// The second coordinate of Sobol's sequence (its generator matrix is Pascal's triangle mod 2).
+// With radicalInverse(2, j) as the first, point j of a (0, 2)-sequence in base 2 (Sobol 1967):
+// every 2^m consecutive points from a multiple of 2^m put exactly one point in every box
+// [a/2^p, (a+1)/2^p) × [b/2^q, (b+1)/2^q) with p + q = m — the best spread two coordinates can
+// have, better than Halton's in bases 3 and 5 at a few hundred points.
+inline double sobolSecond(uint64_t j) {
+  uint64_t direction = uint64_t{1} << 63, bits = 0;
+  for (; j > 0; j >>= 1, direction ^= direction >> 1) {
+    if (j & 1) bits ^= direction;
+  }
+  return static_cast<double>(bits >> 11) * 0x1p-53;
+}
+
 // x + shift wrapped into [0, 1) and rounded to a float strictly below 1 (Cranley–Patterson
 // rotation: decorrelates sequences that share indices while keeping their even spread).
 inline float rotateUnit(double x, float shift) {
