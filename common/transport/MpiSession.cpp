@@ -194,6 +194,17 @@ void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {
   }
 }
 
+int MpiSession::ranksOnThisNode() const {
+  // Open MPI's launcher says; Slurm's srun says SLURM_NTASKS_PER_NODE only for even layouts.
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"}) {
+    if (const char* value = std::getenv(name)) {
+      const int n = std::atoi(value);
+      if (n >= 1) return n;
+    }
+  }
+  return 1;
+}
+
 bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {
   if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
     throw TransportError("message of " + std::to_string(bytes.size()) + " bytes is too large");

@@ -82,7 +82,10 @@ std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>&
   return bytes;
 }
 
-Message decodeMessage(const uint8_t* data, size_t size) {
+namespace {
+
+// Every check of decodeMessage; the type.
+MessageType checkEnvelope(const uint8_t* data, size_t size) {
   if (size < kHeaderSize) {
     throw WireError("message too short for a header: " + std::to_string(size) +
                     " bytes, a header needs " + std::to_string(kHeaderSize));
@@ -112,8 +115,20 @@ Message decodeMessage(const uint8_t* data, size_t size) {
     throw WireError("payload checksum mismatch: header says " + hex(checksum, 16) +
                     ", payload hashes to " + hex(computed, 16));
   }
-  return {static_cast<MessageType>(type),
-          std::vector<uint8_t>(data + kHeaderSize, data + kHeaderSize + actual)};
+  return static_cast<MessageType>(type);
+}
+
+}  // namespace
+
+Message decodeMessage(const uint8_t* data, size_t size) {
+  const MessageType type = checkEnvelope(data, size);
+  return {type, std::vector<uint8_t>(data + kHeaderSize, data + size)};
+}
+
+Message decodeMessage(std::vector<uint8_t>&& bytes) {
+  const MessageType type = checkEnvelope(bytes.data(), bytes.size());
+  bytes.erase(bytes.begin(), bytes.begin() + kHeaderSize);
+  return {type, std::move(bytes)};
 }
 
 template <WireMessage T>
@@ -250,6 +265,12 @@ void ReadyMessage::check(const ReadyMessage& ready) {
   if (ready.startSeconds != -1.0) checkSeconds(ready.startSeconds, "start time");
   checkSeconds(ready.mpiInitSeconds, "MPI_Init time");
   if (ready.threads < 0) throw WireError("invalid thread count " + std::to_string(ready.threads));
+}
+
+void SceneAcceptedMessage::check(const SceneAcceptedMessage& accepted) {
+  for (int32_t n : {accepted.threads, accepted.cores, accepted.ranksOnNode}) {
+    if (n < 1) throw WireError("invalid count " + std::to_string(n) + " in SceneAccepted");
+  }
 }
 
 void HelloMessage::check(const HelloMessage& hello) {

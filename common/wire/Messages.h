@@ -24,6 +24,7 @@
 #include "util/InstructionSet.h"
 #include "wire/ByteBuffer.h"
 #include "wire/Fields.h"
+#include "wire/GeometryCodec.h"
 #include "wire/MessageParts.h"
 #include "wire/SceneCodec.h"
 
@@ -40,7 +41,8 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
 // 11: PhotonRadiiJob, PhotonRadiiShare and PhotonRadii (the ranks find a map's radii together).
 // 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
-inline constexpr uint16_t kVersion = 12;
+// 13: SceneAccepted, BuildGeometry and Geometry (rank 0 broadcasts the geometry it built).
+inline constexpr uint16_t kVersion = 13;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
@@ -63,7 +65,10 @@ inline constexpr size_t kHeaderSize = 24;
   X(PhotonRadiiJob, 15, PhotonRadiiJobMessage)     \
   X(PhotonRadiiShare, 16, PhotonRadiiShareMessage) \
   X(PhotonRadii, 17, PhotonRadiiMessage)           \
-  X(Hello, 18, HelloMessage)
+  X(Hello, 18, HelloMessage)                       \
+  X(SceneAccepted, 19, SceneAcceptedMessage)       \
+  X(BuildGeometry, 20, BuildGeometryMessage)       \
+  X(Geometry, 21, SceneGeometry)
 
 enum class MessageType : uint16_t {
 #define PRISM_WIRE_ENUMERATOR(name, number, Type) name = number,
@@ -109,6 +114,9 @@ Message decodeMessage(const uint8_t* data, size_t size);
 inline Message decodeMessage(const std::vector<uint8_t>& bytes) {
   return decodeMessage(bytes.data(), bytes.size());
 }
+// The same, the payload taking over the bytes' memory instead of a copy (a broadcast geometry
+// is hundreds of megabytes).
+Message decodeMessage(std::vector<uint8_t>&& bytes);
 
 // Bits of TileJobMessage::terms: what the tile adds up (see render/WhittedIntegrator.h).
 inline constexpr uint8_t kTermDirect = 1;
@@ -255,6 +263,25 @@ struct HelloMessage {
 struct ErrorMessage {
   std::string text;
   PRISM_WIRE_FIELDS(text)
+};
+
+// Slave to master, once it has decoded the scene and checked it against its own memory (an
+// Error says why not): rank 0 builds nothing before every slave has answered. What the slave
+// builds with, for rank 0's choice between every rank building and broadcasting its build
+// (master/runtime/GeometryShare.h).
+struct SceneAcceptedMessage {
+  int32_t threads = 1;      // threads it builds and renders with
+  int32_t cores = 1;        // its machine's cores
+  int32_t ranksOnNode = 1;  // ranks of the job on its machine, itself included
+  PRISM_WIRE_FIELDS(threads, cores, ranksOnNode)
+  static void check(const SceneAcceptedMessage& accepted);  // each at least 1
+};
+
+// Master to every slave, broadcast once every slave has accepted the scene: build the geometry
+// yourselves. Otherwise rank 0 broadcasts its own build (a Geometry message) in its place, or
+// an Error when the job ends before anything is built. No payload.
+struct BuildGeometryMessage {
+  static void fields(auto&, auto&& visit) { visit(); }
 };
 
 // A slave's heartbeat while it has work: how many jobs it has received so far and which tiles

@@ -3,6 +3,7 @@
 // No default cases: -Wswitch points here when an enumerator is added, so the decoder learns it.
 #pragma once
 
+#include "accel/Traversal.h"
 #include "caustics/PhotonGatherSettings.h"
 #include "render/RenderView.h"
 #include "scene/SceneDescription.h"
@@ -23,6 +24,16 @@ inline bool isKnown(TriangleTest t) {
     case TriangleTest::MollerTrumbore:
     case TriangleTest::PlaneThenInside:
     case TriangleTest::Watertight:
+      return true;
+  }
+  return false;
+}
+
+inline bool isKnown(Traversal t) {
+  switch (t) {
+    case Traversal::BinaryScalar:
+    case Traversal::WideScalarLeaves:
+    case Traversal::WideSimd:
       return true;
   }
   return false;
@@ -96,6 +107,9 @@ inline const char* enumName(Projection) {
 }
 inline const char* enumName(TriangleTest) {
   return "triangle test";
+}
+inline const char* enumName(Traversal) {
+  return "BVH traversal";
 }
 inline const char* enumName(InstructionSet) {
   return "instruction set";
