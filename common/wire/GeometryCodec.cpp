@@ -191,6 +191,18 @@ void Fields<SceneGeometry>::checkFitsScene(const SceneGeometry& g, const SceneDe
   for (const SceneGeometry::MeshShading& m : g.meshes_) check(m.material, "mesh");
 }
 
+size_t Fields<SceneGeometry>::wireBytes(const SceneGeometry& g) {
+  size_t bytes = 4096 + g.triangles_.size() * sizeof(Triangle) + g.cones_.size() * 128 +
+                 g.spheres_.size() * sizeof(Sphere) + g.planes_.size() * sizeof(Plane) +
+                 g.leafRefs_.size() * 4 + g.bvh_.nodes_.size() * sizeof(BvhNode) +
+                 g.bvh_.order_.size() * 4 + g.wideBvh_.nodes_.size() * sizeof(WideBvhNode) +
+                 g.packs_.size() * sizeof(SceneGeometry::LeafPack);
+  for (const SceneGeometry::MeshShading& m : g.meshes_) {
+    bytes += 64 + m.normals.size() * sizeof(Vec3) + m.indices.size() * 4;
+  }
+  return bytes + g.spheres_.size() + g.cones_.size() + g.planes_.size();  // caustic bytes
+}
+
 void checkGeometryFitsScene(const SceneGeometry& geometry, const SceneDescription& scene) {
   Fields<SceneGeometry>::checkFitsScene(geometry, scene);
 }

@@ -123,6 +123,8 @@ struct Fields<SceneGeometry> {
   // WireError naming the first fault.
   static void check(const SceneGeometry& geometry);
   static void checkFitsScene(const SceneGeometry& geometry, const SceneDescription& scene);
+  // The wire form's size, near enough to reserve it at once (hundreds of megabytes).
+  static size_t wireBytes(const SceneGeometry& geometry);
 };
 
 // Whether the geometry is the description's: as many spheres, cones, planes and triangles, and

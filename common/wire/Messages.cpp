@@ -43,7 +43,8 @@ std::vector<uint8_t> encodeWith(MessageType type, WritePayload writePayload) {
   std::vector<uint8_t> bytes = w.take();
   const size_t size = bytes.size() - kHeaderSize;
   putLittleEndian(bytes.data() + kSizeOffset, size);
-  putLittleEndian(bytes.data() + kChecksumOffset, fnv1a64(bytes.data() + kHeaderSize, size));
+  putLittleEndian(bytes.data() + kChecksumOffset,
+                  payloadChecksum(bytes.data() + kHeaderSize, size));
   return bytes;
 }
 
@@ -74,9 +75,25 @@ uint64_t fnv1a64(const uint8_t* data, size_t size) {
   return hash;
 }
 
+uint64_t payloadChecksum(const uint8_t* data, size_t size) {
+  uint64_t hash = 14695981039346656037ull;
+  size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    uint64_t word = 0;
+    for (int b = 0; b < 8; ++b) word |= uint64_t{data[i + b]} << (8 * b);  // one load
+    hash ^= word;
+    hash *= 1099511628211ull;
+  }
+  for (; i < size; ++i) {
+    hash ^= data[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
 std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>& payload) {
   ByteWriter w;
-  writeHeader(w, type, payload.size(), fnv1a64(payload.data(), payload.size()));
+  writeHeader(w, type, payload.size(), payloadChecksum(payload.data(), payload.size()));
   std::vector<uint8_t> bytes = w.take();
   bytes.insert(bytes.end(), payload.begin(), payload.end());
   return bytes;
@@ -110,7 +127,7 @@ MessageType checkEnvelope(const uint8_t* data, size_t size) {
                     " bytes, message carries " + std::to_string(actual));
   }
   const uint64_t checksum = r.readU64();
-  const uint64_t computed = fnv1a64(data + kHeaderSize, actual);
+  const uint64_t computed = payloadChecksum(data + kHeaderSize, actual);
   if (checksum != computed) {
     throw WireError("payload checksum mismatch: header says " + hex(checksum, 16) +
                     ", payload hashes to " + hex(computed, 16));
@@ -133,7 +150,10 @@ Message decodeMessage(std::vector<uint8_t>&& bytes) {
 
 template <WireMessage T>
 std::vector<uint8_t> encode(const T& value) {
-  return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) { writeFields(w, value); });
+  return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) {
+    if constexpr (requires { Fields<T>::wireBytes(value); }) w.reserveMore(Fields<T>::wireBytes(value));
+    writeFields(w, value);
+  });
 }
 
 // Checks the type, reads the payload, insists it consumed every byte, and puts the message type

@@ -43,7 +43,7 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
 // 13: SceneAccepted, BuildGeometry and Geometry (rank 0 broadcasts the geometry it built).
 inline constexpr uint16_t kVersion = 13;
-// magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
+// magic u32, version u16, type u16, payload size u64, payloadChecksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
 // Every message type: its name, its number on the wire (never reused) and the struct it carries.
@@ -100,6 +100,11 @@ constexpr bool isKnownType(uint16_t raw) {
 
 // FNV-1a, 64 bit: detects every single-byte change, which is what a checksum here is for.
 uint64_t fnv1a64(const uint8_t* data, size_t size);
+// The envelope's checksum: FNV-1a over the payload's little-endian 64-bit words, then its last
+// bytes one by one. Any one changed word (so any one changed byte) changes it, as byte-wise
+// FNV-1a does, at an eighth of the multiplications: byte-wise, a 323 MiB geometry took 0.6 s to
+// hash on each side.
+uint64_t payloadChecksum(const uint8_t* data, size_t size);
 
 std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>& payload);
 
