@@ -41,8 +41,9 @@ std::vector<uint8_t> payloadOf(const T& value) {
 template <class T>
 std::vector<T> acceptedValues() {
   std::vector<T> values;
-  for (const T& value : {T{}, fuzz::filledExample<T>()}) {
-    if (outcome<T>(payloadOf(value)).empty()) values.push_back(value);
+  T candidates[] = {T{}, fuzz::filledExample<T>()};  // moved, not copied: a geometry has no copy
+  for (T& value : candidates) {
+    if (outcome<T>(payloadOf(value)).empty()) values.push_back(std::move(value));
   }
   return values;
 }
