@@ -16,6 +16,7 @@
 #include "util/Parallel.h"
 #include "util/ProcessStart.h"
 #include "util/Stopwatch.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism {

@@ -1,5 +1,7 @@
 #include "wire/Messages.h"
 
+#include "wire/GeometryCodec.h"
+
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -151,7 +153,8 @@ Message decodeMessage(std::vector<uint8_t>&& bytes) {
 template <WireMessage T>
 std::vector<uint8_t> encode(const T& value) {
   return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) {
-    if constexpr (requires { Fields<T>::wireBytes(value); }) w.reserveMore(Fields<T>::wireBytes(value));
+    if constexpr (requires { Fields<T>::wireBytes(value); })
+      w.reserveMore(Fields<T>::wireBytes(value));
     writeFields(w, value);
   });
 }

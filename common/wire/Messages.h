@@ -24,9 +24,15 @@
 #include "util/InstructionSet.h"
 #include "wire/ByteBuffer.h"
 #include "wire/Fields.h"
-#include "wire/GeometryCodec.h"
 #include "wire/MessageParts.h"
 #include "wire/SceneCodec.h"
+
+namespace prism {
+// A Geometry message carries a built geometry; its field lists are in wire/GeometryCodec.h,
+// which only the code that sends or receives one includes, so the other messages' users do not
+// reach the acceleration structures.
+class SceneGeometry;
+}  // namespace prism
 
 namespace prism::wire {
 

@@ -15,6 +15,7 @@
 #include "util/InterruptSignal.h"
 #include "util/Parallel.h"
 #include "util/Stopwatch.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism {

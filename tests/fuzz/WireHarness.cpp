@@ -2,6 +2,7 @@
 #include <type_traits>
 
 #include "fuzz/Harnesses.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism::fuzz {

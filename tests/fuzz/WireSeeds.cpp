@@ -15,6 +15,7 @@
 #include "fuzz/WireExamples.h"
 #include "parse/SceneLoader.h"
 #include "scene/Scene.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fuzz/WireExamples.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism::wire {
