@@ -374,13 +374,21 @@ void forEachMessageType(F&& f) {
 #undef PRISM_WIRE_EACH
 }
 
-// Decodes message as the struct its type carries and returns f(that struct).
+// T, named through F so that a use of it waits for visitMessage's instantiation: a struct only
+// declared here (SceneGeometry) must be complete where a visitor is, not where this is defined.
+template <class F, class T>
+struct AsDependent {
+  using type = T;
+};
+
+// Decodes message as the struct its type carries and returns f(that struct). A caller includes
+// wire/GeometryCodec.h (the Geometry message's struct).
 template <class F>
 decltype(auto) visitMessage(const Message& message, F&& f) {
   switch (message.type) {
 #define PRISM_WIRE_VISIT(name, number, Type) \
   case MessageType::name:                    \
-    return f(decode<Type>(message));
+    return f(decode<typename AsDependent<F, Type>::type>(message));
     PRISM_WIRE_MESSAGES(PRISM_WIRE_VISIT)
 #undef PRISM_WIRE_VISIT
   }
