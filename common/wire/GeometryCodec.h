@@ -19,6 +19,26 @@
 #include "scene/SceneDescription.h"
 #include "wire/Fields.h"
 
+namespace prism {
+
+// The walk a geometry was built for, as wire/WireEnums.h says of the other enumerations; here,
+// and found by argument-dependent lookup, so that the rest of the wire does not reach the
+// acceleration structures.
+inline bool isKnown(Traversal t) {
+  switch (t) {
+    case Traversal::WideSimd:
+    case Traversal::WideScalarLeaves:
+    case Traversal::BinaryScalar:
+      return true;
+  }
+  return false;
+}
+inline const char* enumName(Traversal) {
+  return "BVH traversal";
+}
+
+}  // namespace prism
+
 namespace prism::wire {
 
 template <>

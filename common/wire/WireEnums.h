@@ -3,7 +3,6 @@
 // No default cases: -Wswitch points here when an enumerator is added, so the decoder learns it.
 #pragma once
 
-#include "accel/Traversal.h"
 #include "caustics/PhotonGatherSettings.h"
 #include "render/RenderView.h"
 #include "scene/SceneDescription.h"
@@ -24,16 +23,6 @@ inline bool isKnown(TriangleTest t) {
     case TriangleTest::MollerTrumbore:
     case TriangleTest::PlaneThenInside:
     case TriangleTest::Watertight:
-      return true;
-  }
-  return false;
-}
-
-inline bool isKnown(Traversal t) {
-  switch (t) {
-    case Traversal::BinaryScalar:
-    case Traversal::WideScalarLeaves:
-    case Traversal::WideSimd:
       return true;
   }
   return false;
@@ -107,9 +96,6 @@ inline const char* enumName(Projection) {
 }
 inline const char* enumName(TriangleTest) {
   return "triangle test";
-}
-inline const char* enumName(Traversal) {
-  return "BVH traversal";
 }
 inline const char* enumName(InstructionSet) {
   return "instruction set";
