@@ -32,6 +32,7 @@ class FaultInjectingTransport final : public Transport {
   int rank() const override { return inner_.rank(); }
   int size() const override { return inner_.size(); }
   double setUpSeconds() const override { return inner_.setUpSeconds(); }
+  int ranksOnThisNode() const override { return inner_.ranksOnThisNode(); }
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) override {
     inner_.broadcast(bytes, timeoutSeconds);
   }

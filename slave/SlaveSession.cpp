@@ -16,6 +16,7 @@
 #include "util/Parallel.h"
 #include "util/ProcessStart.h"
 #include "util/Stopwatch.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism {
@@ -25,9 +26,6 @@ constexpr double kInterruptedShutdownSeconds = 0.8;
 // The longest the message loop sleeps without news: the bound on noticing Ctrl-C or rank 0's
 // silence. Messages, finished tiles and photon shares wake it at once.
 constexpr double kIdleCheckSeconds = 0.1;
-
-// Thrown by decodeAndBuild when rank 0 broadcast an error instead of a scene (it reports it).
-struct NoScene {};
 
 }  // namespace
 
@@ -54,18 +52,34 @@ std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
     transport_.send(0, wire::encode(wire::ErrorMessage{e.what()}));
   }
   std::vector<uint8_t> bytes;
+  if (!receiveBroadcast(bytes)) return SlaveEnd{1, true};
+  // The description, checked against this rank's memory before any rank builds: rank 0 waits
+  // for every slave's answer.
+  std::optional<SceneDescription> description;
   try {
-    transport_.broadcast(bytes, options_.masterTimeoutSeconds);
-  } catch (const TransportError& e) {
-    std::fprintf(stderr, "prism: rank %d: %s\n", transport_.rank(), e.what());
-    return SlaveEnd{1, true};
+    const wire::Message message = wire::decodeMessage(bytes);
+    // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
+    if (message.type == wire::MessageType::Error) return SlaveEnd{1};
+    description = wire::decodeScene(message);
+    // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
+    checkGeometryFits(*description, memoryLimit_);
+    transport_.send(0, wire::encode(wire::SceneAcceptedMessage{availableCores(), machineCores(),
+                                                               transport_.ranksOnThisNode()}));
+  } catch (const std::exception& e) {
+    transport_.send(
+        0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
+    description.reset();
   }
+  std::vector<uint8_t>().swap(bytes);
+  // Then whether to build: rank 0's own build (Geometry), a go-ahead (BuildGeometry), or an
+  // Error (a slave refused the scene, or rank 0 could not build it): the job ends.
+  if (!receiveBroadcast(bytes)) return SlaveEnd{1, true};
   try {
-    work_ = std::make_unique<SlaveWork>(transport_, decodeAndBuild(bytes, startSeconds), options_,
-                                        memoryLimit_);
+    wire::Message plan = wire::decodeMessage(std::move(bytes));
+    if (!description || plan.type == wire::MessageType::Error) return SlaveEnd{1};
+    work_ = std::make_unique<SlaveWork>(transport_, build(*description, plan, startSeconds),
+                                        options_, memoryLimit_);
     return std::nullopt;
-  } catch (const NoScene&) {
-    return SlaveEnd{1};
   } catch (const std::exception& e) {
     transport_.send(
         0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
@@ -74,17 +88,29 @@ std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
   }
 }
 
-std::unique_ptr<Scene> SlaveSession::decodeAndBuild(const std::vector<uint8_t>& bytes,
-                                                    double startSeconds) {
-  const wire::Message message = wire::decodeMessage(bytes);
-  // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
-  if (message.type == wire::MessageType::Error) throw NoScene{};
+bool SlaveSession::receiveBroadcast(std::vector<uint8_t>& bytes) {
+  try {
+    transport_.broadcast(bytes, options_.masterTimeoutSeconds);
+    return true;
+  } catch (const TransportError& e) {
+    std::fprintf(stderr, "prism: rank %d: %s\n", transport_.rank(), e.what());
+    return false;
+  }
+}
+
+std::unique_ptr<Scene> SlaveSession::build(SceneDescription& description, const wire::Message& plan,
+                                           double startSeconds) {
   const auto buildStart = SteadyClock::now();
-  SceneDescription description = wire::decodeScene(message);
-  // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
-  checkGeometryFits(description, memoryLimit_);
-  auto scene =
-      std::make_unique<Scene>(description, std::exchange(description.environment, std::nullopt));
+  std::optional<CubeMapDesc> environment = std::exchange(description.environment, std::nullopt);
+  std::unique_ptr<Scene> scene;
+  if (plan.type == wire::MessageType::Geometry) {
+    SceneGeometry geometry = wire::decode<SceneGeometry>(plan);
+    wire::checkGeometryFitsScene(geometry, description);
+    scene = std::make_unique<Scene>(description, std::move(environment), std::move(geometry));
+  } else {
+    wire::decode<wire::BuildGeometryMessage>(plan);  // anything else is refused
+    scene = std::make_unique<Scene>(description, std::move(environment));
+  }
   checkCausticMapsFit(*scene, memoryLimit_);  // before any map is built
   const int threads = options_.threads > 0 ? options_.threads : availableCores();
   transport_.send(0, wire::encode(wire::ReadyMessage{secondsSince(buildStart), threads,

@@ -13,6 +13,7 @@
 #include "slave/SlaveLoop.h"
 #include "transport/Transport.h"
 #include "util/MemorySize.h"
+#include "wire/Messages.h"
 
 namespace prism {
 
@@ -33,7 +34,11 @@ class SlaveSession {
   // The scene built and Ready sent; else how the session ends (rank 0 silent or failed, the
   // scene refused: reported to rank 0).
   std::optional<SlaveEnd> buildScene(double startSeconds);
-  std::unique_ptr<Scene> decodeAndBuild(const std::vector<uint8_t>& bytes, double startSeconds);
+  // Rank 0's next broadcast into bytes; false (reported) when it does not come.
+  bool receiveBroadcast(std::vector<uint8_t>& bytes);
+  // The Scene as the plan says (rank 0's geometry, or built here), and Ready sent.
+  std::unique_ptr<Scene> build(SceneDescription& description, const wire::Message& plan,
+                               double startSeconds);
   // The message loop, until it ends; a failure in it is reported to rank 0.
   void serve();
   void loop();

@@ -14,6 +14,10 @@
 #include "util/Parallel.h"
 
 namespace prism {
+namespace wire {
+template <class T>
+struct Fields;
+}
 
 // 32 bytes, so two nodes share a cache line. Children of an interior node: the next node in
 // the array, and secondChild.
@@ -68,6 +72,9 @@ class Bvh {
   bool traverse(const Ray& ray, float& tMax, bool anyHit, LeafVisitor&& leafVisitor) const;
 
  private:
+  template <class T>
+  friend struct wire::Fields;  // the wire form lists the members (wire/GeometryCodec.h)
+
   std::vector<BvhNode> nodes_;
   std::vector<uint32_t> order_;
   BvhBuildStats stats_;

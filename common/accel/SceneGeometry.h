@@ -26,6 +26,10 @@
 #include "util/InstructionSet.h"
 
 namespace prism {
+namespace wire {
+template <class T>
+struct Fields;
+}
 
 struct RayPacket8;
 
@@ -87,8 +91,13 @@ class SceneGeometry {
   // Builds on as many threads as the machine has (big meshes only). The instruction set must
   // be one this process runs (std::invalid_argument otherwise); Auto takes the best.
   explicit SceneGeometry(GeometryInput input);
+  // Empty: nothing is hit. What a reader of the wire form (wire/GeometryCodec.h) fills with a
+  // geometry built on another rank, member for member, so the walks find the same hits.
+  SceneGeometry() : SceneGeometry(GeometryInput{}) {}
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
+  SceneGeometry(SceneGeometry&&) = default;
+  SceneGeometry& operator=(SceneGeometry&&) = default;
 
   // Closest hit in (ray.tMin, ray.tMax); the ray direction must be unit length.
   bool intersect(const Ray& ray, HitRecord& hit) const {
@@ -139,7 +148,7 @@ class SceneGeometry {
                         SurfaceHit& s);
   };
 
- private:
+  // The parts below are public so that the wire form can name them; their values stay private.
   struct MeshShading {
     std::vector<Vec3> normals;  // empty: flat shading
     std::vector<uint32_t> indices;
@@ -155,11 +164,17 @@ class SceneGeometry {
     uint32_t leafFirst = 0;
     uint16_t leafCount = 0;
     bool hasOtherKinds = false;  // spheres or cones share the leaf
+    uint8_t unused[9] = {};      // what alignment would pad, zeroed: the memory is the wire form
   };
+  static_assert(sizeof(LeafPack) == 176);
   // A wide-BVH leaf without triangles has no pack: its child field is its first leaf entry with
   // this bit set, its count the entries' count (a pack of four empty lanes per sphere or cone
   // leaf would take 176 bytes and a wasted test).
   static constexpr uint32_t kPacklessLeaf = 1u << 31;
+
+ private:
+  template <class T>
+  friend struct wire::Fields;  // the wire form lists the members (wire/GeometryCodec.h)
 
   // The walks' parts (accel/LeafTests.h, PacketWalk.cpp, SingleRayWalk.cpp).
   template <bool kAnyHit>

@@ -20,6 +20,10 @@
 #include "math/Simd.h"
 
 namespace prism {
+namespace wire {
+template <class T>
+struct Fields;
+}
 
 struct alignas(64) WideBvhNode {
   static constexpr int kWidth = 8;
@@ -28,6 +32,9 @@ struct alignas(64) WideBvhNode {
   float bounds[6][kWidth];
   uint32_t child[kWidth];  // interior child: node index; leaf child: first primitive entry
   uint8_t count[kWidth];   // leaf child: primitive count (> 0); interior child or unused: 0
+  // What alignment would pad, named and zeroed: a node's memory is then its wire form, every
+  // byte defined (wire/GeometryCodec.h copies nodes in one go).
+  uint8_t unused[24] = {};
 };
 static_assert(sizeof(WideBvhNode) == 256);
 
@@ -143,6 +150,9 @@ class WideBvh {
   bool traverse(const Ray& ray, float& tMax, LeafVisitor&& leafVisitor) const;
 
  private:
+  template <class T>
+  friend struct wire::Fields;  // the wire form lists the members (wire/GeometryCodec.h)
+
   std::vector<WideBvhNode> nodes_;
   Aabb rootBounds_;  // the binary root's box, around the root's children; empty for an empty tree
   WideBvhStats stats_;

@@ -8,9 +8,14 @@
 #include "math/Aabb.h"
 
 namespace prism {
+namespace wire {
+template <class T>
+struct Fields;
+}
 
 class Cone {
  public:
+  Cone() = default;  // a degenerate cone nothing hits, for a reader of the wire form to fill
   Cone(const Vec3& base, float baseRadius, const Vec3& apex, float apexRadius, MaterialId material);
 
   // The part of this cone between heights zLow and zHigh along the axis (0 ≤ zLow < zHigh ≤
@@ -32,17 +37,20 @@ class Cone {
   float height() const { return height_; }
 
  private:
-  Vec3 base_;
-  Vec3 axis_;  // unit, base to apex
-  Vec3 side1_, side2_;
-  float height_;
-  float baseRadius_;
-  float slope_;        // radius change per unit of height
-  float normalScale_;  // 1 / sqrt(1 + slope²): normalises (radial unit − slope · axis)
-  float apexRadius_;
+  template <class T>
+  friend struct wire::Fields;  // the wire form lists the members (wire/GeometryCodec.h)
+
+  Vec3 base_{0.0f};
+  Vec3 axis_{0.0f, 0.0f, 1.0f};  // unit, base to apex
+  Vec3 side1_{1.0f, 0.0f, 0.0f}, side2_{0.0f, 1.0f, 0.0f};
+  float height_ = 0.0f;
+  float baseRadius_ = 0.0f;
+  float slope_ = 0.0f;        // radius change per unit of height
+  float normalScale_ = 1.0f;  // 1 / sqrt(1 + slope²): normalises (radial unit − slope · axis)
+  float apexRadius_ = 0.0f;
   // The segment this cone stands for: hits with zLow_ ≤ z ≤ zHigh_ (the whole cone: 0, height_).
-  float zLow_ = 0.0f, zHigh_;
-  MaterialId material_;
+  float zLow_ = 0.0f, zHigh_ = 0.0f;
+  MaterialId material_ = 0;
 };
 
 }  // namespace prism

@@ -57,6 +57,21 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
   settings_.instructionSet = geometry_.instructionSet();  // Auto resolved
 }
 
+Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, SceneGeometry built)
+    : settings_(d.render),
+      caustics_(d.caustics),
+      camera_(d.camera, d.render.width, d.render.height),
+      background_(d.background),
+      ambientLight_(d.ambientLight),
+      materials_(withDefaultMaterial(d.materials)),
+      lights_(d.lights),
+      geometry_(std::move(built)) {
+  geometryInput(d, geometry_.traversal());  // for the casters: the build itself is done
+  if (environment) environment_.emplace(std::move(*environment));
+  geometry_.useInstructionSet(d.render.instructionSet);
+  settings_.instructionSet = geometry_.instructionSet();  // Auto resolved
+}
+
 GeometryInput Scene::geometryInput(const SceneDescription& d, Traversal traversal) {
   GeometryInput in;
   in.triangleTest = d.render.triangleTest;

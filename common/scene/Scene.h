@@ -37,6 +37,11 @@ class Scene {
   //   Scene scene(description, std::exchange(description.environment, std::nullopt));
   Scene(const SceneDescription& description, std::optional<CubeMapDesc> environment,
         Traversal traversal = Traversal::WideSimd);
+  // The same with the geometry built elsewhere from this description (rank 0 broadcasts it:
+  // wire/GeometryCodec.h), which is bit for bit what this rank would build; its kernels are
+  // set to the description's instruction set.
+  Scene(const SceneDescription& description, std::optional<CubeMapDesc> environment,
+        SceneGeometry built);
 
   // Closest hit in (ray.tMin, ray.tMax); the ray direction must be unit length.
   bool intersect(const Ray& ray, HitRecord& hit) const { return geometry_.intersect(ray, hit); }
@@ -107,6 +112,8 @@ class Scene {
   const std::vector<CasterBounds>& causticCasters() const { return casters_; }
   // Bounds of every bounded primitive (planes excluded).
   const Aabb& bounds() const { return geometry_.bounds(); }
+  // The built geometry itself, for sending to other ranks.
+  const SceneGeometry& geometry() const { return geometry_; }
 
  private:
   // The geometry's input: the description's primitives with their caustic bits (meshes as views

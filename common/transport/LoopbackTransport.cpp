@@ -11,6 +11,7 @@ class LoopbackNetwork::Endpoint final : public Transport {
 
   int rank() const override { return rank_; }
   int size() const override { return network_.size(); }
+  int ranksOnThisNode() const override { return network_.size(); }  // threads of one process
 
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) override {
     std::unique_lock<std::mutex> lock(network_.mutex_);

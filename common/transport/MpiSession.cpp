@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "transport/LoopbackNoDelay.h"
+#include "util/HugePages.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -34,16 +35,24 @@ using Clock = SteadyClock;
 // MPI_Finalize takes well under a second here, a few under load; ten means it will not return.
 constexpr double kFinalizeBoundSeconds = 10.0;
 
-// Polls a request until it completes or the time is up. Short sleeps keep a waiting rank from
-// burning the core its render threads need.
-bool waitBounded(MPI_Request& request, double timeoutSeconds) {
+// How a wait polls: sleeping between tests keeps a waiting rank from burning the core its render
+// threads (or rank 0's build) need; spinning keeps a transfer under way moving, since Open MPI
+// moves a nonblocking collective's data only inside its calls.
+enum class Polling { Sleep, Spin };
+
+// Polls a request until it completes or the time is up.
+bool waitBounded(MPI_Request& request, double timeoutSeconds, Polling polling = Polling::Sleep) {
   const auto start = Clock::now();
   for (;;) {
     int done = 0;
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (done) return true;
     if (secondsSince(start) > timeoutSeconds) return false;
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (polling == Polling::Spin) {
+      std::this_thread::yield();
+    } else {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
   }
 }
 
@@ -182,16 +191,35 @@ void MpiSession::broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) {
   if (!waitBounded(request, timeoutSeconds)) {
     throw TransportError("no scene from rank 0 within " + std::to_string(timeoutSeconds) + " s");
   }
+  // A fresh buffer on 2 MiB pages: in 4 KiB pages the receiving ranks' first touch of a 300 MB
+  // geometry took 3-4 s of page faults on a virtual machine, 0.2 s once the pages existed.
+  if (bytes.capacity() < size) {
+    std::vector<uint8_t>().swap(bytes);
+    reserveOnHugePages(bytes, size);
+  }
   bytes.resize(size);
-  // MPI counts are ints: send large descriptions in chunks.
+  // The size came, so rank 0 is sending now: spin. With the 0.2 ms sleeps between tests, 86 MB
+  // took 1-2 s over shared memory (docs/distributed.md, "One build per job"). MPI counts are
+  // ints: send large descriptions in chunks.
   constexpr uint64_t kChunk = 1u << 30;
   for (uint64_t offset = 0; offset < size; offset += kChunk) {
     const int count = static_cast<int>(std::min(kChunk, size - offset));
     MPI_Ibcast(bytes.data() + offset, count, MPI_BYTE, 0, MPI_COMM_WORLD, &request);
-    if (!waitBounded(request, timeoutSeconds)) {
+    if (!waitBounded(request, timeoutSeconds, Polling::Spin)) {
       throw TransportError("scene broadcast stalled for " + std::to_string(timeoutSeconds) + " s");
     }
   }
+}
+
+int MpiSession::ranksOnThisNode() const {
+  // Open MPI's launcher says; Slurm's srun says SLURM_NTASKS_PER_NODE only for even layouts.
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"}) {
+    if (const char* value = std::getenv(name)) {
+      const int n = std::atoi(value);
+      if (n >= 1) return n;
+    }
+  }
+  return 1;
 }
 
 bool MpiSession::send(int dest, std::vector<uint8_t> bytes) {

@@ -25,6 +25,7 @@ class MpiSession final : public Transport {
   int rank() const override { return rank_; }
   int size() const override { return size_; }
   double setUpSeconds() const override { return initSeconds_; }
+  int ranksOnThisNode() const override;
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
   void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) override;

@@ -31,6 +31,9 @@ class Transport {
   virtual int size() const = 0;
   // Seconds this process spent setting the transport up (MPI_Init), for `prism speedup`.
   virtual double setUpSeconds() const { return 0.0; }
+  // The job's ranks on this rank's machine, itself included (1 when the launcher does not say):
+  // ranks there share its cores, which decides whether building the scene on every rank pays.
+  virtual int ranksOnThisNode() const { return 1; }
 
   // Rank 0's bytes reach every rank. Throws TransportError after timeoutSeconds.
   virtual void broadcast(std::vector<uint8_t>& bytes, double timeoutSeconds) = 0;

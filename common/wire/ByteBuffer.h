@@ -45,6 +45,10 @@ class ByteWriter {
   // (kWireOrderIsNative, no padding).
   void writeRaw(const void* data, size_t size) { appendRaw(data, size); }
 
+  // Room for `more` bytes beyond what is written, so a large message grows in place instead of
+  // being copied at every doubling.
+  void reserveMore(size_t more);
+
   const std::vector<uint8_t>& bytes() const { return bytes_; }
   std::vector<uint8_t> take() { return std::move(bytes_); }
   // Writes into `reuse` from its start, keeping its memory: a writer for message after

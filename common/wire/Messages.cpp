@@ -1,5 +1,7 @@
 #include "wire/Messages.h"
 
+#include "wire/GeometryCodec.h"
+
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -43,7 +45,8 @@ std::vector<uint8_t> encodeWith(MessageType type, WritePayload writePayload) {
   std::vector<uint8_t> bytes = w.take();
   const size_t size = bytes.size() - kHeaderSize;
   putLittleEndian(bytes.data() + kSizeOffset, size);
-  putLittleEndian(bytes.data() + kChecksumOffset, fnv1a64(bytes.data() + kHeaderSize, size));
+  putLittleEndian(bytes.data() + kChecksumOffset,
+                  payloadChecksum(bytes.data() + kHeaderSize, size));
   return bytes;
 }
 
@@ -74,15 +77,34 @@ uint64_t fnv1a64(const uint8_t* data, size_t size) {
   return hash;
 }
 
+uint64_t payloadChecksum(const uint8_t* data, size_t size) {
+  uint64_t hash = 14695981039346656037ull;
+  size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    uint64_t word = 0;
+    for (int b = 0; b < 8; ++b) word |= uint64_t{data[i + b]} << (8 * b);  // one load
+    hash ^= word;
+    hash *= 1099511628211ull;
+  }
+  for (; i < size; ++i) {
+    hash ^= data[i];
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
 std::vector<uint8_t> encodeMessage(MessageType type, const std::vector<uint8_t>& payload) {
   ByteWriter w;
-  writeHeader(w, type, payload.size(), fnv1a64(payload.data(), payload.size()));
+  writeHeader(w, type, payload.size(), payloadChecksum(payload.data(), payload.size()));
   std::vector<uint8_t> bytes = w.take();
   bytes.insert(bytes.end(), payload.begin(), payload.end());
   return bytes;
 }
 
-Message decodeMessage(const uint8_t* data, size_t size) {
+namespace {
+
+// Every check of decodeMessage; the type.
+MessageType checkEnvelope(const uint8_t* data, size_t size) {
   if (size < kHeaderSize) {
     throw WireError("message too short for a header: " + std::to_string(size) +
                     " bytes, a header needs " + std::to_string(kHeaderSize));
@@ -107,18 +129,34 @@ Message decodeMessage(const uint8_t* data, size_t size) {
                     " bytes, message carries " + std::to_string(actual));
   }
   const uint64_t checksum = r.readU64();
-  const uint64_t computed = fnv1a64(data + kHeaderSize, actual);
+  const uint64_t computed = payloadChecksum(data + kHeaderSize, actual);
   if (checksum != computed) {
     throw WireError("payload checksum mismatch: header says " + hex(checksum, 16) +
                     ", payload hashes to " + hex(computed, 16));
   }
-  return {static_cast<MessageType>(type),
-          std::vector<uint8_t>(data + kHeaderSize, data + kHeaderSize + actual)};
+  return static_cast<MessageType>(type);
+}
+
+}  // namespace
+
+Message decodeMessage(const uint8_t* data, size_t size) {
+  const MessageType type = checkEnvelope(data, size);
+  return {type, std::vector<uint8_t>(data + kHeaderSize, data + size)};
+}
+
+Message decodeMessage(std::vector<uint8_t>&& bytes) {
+  const MessageType type = checkEnvelope(bytes.data(), bytes.size());
+  bytes.erase(bytes.begin(), bytes.begin() + kHeaderSize);
+  return {type, std::move(bytes)};
 }
 
 template <WireMessage T>
 std::vector<uint8_t> encode(const T& value) {
-  return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) { writeFields(w, value); });
+  return encodeWith(MessageTraits<T>::kType, [&](ByteWriter& w) {
+    if constexpr (requires { Fields<T>::wireBytes(value); })
+      w.reserveMore(Fields<T>::wireBytes(value));
+    writeFields(w, value);
+  });
 }
 
 // Checks the type, reads the payload, insists it consumed every byte, and puts the message type
@@ -250,6 +288,12 @@ void ReadyMessage::check(const ReadyMessage& ready) {
   if (ready.startSeconds != -1.0) checkSeconds(ready.startSeconds, "start time");
   checkSeconds(ready.mpiInitSeconds, "MPI_Init time");
   if (ready.threads < 0) throw WireError("invalid thread count " + std::to_string(ready.threads));
+}
+
+void SceneAcceptedMessage::check(const SceneAcceptedMessage& accepted) {
+  for (int32_t n : {accepted.threads, accepted.cores, accepted.ranksOnNode}) {
+    if (n < 1) throw WireError("invalid count " + std::to_string(n) + " in SceneAccepted");
+  }
 }
 
 void HelloMessage::check(const HelloMessage& hello) {

@@ -8,6 +8,7 @@
 #include "master/commands/SpeedupCommand.h"
 #include "master/commands/SweepCommand.h"
 #include "master/commands/ViewerCli.h"
+#include "master/runtime/GeometryShare.h"
 #include "master/runtime/ScheduleNames.h"
 #include "scene/SettingLimits.h"
 #include "scene/SettingNames.h"
@@ -129,6 +130,20 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
       ->add_option("--prefetch", o.distribution.prefetch,
                    "Tiles in flight per slave render thread (default 2)")
       ->check(CLI::Range(1, 64));
+  render
+      ->add_option_function<std::string>(
+          "--bvh-share",
+          [&o](const std::string& text) {
+            try {
+              o.geometryShare = parseGeometryShareMode(text);
+            } catch (const std::invalid_argument& e) {
+              throw CLI::ValidationError("--bvh-share", e.what());
+            }
+          },
+          "MPI runs: auto (default: rank 0 broadcasts the BVH it built where the link measured "
+          "at the start moves it faster than the slaves would build it), broadcast, or local "
+          "(every rank builds its own); the same pixels either way (docs/distributed.md)")
+      ->option_text("auto|broadcast|local");
   addMemoryLimitOption(render, o);
   render->add_flag(
       "--overwrite", o.overwrite,

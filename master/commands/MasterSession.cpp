@@ -7,12 +7,15 @@
 
 #include "caustics/CausticMapMemory.h"
 #include "master/runtime/ResourceCheck.h"
+#include "master/runtime/SlaveRollCall.h"
 #include "master/runtime/SlaveShutdown.h"
 #include "parse/SceneLoader.h"
 #include "scene/SceneValidation.h"
 #include "transport/Transport.h"
 #include "util/InterruptSignal.h"
+#include "util/Parallel.h"
 #include "util/Stopwatch.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism {
@@ -71,18 +74,66 @@ void MasterSession::start(bool keepEnvironment) {
   if (transport_) {
     const auto start = SteadyClock::now();
     std::vector<uint8_t> bytes = wire::encodeScene(description_);
+    const auto sendStart = SteadyClock::now();
     transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+    const double linkSeconds = secondsSince(sendStart);
     setUp_.broadcastSeconds = secondsSince(start);
     setUp_.broadcastBytes = bytes.size();
+    planGeometry(bytes.size(), linkSeconds);
   }
+  const bool sendGeometry = setUp_.geometryShare.broadcast;
   const auto buildStart = SteadyClock::now();
-  scene_ = keepEnvironment
-               ? std::make_unique<Scene>(description_)
-               : std::make_unique<Scene>(description_,
-                                         std::exchange(description_.environment, std::nullopt));
+  try {
+    scene_ = keepEnvironment
+                 ? std::make_unique<Scene>(description_)
+                 : std::make_unique<Scene>(description_,
+                                           std::exchange(description_.environment, std::nullopt));
+  } catch (const std::exception& e) {
+    if (sendGeometry) cancelGeometry(std::string("rank 0 cannot build the scene: ") + e.what());
+    throw;
+  }
   setUp_.buildSeconds = secondsSince(buildStart);
+  if (sendGeometry) {
+    const auto sendStart = SteadyClock::now();
+    std::vector<uint8_t> bytes = wire::encode(scene_->geometry());
+    transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+    setUp_.geometryShare.sentBytes = bytes.size();
+    setUp_.geometryShare.sentSeconds = secondsSince(sendStart);
+  }
   checkCausticMapsFit(*scene_, memoryLimitOrPhysical(options_.memoryLimit));
   dispatcher_ = std::make_unique<WorkDispatcher>(*scene_, transport_, options_.distribution);
+}
+
+void MasterSession::planGeometry(size_t descriptionBytes, double descriptionSeconds) {
+  std::vector<wire::Message> answers;
+  try {
+    answers = firstMessageOfEachSlave(*transport_, wire::MessageType::SceneAccepted,
+                                      kSceneBroadcastTimeoutSeconds,
+                                      "did not say whether the scene fits");
+  } catch (const std::exception& e) {
+    cancelGeometry(e.what());
+    throw std::runtime_error(std::string(e.what()) + " (before any rank built the scene)");
+  }
+  std::vector<BuildPlace> slaves;
+  for (size_t r = 1; r < answers.size(); ++r) {
+    const auto accepted = wire::decode<wire::SceneAcceptedMessage>(answers[r]);
+    slaves.push_back({accepted.threads, accepted.cores, accepted.ranksOnNode});
+  }
+  size_t triangles = 0;
+  for (const MeshDesc& mesh : description_.meshes) triangles += mesh.indices.size() / 3;
+  const BuildPlace rank0{availableCores(), machineCores(), transport_->ranksOnThisNode()};
+  setUp_.geometryShare = planGeometryShare(options_.geometryShare, triangles, descriptionBytes,
+                                           descriptionSeconds, rank0, slaves);
+  if (!setUp_.geometryShare.broadcast) {
+    std::vector<uint8_t> bytes = wire::encode(wire::BuildGeometryMessage{});
+    transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+  }
+}
+
+void MasterSession::cancelGeometry(const std::string& why) {
+  std::vector<uint8_t> bytes = wire::encode(wire::ErrorMessage{why});
+  transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
+  finished_ = true;
 }
 
 int MasterSession::runToEnd(const std::function<int()>& work, std::ostream& out) {

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "master/commands/RenderOptions.h"
+#include "master/runtime/GeometryShare.h"
 #include "master/runtime/JobInstructionSet.h"
 #include "master/runtime/WorkDispatcher.h"
 #include "scene/Scene.h"
@@ -44,6 +45,7 @@ struct SessionSetUp {
   size_t broadcastBytes = 0;
   double buildSeconds = 0.0;
   JobInstructionSet instructionSet;  // what the kernels run on every rank, and why
+  GeometrySharePlan geometryShare;   // MPI runs: who built the geometry, and why
 };
 
 class MasterSession {
@@ -61,8 +63,10 @@ class MasterSession {
   bool load(const std::function<void()>& check = {});
   // Refuses the run before any scene is loaded, as load() does on failure. Returns 1.
   int refuse(const std::string& why);
-  // Broadcasts the scene, builds rank 0's Scene and opens the run's dispatcher. The scene
-  // takes the description's cube-map faces unless keepEnvironment (the viewer shows them).
+  // Broadcasts the scene, waits for every slave to accept it (a slave's refusal ends the job
+  // here, before any rank builds), chooses who builds the geometry (GeometryShare.h), builds
+  // rank 0's Scene, broadcasts the geometry if so chosen, and opens the run's dispatcher. The
+  // scene takes the description's cube-map faces unless keepEnvironment (the viewer shows them).
   // Throws on failure; finish() still ends the slaves.
   void start(bool keepEnvironment = false);
 
@@ -83,6 +87,12 @@ class MasterSession {
   int runToEnd(const std::function<int()>& work, std::ostream& out);
 
  private:
+  // Every slave's answer to the scene, then the plan; local builds are announced at once.
+  void planGeometry(size_t descriptionBytes, double descriptionSeconds);
+  // Tells the slaves waiting for the geometry that there will be none: they stop, and finish()
+  // has nobody to shut down.
+  void cancelGeometry(const std::string& why);
+
   Transport* transport_;
   RenderOptions options_;
   std::ostream& err_;

@@ -119,6 +119,7 @@ int renderAndWrite(MasterSession& session, const std::string& output, SteadyCloc
     summary.parseSeconds = setUp.parseSeconds;
     summary.broadcastSeconds = setUp.broadcastSeconds;
     summary.broadcastBytes = setUp.broadcastBytes;
+    summary.geometryShare = setUp.geometryShare.describe();
     summary.buildSeconds = setUp.buildSeconds;
     summary.instructionSet = setUp.instructionSet.describe();
     summary.writeSeconds = writeSeconds;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cluster/DistributionOptions.h"
+#include "master/runtime/GeometryShare.h"
 #include "scene/SceneDescription.h"
 
 namespace prism {
@@ -42,6 +43,8 @@ struct RenderOptions {
   bool overwrite = false;               // replace a finished frame at the output path
   bool savePartial = false;             // interrupted: write the finished tiles (PartialFrame.h)
   std::optional<uint64_t> memoryLimit;  // bytes a run may plan to use; default: physical memory
+  // MPI runs: whether rank 0 broadcasts the geometry it built or every rank builds its own.
+  GeometryShareMode geometryShare = GeometryShareMode::Auto;
   // Threads, tiles, and (MPI runs) how tiles are handed out and when a slave is given up on.
   DistributionOptions distribution;
   std::string statusFile;  // testing only: "stage done total", rewritten as tiles finish

@@ -46,6 +46,7 @@ void printWorkers(const RunSummary& s, std::ostream& out) {
       << " in " << milliseconds(s.broadcastSeconds);
   if (f.reissuedTiles > 0) out << "; " << f.reissuedTiles << " tiles re-issued";
   out << "\n";
+  if (!s.geometryShare.empty()) out << "  geometry " << s.geometryShare << "\n";
   for (const RankStats& w : f.workers) {
     if (w.rank > 0 && w.threads == 0 && w.tiles == 0 && !w.retired) {
       out << "  rank " << w.rank << ": still building its scene when the frame was done\n";

@@ -23,6 +23,7 @@ struct RunSummary {
   double parseSeconds = 0.0;
   double broadcastSeconds = 0.0;  // MPI runs only
   size_t broadcastBytes = 0;
+  std::string geometryShare;  // MPI runs: GeometrySharePlan::describe()
   double buildSeconds = 0.0;
   std::string instructionSet;  // JobInstructionSet::describe(): the kernels' set, and why
   double writeSeconds = 0.0;

@@ -2,8 +2,8 @@
 
 #include <stdexcept>
 
+#include "master/runtime/SlaveRollCall.h"
 #include "transport/Transport.h"
-#include "util/Stopwatch.h"
 #include "wire/Messages.h"
 
 namespace prism {
@@ -33,35 +33,11 @@ JobInstructionSet chooseJobInstructionSet(Transport* cluster, InstructionSet req
   if (cluster == nullptr || cluster->size() <= 1) return job;
   job.ranks = cluster->size();
 
-  std::vector<wire::HelloMessage> hellos(static_cast<size_t>(cluster->size()));
-  std::vector<bool> heard(hellos.size(), false);
-  int waiting = cluster->size() - 1;
-  const auto start = SteadyClock::now();
-  while (waiting > 0) {
-    const double left = timeoutSeconds - secondsSince(start);
-    std::optional<IncomingMessage> incoming =
-        left > 0.0 ? cluster->waitForMessage(left) : std::nullopt;
-    if (!incoming) {
-      for (size_t r = 1; r < heard.size(); ++r) {
-        if (!heard[r]) {
-          throw std::runtime_error("rank " + std::to_string(r) + " did not say which CPU it has");
-        }
-      }
-    }
-    const int source = incoming->source;
-    if (source <= 0 || source >= cluster->size() || heard[static_cast<size_t>(source)]) continue;
-    const wire::Message message = wire::decodeMessage(incoming->bytes);
-    if (message.type == wire::MessageType::Error) {
-      throw std::runtime_error("rank " + std::to_string(source) + ": " +
-                               wire::decode<wire::ErrorMessage>(message).text);
-    }
-    if (message.type != wire::MessageType::Hello) {
-      throw std::runtime_error("rank " + std::to_string(source) + " sent " +
-                               wire::messageTypeName(message.type) + " before Hello");
-    }
-    hellos[static_cast<size_t>(source)] = wire::decode<wire::HelloMessage>(message);
-    heard[static_cast<size_t>(source)] = true;
-    --waiting;
+  const std::vector<wire::Message> first = firstMessageOfEachSlave(
+      *cluster, wire::MessageType::Hello, timeoutSeconds, "did not say which CPU it has");
+  std::vector<wire::HelloMessage> hellos(first.size());
+  for (size_t r = 1; r < first.size(); ++r) {
+    hellos[r] = wire::decode<wire::HelloMessage>(first[r]);
   }
 
   InstructionSetMask common = runnableInstructionSets();

@@ -226,10 +226,18 @@ TEST(Layering, MasterAndSlaveNeverIncludeEachOther) {
       "");
 }
 
+// The one exception: the built geometry's wire form (wire/GeometryCodec.h, rank 0's geometry
+// broadcast) names the acceleration structures, and Messages.cpp, which instantiates its
+// codec, includes it; a header that includes neither (Messages.h declares SceneGeometry only)
+// keeps the other messages' users away from them.
 TEST(Layering, TheWireFormatDoesNotReachTheAccelerationStructures) {
   std::string found;
   for (const Include& inc : project().includes()) {
     if (!startsWith(inc.file, "common/wire/") || inc.resolved.empty()) continue;
+    if (startsWith(inc.file, "common/wire/GeometryCodec.") ||
+        inc.file == "common/wire/Messages.cpp") {
+      continue;
+    }
     for (const std::string& reached : project().reachable(inc.file)) {
       if (startsWith(reached, "common/accel/")) found += inc.file + " reaches " + reached + "\n";
     }

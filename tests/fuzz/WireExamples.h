@@ -31,7 +31,8 @@ void fill(T& v) {
 template <wire::Enumeration E>
 void fill(E& v) {
   for (uint32_t raw = 0; raw < 64; ++raw) {
-    if (wire::isKnown(static_cast<E>(raw))) v = static_cast<E>(raw);
+    using wire::isKnown;  // and, by argument-dependent lookup, prism::isKnown(Traversal)
+    if (isKnown(static_cast<E>(raw))) v = static_cast<E>(raw);
   }
 }
 

@@ -1,6 +1,8 @@
 #include <cstdint>
+#include <type_traits>
 
 #include "fuzz/Harnesses.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace prism::fuzz {
@@ -33,6 +35,29 @@ void decodePayload(const std::vector<uint8_t>& bytes) {
   visitMessage(message, [&](const auto& decoded) {
     if (encode(decoded) != bytes) {
       throw InvariantBroken("decoded message does not encode back to the same bytes");
+    }
+    // A geometry that passed its checks must walk without reading outside its arrays (the
+    // sanitizers see to that) or looping: a few rays from around its box, each walk and lookup.
+    if constexpr (std::is_same_v<std::decay_t<decltype(decoded)>, SceneGeometry>) {
+      const Aabb box = decoded.bounds();
+      const Vec3 center = box.empty() ? Vec3(0.0f) : box.center();
+      for (const Vec3& from :
+           {Vec3(0.0f, 0.0f, -50.0f), Vec3(30.0f, 40.0f, 0.0f), Vec3(-20.0f, -10.0f, 35.0f)}) {
+        Ray ray;
+        ray.origin = center + from;
+        ray.direction = glm::normalize(-from);
+        HitRecord hit;
+        if (decoded.intersect(ray, hit)) {
+          SurfaceHit surface;
+          decoded.surface(ray, hit, surface);
+        }
+        decoded.occluded(ray);
+        Ray rays[SceneGeometry::kPacketSize];
+        for (Ray& r : rays) r = ray;
+        HitRecord hits[SceneGeometry::kPacketSize];
+        bool found[SceneGeometry::kPacketSize];
+        decoded.intersect8(rays, SceneGeometry::kPacketSize, hits, found);
+      }
     }
   });
 }

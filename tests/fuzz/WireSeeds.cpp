@@ -2,7 +2,7 @@
 // examples that WireExamples.h makes from its field list (its default value, and one with every
 // field set) as full messages (for the envelope checks) and as the same payload behind a type
 // byte (the harness's second form), so the fuzzer starts inside every payload decoder; scenes
-// from the example scene files; and two refused messages.
+// from the example scene files and the geometries built from them; and two refused messages.
 // (the long runs then merged more inputs into that folder, and the seeds of earlier versions,
 // written by hand, stay there):
 //   build/tests/fuzz/prism_fuzz_wire_seeds tests/fuzz/corpus/wire
@@ -14,6 +14,8 @@
 
 #include "fuzz/WireExamples.h"
 #include "parse/SceneLoader.h"
+#include "scene/Scene.h"
+#include "wire/GeometryCodec.h"
 #include "wire/Messages.h"
 
 namespace {
@@ -47,7 +49,10 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string path = argv[i];
     const std::string stem = path.substr(path.find_last_of('/') + 1);
-    writeSeed(dir, "scene-" + stem.substr(0, stem.find('.')), encodeScene(loadScene(path)));
+    const SceneDescription scene = loadScene(path);
+    writeSeed(dir, "scene-" + stem.substr(0, stem.find('.')), encodeScene(scene));
+    // The geometry rank 0 builds from it, as its geometry broadcast carries it.
+    writeSeed(dir, "geometry-" + stem.substr(0, stem.find('.')), encode(Scene(scene).geometry()));
   }
   forEachMessageType([&](auto type) {
     using T = typename decltype(type)::type;

@@ -129,6 +129,25 @@ INSTANTIATE_TEST_SUITE_P(RanksSchedules, DistributedRenderOverTcp,
                                   std::get<1>(info.param);
                          });
 
+// Rank 0's geometry broadcast, forced on and off, over shared memory and over TCP: the pixels of
+// one process either way (the build is deterministic), and the summary says which ran.
+TEST_F(DistributedRender, TheGeometryBroadcastOrBuiltOnEveryRankGivesTheSamePixels) {
+  const ImageRgb reference = singleProcessReference();
+  for (const std::string& link : {std::string(), kOverTcp}) {
+    for (const auto& [mode, said] :
+         {std::pair<std::string, std::string>{"broadcast", "geometry broadcast by rank 0"},
+          {"local", "geometry built on every rank (local)"},
+          {"auto", " (auto: predicted "}}) {
+      const std::string image = path(mode + (link.empty() ? "-shm" : "-tcp") + ".exr");
+      const test::ProcessRun run =
+          test::runPrismMpi(3, "render " + kScene + " -o " + image + " --bvh-share " + mode, link);
+      ASSERT_EQ(run.exitCode, 0) << run.output;
+      EXPECT_TRUE(samePixels(readImage(image), reference)) << mode << run.output;
+      EXPECT_NE(run.output.find(said), std::string::npos) << run.output;
+    }
+  }
+}
+
 // A slave that dies breaks its TCP connections (the other ranks see a reset, not a silent
 // shared-memory segment): under --enable-recovery the master must still retire it and finish.
 TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTheSamePixels) {
@@ -247,7 +266,9 @@ TEST_F(UnevenRanks, TheStaticScheduleGivesASlowRankItsFullShare) {
 
 // Rank 0 checks the scene against its own memory before the broadcast; a slave on a smaller
 // machine checks it again against its own limit before it builds anything, and the job ends
-// with its refusal, once, and no image.
+// with its refusal, once, and no image. Rank 0 waits for every slave's answer before it builds,
+// so no rank spends a build on a job that will not run: the message says so, and it comes only
+// from that wait (a refusal heard after a build would not carry it).
 TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
   const test::ProcessRun run = render(kScene, "", "--memory-limit 16M", "");
   EXPECT_NE(run.exitCode, 0) << run.output;
@@ -257,6 +278,9 @@ TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
   const size_t first = run.output.find(refusal);
   ASSERT_NE(first, std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(refusal, first + 1), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("simplify the meshes (before any rank built the scene)", first),
+            std::string::npos)
+      << run.output;
   EXPECT_FALSE(std::filesystem::exists(path("uneven.exr")));
 }
 

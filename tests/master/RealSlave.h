@@ -8,6 +8,7 @@
 
 #include "cluster/DistributionOptions.h"
 #include "master/runtime/JobInstructionSet.h"
+#include "master/runtime/SlaveRollCall.h"
 #include "scene/SceneDescription.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
@@ -28,12 +29,23 @@ inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitC
 }
 
 // Rank 0's side of the start of a job whose slaves have started: their Hellos, the job's
-// instruction set chosen from them (the best all run), and the scene broadcast with it.
+// instruction set chosen from them (the best all run), the scene broadcast with it, every
+// slave's SceneAccepted and the go-ahead to build (master/commands/MasterSession.cpp). A slave
+// that refuses the scene is told so (an Error broadcast) and std::runtime_error thrown.
 inline void sendSceneAsRankZero(LoopbackNetwork& network, SceneDescription d) {
-  d.render.instructionSet =
-      chooseJobInstructionSet(&network.endpoint(0), d.render.instructionSet, 10.0).chosen;
+  Transport& master = network.endpoint(0);
+  d.render.instructionSet = chooseJobInstructionSet(&master, d.render.instructionSet, 10.0).chosen;
   std::vector<uint8_t> bytes = wire::encodeScene(d);
-  network.endpoint(0).broadcast(bytes, 10.0);
+  master.broadcast(bytes, 10.0);
+  try {
+    firstMessageOfEachSlave(master, wire::MessageType::SceneAccepted, 10.0, "is silent");
+  } catch (const std::runtime_error&) {
+    bytes = wire::encode(wire::ErrorMessage{"a slave refused the scene"});
+    master.broadcast(bytes, 10.0);
+    throw;
+  }
+  bytes = wire::encode(wire::BuildGeometryMessage{});
+  master.broadcast(bytes, 10.0);
 }
 
 // A real slave on rank 1 of `network` that has been sent the scene, as rank 0 sends it.

@@ -220,6 +220,7 @@ DistributionOptions faultyOptions(FaultInjection::Kind kind, int rank = 1) {
 
 // A hung slave says Ready, takes its jobs and answers none (no tile, no heartbeat), and still
 // acknowledges the Shutdown, so the job ends cleanly.
+// (Its answer to the scene, SceneAccepted, passes too: rank 0 waits for it before any build.)
 TEST(FaultInjectingTransport, AHungSlaveSaysReadyAndAcknowledgesTheShutdownOnly) {
   test::SlaveUnderTest slave(faultyOptions(FaultInjection::Kind::Hang));
   slave.broadcast(test::smallScene());
@@ -228,7 +229,7 @@ TEST(FaultInjectingTransport, AHungSlaveSaysReadyAndAcknowledgesTheShutdownOnly)
   slave.send(wire::encode(wire::PhotonJobMessage{1, 0, 100, 100}));
   std::this_thread::sleep_for(std::chrono::duration<double>(3 * kHeartbeatSeconds));
   EXPECT_EQ(slave.shutDown(), std::vector<Type>{Type::Shutdown});
-  EXPECT_EQ(slave.seen(), (std::vector<Type>{Type::Ready, Type::Shutdown}));
+  EXPECT_EQ(slave.seen(), (std::vector<Type>{Type::SceneAccepted, Type::Ready, Type::Shutdown}));
   EXPECT_EQ(slave.join().exitCode, 0);
 }
 

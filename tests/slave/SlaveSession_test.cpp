@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include "scene/Scene.h"
 #include "slave/SlaveUnderTest.h"
 #include "util/InstructionSet.h"
+#include "util/Parallel.h"
 
 namespace prism {
 namespace {
@@ -25,7 +27,15 @@ TEST(SlaveSession, SaysHelloFirstAndReadyWithItsThreadsOnceTheSceneIsBuilt) {
   const std::optional<wire::Message> ready = slave.next(Type::Ready);
   ASSERT_TRUE(ready);
   EXPECT_EQ(wire::decode<wire::ReadyMessage>(*ready).threads, 1);
-  EXPECT_EQ(slave.seen().front(), Type::Ready);  // nothing between Hello and Ready
+  // Between Hello and Ready only its answer to the scene, with what it builds on.
+  ASSERT_EQ(slave.seen().size(), 2u);
+  EXPECT_EQ(slave.seen()[0], Type::SceneAccepted);
+  EXPECT_EQ(slave.seen()[1], Type::Ready);
+  const auto accepted =
+      wire::decode<wire::SceneAcceptedMessage>(wire::decodeMessage(slave.raw().at(0)));
+  EXPECT_EQ(accepted.threads, availableCores());
+  EXPECT_EQ(accepted.cores, machineCores());
+  EXPECT_EQ(accepted.ranksOnNode, 2);  // both loopback ranks are threads of this process
 }
 
 TEST(SlaveSession, AShutdownIsAcknowledgedAndTheSessionEnds) {
@@ -65,12 +75,44 @@ TEST(SlaveSession, ATileJobThatDoesNotDecodeIsReportedToRankZero) {
   EXPECT_EQ(slave.join().exitCode, 1);
 }
 
-TEST(SlaveSession, ASceneItCannotBuildIsReportedAndTheShutdownAwaited) {
+// Its answer to the scene comes before any rank builds: rank 0 then ends the job, broadcasting
+// an Error where the go-ahead would be, and the slave leaves without waiting for a Shutdown.
+TEST(SlaveSession, ASceneItCannotReadIsReportedBeforeAnyRankBuilds) {
   SlaveUnderTest slave;
-  slave.broadcastBytes(wire::encodeMessage(Type::Scene, {1, 2, 3}));
+  slave.broadcastAlone(wire::encodeMessage(Type::Scene, {1, 2, 3}));
+  const std::optional<wire::Message> answer = slave.nextAnswer();
+  ASSERT_TRUE(answer);
+  ASSERT_EQ(answer->type, Type::Error);
+  EXPECT_EQ(wire::decode<wire::ErrorMessage>(*answer).text.rfind("cannot build the scene: ", 0),
+            0u);
+  std::vector<uint8_t> plan = wire::encode(wire::ErrorMessage{"rank 1 refused the scene"});
+  slave.master().broadcast(plan, 10.0);
+  EXPECT_EQ(slave.join().exitCode, 1);
+  EXPECT_EQ(slave.count(Type::Ready), 0u);
+}
+
+// Rank 0's own build in place of the go-ahead: the slave takes it as it is and says Ready.
+TEST(SlaveSession, TheGeometryRankZeroBuiltIsTakenInsteadOfABuild) {
+  SlaveUnderTest slave;
+  const SceneDescription d = test::smallScene();
+  slave.broadcastBytes(wire::encodeScene(d), wire::encode(Scene(d).geometry()));
+  EXPECT_EQ(slave.count(Type::SceneAccepted), 1u);
+  ASSERT_TRUE(slave.ready());
+  EXPECT_EQ(slave.shutDown().back(), Type::Shutdown);
+  EXPECT_EQ(slave.join().exitCode, 0);
+}
+
+// A geometry that is not the description's (another scene's, here) is refused, not rendered.
+TEST(SlaveSession, AGeometryOfAnotherSceneIsRefused) {
+  SlaveUnderTest slave;
+  SceneDescription other = test::smallScene();
+  other.spheres.push_back(other.spheres.empty() ? SphereDesc{} : other.spheres.back());
+  slave.broadcastBytes(wire::encodeScene(test::smallScene()),
+                       wire::encode(Scene(other).geometry()));
   const std::optional<wire::Message> error = slave.next(Type::Error);
   ASSERT_TRUE(error);
-  EXPECT_EQ(wire::decode<wire::ErrorMessage>(*error).text.rfind("cannot build the scene: ", 0), 0u);
+  EXPECT_NE(wire::decode<wire::ErrorMessage>(*error).text.find("built from another scene"),
+            std::string::npos);
   EXPECT_EQ(slave.count(Type::Ready), 0u);
   EXPECT_EQ(slave.shutDown().back(), Type::Shutdown);
   EXPECT_EQ(slave.join().exitCode, 1);

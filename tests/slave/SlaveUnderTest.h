@@ -72,8 +72,39 @@ class SlaveUnderTest {
 
   void broadcast(const SceneDescription& d) { broadcastBytes(wire::encodeScene(d)); }
   // As rank 0 does: the slave's Hello first (master/runtime/JobInstructionSet.h), kept apart
-  // from seen(), then the broadcast.
-  void broadcastBytes(std::vector<uint8_t> bytes) {
+  // from seen(), then the broadcast; then, unless the bytes were an Error (the slave stops at
+  // once), the slave's answer (kept in seen()) and the plan: `plan` when it accepted (by
+  // default the go-ahead to build), else an Error.
+  void broadcastBytes(std::vector<uint8_t> bytes, std::vector<uint8_t> plan = {}) {
+    broadcastAlone(std::move(bytes));
+    try {
+      if (wire::decodeMessage(raw_broadcast_).type == wire::MessageType::Error) return;
+    } catch (const wire::WireError&) {  // not even an envelope: the slave refuses it
+    }
+    const std::optional<wire::Message> answer = nextAnswer();
+    if (answer && answer->type == wire::MessageType::SceneAccepted) {
+      if (plan.empty()) plan = wire::encode(wire::BuildGeometryMessage{});
+    } else {
+      plan = wire::encode(wire::ErrorMessage{"the slave refused the scene"});
+    }
+    master().broadcast(plan, 10.0);
+  }
+  // The slave's answer to the scene: SceneAccepted or an Error, within 10 s.
+  std::optional<wire::Message> nextAnswer() {
+    const auto start = SteadyClock::now();
+    while (secondsSince(start) < 10.0) {
+      const auto incoming = master().waitForMessage(0.05);
+      if (!incoming) continue;
+      raw_.push_back(incoming->bytes);
+      wire::Message message = wire::decodeMessage(incoming->bytes);
+      seen_.push_back(message.type);
+      return message;
+    }
+    return std::nullopt;
+  }
+  // The broadcast alone, after the Hello: a test that answers for rank 0 itself.
+  void broadcastAlone(std::vector<uint8_t> bytes) {
+    raw_broadcast_ = bytes;
     if (const auto incoming = master().waitForMessage(10.0)) {
       const wire::Message message = wire::decodeMessage(incoming->bytes);
       if (message.type == wire::MessageType::Hello) {
@@ -129,6 +160,7 @@ class SlaveUnderTest {
  private:
   LoopbackNetwork network_{2};
   bool broadcast_ = false;
+  std::vector<uint8_t> raw_broadcast_;
   std::optional<wire::HelloMessage> hello_;
   SlaveEnd end_{-1};
   std::vector<wire::MessageType> seen_;

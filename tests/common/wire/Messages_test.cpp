@@ -155,16 +155,17 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   // 1: before photon messages; 2: before the View message; 3: before PhotonJob's budget;
   // 4: before the caustic-map term, the blur switch and the Echo message; 5: before View's
   // liveFrom; 6: before PhotonCancel; 7: before the automatic k; 8: before display bytes; 9:
-  // before PhotonMapAgain; 10: before the radii messages.
-  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 13}) {
+  // before PhotonMapAgain; 10: before the radii messages; 12: before the geometry broadcast.
+  for (uint16_t version : {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 14}) {
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); },
-                    "message version " + std::to_string(version) + ", this build speaks 12");
+                    "message version " + std::to_string(version) + ", this build speaks 13");
   }
 
   // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel, 14
-  // PhotonMapAgain, 15-17 the radii messages, 18 Hello; 19 is the first unused type.
-  for (uint16_t type : {0, 19, 0xFFFF}) {
+  // PhotonMapAgain, 15-17 the radii messages, 18 Hello, 19-21 SceneAccepted, BuildGeometry and
+  // Geometry; 22 is the first unused type.
+  for (uint16_t type : {0, 22, 0xFFFF}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }

@@ -1,0 +1,210 @@
+#include "wire/GeometryCodec.h"
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "accel/PrimitiveRef.h"
+#include "wire/ByteBuffer.h"
+
+namespace prism::wire {
+namespace {
+
+[[noreturn]] void fault(const std::string& what) {
+  throw WireError("geometry: " + what);
+}
+
+std::string at(const char* array, size_t index) {
+  return std::string(array) + "[" + std::to_string(index) + "]";
+}
+
+// The binary walk's stack holds one entry a level (Bvh::traverse), the wide walks' seven.
+constexpr size_t kMaxTreeDepth = 2 * Bvh::kMaxDepth;
+
+bool isUnusedSlot(const WideBvhNode& node, int slot) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  if (node.count[slot] != 0 || node.child[slot] != 0) return false;
+  for (int a = 0; a < 3; ++a) {
+    if (node.bounds[2 * a][slot] != kInf || node.bounds[2 * a + 1][slot] != -kInf) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// Friends of SceneGeometry (and so of its private parts) by being this specialisation's member.
+void Fields<SceneGeometry>::check(const SceneGeometry& g) {
+  static_assert(sizeof(SceneGeometry) == 584,
+                "a member was added to SceneGeometry: list it (kernels_ is not sent)");
+  const size_t triangleCount = g.stats_.triangles;
+  if (g.sphereCaustic_.size() != g.spheres_.size() || g.coneCaustic_.size() != g.cones_.size() ||
+      g.planeCaustic_.size() != g.planes_.size()) {
+    fault("caustic flags do not match the primitives");
+  }
+  if (g.stats_.spheres != g.spheres_.size() || g.stats_.planes != g.planes_.size() ||
+      g.stats_.coneSegments != g.cones_.size()) {
+    fault("counts do not match the primitives");
+  }
+
+  // Meshes: numbered in order from 0, three indices a face, normals (if any) for every index.
+  size_t nextTriangle = 0;
+  for (size_t m = 0; m < g.meshes_.size(); ++m) {
+    const SceneGeometry::MeshShading& mesh = g.meshes_[m];
+    if (mesh.firstTriangle != nextTriangle) fault(at("mesh", m) + " does not follow the last");
+    if (mesh.indices.size() % 3 != 0) fault(at("mesh", m) + " has a partial face");
+    if (!mesh.normals.empty()) {
+      for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        if (mesh.indices[i] >= mesh.normals.size()) fault(at("mesh", m) + " index past normals");
+      }
+    }
+    nextTriangle += mesh.indices.size() / 3;
+  }
+  if (nextTriangle != triangleCount) fault("the meshes' faces do not add up to the triangles");
+  if (g.packed_ ? !g.triangles_.empty() : g.triangles_.size() != triangleCount) {
+    fault("the listed triangles do not match the meshes");
+  }
+  for (size_t i = 0; i < g.triangles_.size(); ++i) {
+    const Triangle& tri = g.triangles_[i];
+    if (tri.mesh >= g.meshes_.size() ||
+        size_t{g.meshes_[tri.mesh].firstTriangle} + tri.face >= triangleCount ||
+        3 * (size_t{tri.face} + 1) > g.meshes_[tri.mesh].indices.size()) {
+      fault(at("triangle", i) + " names no mesh face");
+    }
+  }
+
+  // Leaf entries: a known kind, an index within its array.
+  for (size_t i = 0; i < g.leafRefs_.size(); ++i) {
+    const uint32_t ref = g.leafRefs_[i];
+    const uint32_t index = PrimitiveRef::index(ref);
+    bool inside = false;
+    switch (PrimitiveRef::kind(ref)) {
+      case PrimitiveKind::Triangle:
+        inside = index < (g.packed_ ? triangleCount : g.triangles_.size());
+        break;
+      case PrimitiveKind::Sphere:
+        inside = index < g.spheres_.size();
+        break;
+      case PrimitiveKind::Cone:
+        inside = index < g.cones_.size();
+        break;
+      case PrimitiveKind::Plane:
+        break;  // planes never enter the BVH
+    }
+    if (!inside) fault(at("leaf entry", i) + " points nowhere");
+  }
+
+  // Packs: every lane's triangle number within the triangles, a leaf's other entries within the
+  // leaf entries, flags that are bools.
+  for (size_t p = 0; p < g.packs_.size(); ++p) {
+    const SceneGeometry::LeafPack& pack = g.packs_[p];
+    uint8_t flag = 0;
+    std::memcpy(&flag, &pack.hasOtherKinds, 1);
+    if (flag > 1) fault(at("pack", p) + " has a flag of " + std::to_string(flag));
+    if (flag == 1 && size_t{pack.leafFirst} + pack.leafCount > g.leafRefs_.size()) {
+      fault(at("pack", p) + " points past the leaf entries");
+    }
+    for (uint32_t number : pack.triangles.triangle) {
+      if (number >= triangleCount) fault(at("pack", p) + " names a triangle past the meshes");
+    }
+  }
+  if (!g.packed_ && !g.packs_.empty()) fault("packs without a packed walk");
+
+  // Binary tree: children after their parent, within the nodes; leaves within the entries.
+  const std::vector<BvhNode>& bin = g.bvh_.nodes_;
+  std::vector<uint8_t> depth(bin.size(), 0);
+  for (size_t i = 0; i < bin.size(); ++i) {
+    const BvhNode& node = bin[i];
+    if (node.isLeaf()) {
+      if (size_t{node.offset} + node.count > g.leafRefs_.size()) {
+        fault(at("BVH node", i) + " points past the leaf entries");
+      }
+      continue;
+    }
+    if (i + 1 >= bin.size() || node.offset <= i || node.offset >= bin.size()) {
+      fault(at("BVH node", i) + " has a child outside the tree");
+    }
+    if (depth[i] + 1u > kMaxTreeDepth) fault(at("BVH node", i) + " lies too deep");
+    depth[i + 1] = depth[node.offset] = static_cast<uint8_t>(depth[i] + 1);
+  }
+  if (g.traversal_ == Traversal::BinaryScalar && bin.empty() && !g.leafRefs_.empty()) {
+    fault("entries without a tree");
+  }
+
+  // Wide tree: the same, per slot; unused slots exactly as the build leaves them (no ray
+  // enters them).
+  const std::vector<WideBvhNode>& wide = g.wideBvh_.nodes_;
+  depth.assign(wide.size(), 0);
+  for (size_t i = 0; i < wide.size(); ++i) {
+    const WideBvhNode& node = wide[i];
+    for (int s = 0; s < WideBvhNode::kWidth; ++s) {
+      const uint32_t child = node.child[s];
+      const uint32_t count = node.count[s];
+      if (count == 0) {
+        if (isUnusedSlot(node, s)) continue;
+        if (child <= i || child >= wide.size()) {
+          fault(at("wide node", i) + " has a child outside the tree");
+        }
+        if (depth[i] + 1u > kMaxTreeDepth) fault(at("wide node", i) + " lies too deep");
+        depth[child] = static_cast<uint8_t>(depth[i] + 1);
+        continue;
+      }
+      const bool packless = g.packed_ && (child & SceneGeometry::kPacklessLeaf) != 0;
+      const size_t first = packless ? (child & ~SceneGeometry::kPacklessLeaf) : child;
+      const size_t end = g.packed_ && !packless ? g.packs_.size() : g.leafRefs_.size();
+      if (first + count > end) fault(at("wide node", i) + " has a leaf past its array");
+    }
+  }
+  if (g.traversal_ != Traversal::BinaryScalar && wide.empty() && !g.leafRefs_.empty()) {
+    fault("entries without a tree");
+  }
+  if (g.traversal_ != Traversal::BinaryScalar && !bin.empty()) {
+    fault("a binary tree beside the wide one");
+  }
+  if (g.traversal_ == Traversal::BinaryScalar && (!wide.empty() || g.packed_)) {
+    fault("a wide tree beside the binary one");
+  }
+  uint8_t flag = 0;
+  for (const bool* b : {&g.packed_, &g.testTreeBoxFirst_, &g.stats_.binaryBvhReleased}) {
+    std::memcpy(&flag, b, 1);
+    if (flag > 1) fault("a flag of " + std::to_string(flag));
+  }
+}
+
+void Fields<SceneGeometry>::checkFitsScene(const SceneGeometry& g, const SceneDescription& scene) {
+  const SceneBuildStats& stats = g.stats_;
+  size_t triangles = 0;
+  for (const MeshDesc& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
+  if (stats.spheres != scene.spheres.size() || stats.cones != scene.cones.size() ||
+      stats.planes != scene.planes.size() || g.meshes_.size() != scene.meshes.size() ||
+      stats.triangles != triangles) {
+    fault("built from another scene (" + std::to_string(stats.triangles) + " triangles, " +
+          std::to_string(stats.spheres) + " spheres, " + std::to_string(stats.cones) + " cones, " +
+          std::to_string(stats.planes) + " planes)");
+  }
+  const size_t materials = std::max<size_t>(1, scene.materials.size());  // Scene adds a default
+  const auto check = [&](MaterialId id, const char* kind) {
+    if (id >= materials) fault(std::string("a ") + kind + "'s material is past the scene's");
+  };
+  for (const Sphere& s : g.spheres_) check(s.material, "sphere");
+  for (const Cone& c : g.cones_) check(c.material(), "cone");
+  for (const Plane& p : g.planes_) check(p.material, "plane");
+  for (const SceneGeometry::MeshShading& m : g.meshes_) check(m.material, "mesh");
+}
+
+size_t Fields<SceneGeometry>::wireBytes(const SceneGeometry& g) {
+  size_t bytes = 4096 + g.triangles_.size() * sizeof(Triangle) + g.cones_.size() * 128 +
+                 g.spheres_.size() * sizeof(Sphere) + g.planes_.size() * sizeof(Plane) +
+                 g.leafRefs_.size() * 4 + g.bvh_.nodes_.size() * sizeof(BvhNode) +
+                 g.bvh_.order_.size() * 4 + g.wideBvh_.nodes_.size() * sizeof(WideBvhNode) +
+                 g.packs_.size() * sizeof(SceneGeometry::LeafPack);
+  for (const SceneGeometry::MeshShading& m : g.meshes_) {
+    bytes += 64 + m.normals.size() * sizeof(Vec3) + m.indices.size() * 4;
+  }
+  return bytes + g.spheres_.size() + g.cones_.size() + g.planes_.size();  // caustic bytes
+}
+
+void checkGeometryFitsScene(const SceneGeometry& geometry, const SceneDescription& scene) {
+  Fields<SceneGeometry>::checkFitsScene(geometry, scene);
+}
+
+}  // namespace prism::wire
