@@ -29,8 +29,9 @@ TEST(ViewProtocol, EveryMessageRoundTrips) {
   forEachMessageType([&](auto) { ++types; });
   const auto examples = fuzz::viewExamples();
   ASSERT_EQ(static_cast<int>(examples.size()), types) << "an example per message type";
-  for (const auto& [name, bytes] : examples) {
-    SCOPED_TRACE(name);
+  for (const auto& example : examples) {
+    SCOPED_TRACE(example.first);
+    const auto& bytes = example.second;  // not a structured binding: clang-14 cannot capture one
     const Message message = decodeAll(bytes);
     forEachMessageType([&](auto type) {
       using T = typename decltype(type)::type;
