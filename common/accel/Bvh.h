@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -58,6 +59,11 @@ class Bvh {
 
   // Builds over the given boxes; empty input gives an empty BVH that nothing hits.
   void build(const std::vector<Aabb>& primitiveBounds, const BvhBuildOptions& options = {});
+  // The same over `count` primitives whose boxes boundsOf(i) gives, so that the caller keeps no
+  // array of them (5 M triangles' boxes are 120 MB). Called once per primitive, on several
+  // threads at once.
+  void build(uint32_t count, const std::function<Aabb(uint32_t)>& boundsOf,
+             const BvhBuildOptions& options = {});
 
   // Leaf entries refer to primitiveOrder()[i]: the caller reorders its primitives to match.
   const std::vector<uint32_t>& primitiveOrder() const { return order_; }

@@ -28,6 +28,7 @@ void SceneGeometry::buildTrianglePacks(const std::vector<MeshInput>& meshes, uns
     uint32_t first, count, firstPack;
   };
   std::vector<LeafPacks> leaves;
+  reserveOnHugePages(leaves, stats_.bvh.leafCount);  // grown by doubling it faulted in 4 KiB pages
   uint32_t packCount = 0;
   wideBvh_.relabelLeaves([&](uint32_t first, uint32_t count) {
     const uint32_t triangles = trianglesIn(first, count);

@@ -32,65 +32,70 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   const unsigned gatherThreads =
       triangleCount >= kParallelGatherMinTriangles ? buildOptions.threads : 1;
 
-  // Gather every bounded primitive in input order, then reorder by BVH leaf order so a leaf's
-  // primitives sit together in memory. Packed triangles are not gathered: the packs read them
-  // from the meshes.
-  std::vector<Triangle> triangles;
+  // Bounded primitives are numbered in input order: spheres, cone parts, then every mesh's
+  // triangles. The BVH asks for their boxes by number, so no array of boxes is kept; after the
+  // build they are reordered by leaf so a leaf's primitives sit together in memory. Packed
+  // triangles are not gathered: the packs read them from the meshes.
   std::vector<Cone> cones;
-  std::vector<Aabb> bounds;
-  std::vector<uint32_t> refs;
   std::vector<uint8_t> coneCaustic;
-  const size_t bounded = in.spheres.size() + in.cones.size() + triangleCount;
-  if (!packed) reserveOnHugePages(triangles, triangleCount);
-  reserveOnHugePages(bounds, bounded);
-  reserveOnHugePages(refs, bounded);
-  for (uint32_t i = 0; i < in.spheres.size(); ++i) {
-    refs.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, i));
-    bounds.push_back(in.spheres[i].bounds());
-  }
   for (size_t c = 0; c < in.cones.size(); ++c) {
     for (const Cone& part : splitForBvh(in.cones[c])) {
-      refs.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones.size()));
       cones.push_back(part);
-      bounds.push_back(part.bounds());
       coneCaustic.push_back(in.coneCaustic[c]);
     }
   }
   uint32_t triangleNumber = 0;  // over all meshes, in order
-  for (uint32_t m = 0; m < in.meshes.size(); ++m) {
-    const MeshInput& mesh = in.meshes[m];
+  for (const MeshInput& mesh : in.meshes) {
     MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber};
     reserveOnHugePages(shading.normals, mesh.normals.size());
     shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
     reserveOnHugePages(shading.indices, mesh.indices.size());
     shading.indices.assign(mesh.indices.begin(), mesh.indices.end());
     meshes_.push_back(std::move(shading));
-    const uint32_t faces = static_cast<uint32_t>(mesh.indices.size() / 3);
-    const size_t firstEntry = refs.size();
-    refs.resize(firstEntry + faces);
-    bounds.resize(firstEntry + faces);
-    if (!packed) triangles.resize(size_t{triangleNumber} + faces);
-    forChunks(faces, 16384, gatherThreads, [&](uint64_t begin, uint64_t end) {
-      for (uint32_t f = static_cast<uint32_t>(begin); f < end; ++f) {
-        const Triangle tri = mesh.triangle(m, f);
-        refs[firstEntry + f] = PrimitiveRef::make(PrimitiveKind::Triangle, triangleNumber + f);
-        bounds[firstEntry + f] = tri.bounds();
-        if (!packed) triangles[size_t{triangleNumber} + f] = tri;
+    triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
+  }
+  const uint32_t sphereCount = static_cast<uint32_t>(in.spheres.size());
+  const uint32_t firstTriangle = sphereCount + static_cast<uint32_t>(cones.size());
+  const auto refOf = [&](uint32_t primitive) {
+    if (primitive < sphereCount) return PrimitiveRef::make(PrimitiveKind::Sphere, primitive);
+    if (primitive < firstTriangle) {
+      return PrimitiveRef::make(PrimitiveKind::Cone, primitive - sphereCount);
+    }
+    return PrimitiveRef::make(PrimitiveKind::Triangle, primitive - firstTriangle);
+  };
+  const auto triangleNumbered = [&](uint32_t number) {
+    const uint32_t m = meshOfTriangle(number);
+    return in.meshes[m].triangle(m, number - meshes_[m].firstTriangle);
+  };
+  std::vector<Triangle> triangles;  // in input order, for the unpacked walks
+  if (!packed) {
+    reserveOnHugePages(triangles, triangleCount);
+    triangles.resize(triangleCount);
+    forChunks(triangleCount, 16384, gatherThreads, [&](uint64_t begin, uint64_t end) {
+      for (uint64_t t = begin; t < end; ++t) {
+        triangles[t] = triangleNumbered(static_cast<uint32_t>(t));
       }
     });
-    triangleNumber += faces;
   }
-  for (const Aabb& b : bounds) bounds_.extend(b);
 
-  buildOptions.blockedFrom = static_cast<uint32_t>(in.spheres.size() + cones.size());
-  bvh_.build(bounds, buildOptions);
-  std::vector<Aabb>().swap(bounds);
+  buildOptions.blockedFrom = firstTriangle;
+  const uint32_t bounded = firstTriangle + static_cast<uint32_t>(triangleCount);
+  bvh_.build(
+      bounded,
+      [&](uint32_t primitive) {
+        if (primitive < sphereCount) return in.spheres[primitive].bounds();
+        if (primitive < firstTriangle) return cones[primitive - sphereCount].bounds();
+        const uint32_t number = primitive - firstTriangle;
+        return packed ? triangleNumbered(number).bounds() : triangles[number].bounds();
+      },
+      buildOptions);
+  bounds_ = bvh_.bounds();  // the root's box: every primitive's, extended in input order
   // Packed triangles go straight from the meshes into their packs: their leaf entries keep the
   // triangle's number.
-  reserveOnHugePages(leafRefs_, refs.size());
+  reserveOnHugePages(leafRefs_, bounded);
   if (!packed) reserveOnHugePages(triangles_, triangles.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
-    const uint32_t ref = refs[original];
+    const uint32_t ref = refOf(original);
     const uint32_t index = PrimitiveRef::index(ref);
     switch (PrimitiveRef::kind(ref)) {
       case PrimitiveKind::Triangle:
@@ -118,7 +123,6 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   // The gathered copies are done with: free them before the wide BVH and its packs are built, so
   // the build's peak stays within scene/MeshBudget.h's estimate.
   std::vector<Triangle>().swap(triangles);
-  std::vector<uint32_t>().swap(refs);
 
   stats_.bvh = bvh_.stats();
   if (traversal_ != Traversal::BinaryScalar) {

@@ -68,7 +68,7 @@ void WideBvh::build(const Bvh& binary) {
   if (!bin.empty()) {
     reserveOnHugePages(nodes_, bin.size() / 4 + 1);
     // Leaves under each binary node (a node's children come after it in the array).
-    std::vector<uint32_t> leaves(bin.size());
+    HugePageVector<uint32_t> leaves(bin.size());
     for (size_t i = bin.size(); i-- > 0;) {
       leaves[i] = bin[i].isLeaf() ? 1 : leaves[i + 1] + leaves[bin[i].offset];
     }
