@@ -12,14 +12,14 @@ namespace prism {
 
 // Per triangle, at the peak (the binary BVH build): indices in the wire bytes and the
 // description (12 + 12), the Scene's gathered Triangle (44; only for the walks without packs,
-// whose packs are filled from the description), its box and reference (24 + 4), the
-// builder's SIMD copy of the box and the BVH order (32 + 4), up to two 32-byte BVH nodes (64),
-// the parallel build's second node array (at most 32) and its shading indices (12): 240.
-// While the triangles are reordered into BVH order the builder's copy and the second node array
-// are gone and the Triangle exists twice (224); the wide BVH and its triangle packs (about 65)
-// come after the gathered copies, boxes and references are freed and the binary tree is dropped
-// (Scene.cpp), so neither raises the peak.
-inline constexpr uint64_t kBytesPerTriangle = 240;
+// whose packs are filled from the description), the builder's SIMD copy of its box and the BVH
+// order (32 + 4; the builder asks for each box, no other array of them exists), up to two
+// 32-byte BVH nodes (64), the parallel build's second node array (at most 32) and its shading
+// indices (12): 212. While the triangles are reordered into BVH order the builder's copy and the
+// second node array are gone and the Triangle exists twice (196); the wide BVH and its triangle
+// packs (about 65) come after the gathered copies are freed and the binary tree is dropped
+// (SceneGeometry.cpp), so neither raises the peak.
+inline constexpr uint64_t kBytesPerTriangle = 212;
 // Per vertex: position and normal in the wire bytes and the description (24 + 24), the
 // Scene's shading normal (12), rounded up.
 inline constexpr uint64_t kBytesPerVertex = 64;

@@ -273,8 +273,8 @@ TEST_F(UnevenRanks, ARankWithLessMemoryRefusesTheSceneBeforeBuildingIt) {
   const test::ProcessRun run = render(kScene, "", "--memory-limit 16M", "");
   EXPECT_NE(run.exitCode, 0) << run.output;
   const std::string refusal =
-      "rank 1: cannot build the scene: the scene's geometry (9600 triangles) needs 88.5 MiB "
-      "(92790520 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
+      "rank 1: cannot build the scene: the scene's geometry (9600 triangles) needs 88.2 MiB "
+      "(92521720 bytes); the memory limit is 16.0 MiB (16777216 bytes, --memory-limit)";
   const size_t first = run.output.find(refusal);
   ASSERT_NE(first, std::string::npos) << run.output;
   EXPECT_EQ(run.output.find(refusal, first + 1), std::string::npos) << run.output;

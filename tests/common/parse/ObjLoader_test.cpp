@@ -249,20 +249,20 @@ namespace prism {
 namespace {
 
 // Four positions, one quad (4 corners, 2 triangles), 42 bytes of text. Reading: 42 + 4 x 32 +
-// 4 x 4 + 1 + 2 x 12 = 211; building: 2 x 240 + 4 x 64 = 736; 947 bytes in all.
+// 4 x 4 + 1 + 2 x 12 = 211; building: 2 x 212 + 4 x 64 = 680; 891 bytes in all.
 constexpr std::string_view kQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
 
 TEST_F(ObjFiles, AMeshPastTheMemoryLimitIsRefusedBeforeItIsRead) {
   const std::string path = write("quad.obj", kQuad);
-  EXPECT_EQ(loadObjMesh(path, kReferencedFrom, {947, "test"}).triangleCount(), 2u);
+  EXPECT_EQ(loadObjMesh(path, kReferencedFrom, {891, "test"}).triangleCount(), 2u);
   try {
-    loadObjMesh(path, kReferencedFrom, {946, "test"});
+    loadObjMesh(path, kReferencedFrom, {890, "test"});
     FAIL() << "expected a refusal";
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()),
               "scene.yaml:7:11: mesh file '" + path +
-                  "' (2 triangles, 4 vertices) read and built needs 947 B (947 bytes); the "
-                  "memory limit is 946 B (946 bytes, test): simplify the mesh or raise "
+                  "' (2 triangles, 4 vertices) read and built needs 891 B (891 bytes); the "
+                  "memory limit is 890 B (890 bytes, test): simplify the mesh or raise "
                   "--memory-limit");
   }
   try {  // smaller than the file itself: refused before a byte is read

@@ -332,8 +332,8 @@ TEST(PlyLoader, TheSmallestAsciiBodyIsNotTakenForATruncatedOne) {
 
 TEST(PlyLoader, AMeshPastTheMemoryLimitIsRefusedBeforeItsArraysExist) {
   const std::string text = kTriangleHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  // Reading: the file + 3 x 12 + 1 x 12; building: 1 x 240 + 3 x 64.
-  const uint64_t needed = text.size() + 36 + 12 + 240 + 192;
+  // Reading: the file + 3 x 12 + 1 x 12; building: 1 x 212 + 3 x 64.
+  const uint64_t needed = text.size() + 36 + 12 + 212 + 192;
   EXPECT_EQ(parsePlyMesh(text, "t.ply", kReferencedFrom, {needed, "test"}).triangleCount(), 1u);
   try {
     parsePlyMesh(text, "t.ply", kReferencedFrom, {needed - 1, "test"});

@@ -18,8 +18,8 @@ SceneDescription thousandTrianglesAndTwoSpheres() {
 }
 
 TEST(GeometryMemory, CountsTrianglesVerticesAndPrimitives) {
-  // 1000 x 240 + 600 x 64 + 2 x 256
-  EXPECT_EQ(geometryMemoryBytes(thousandTrianglesAndTwoSpheres()), 279296u);
+  // 1000 x 212 + 600 x 64 + 2 x 448
+  EXPECT_EQ(geometryMemoryBytes(thousandTrianglesAndTwoSpheres()), 251296u);
 }
 
 TEST(GeometryMemory, CountsCubeMapFacesWithTheirMipLevels) {
@@ -56,14 +56,14 @@ TEST(GeometryMemory, CountsEachPartASlantedConeEntersTheBvhAs) {
 
 TEST(GeometryMemory, RefusesOneByteShortWithTheBytesAndTheLimit) {
   const SceneDescription d = thousandTrianglesAndTwoSpheres();
-  EXPECT_NO_THROW(checkGeometryFits(d, {279296, "test"}));
+  EXPECT_NO_THROW(checkGeometryFits(d, {251296, "test"}));
   try {
-    checkGeometryFits(d, {279295, "--memory-limit"});
+    checkGeometryFits(d, {251295, "--memory-limit"});
     FAIL() << "not refused";
   } catch (const ResourceLimitError& e) {
     EXPECT_STREQ(e.what(),
-                 "the scene's geometry (1000 triangles) needs 272.8 KiB (279296 bytes); the "
-                 "memory limit is 272.7 KiB (279295 bytes, --memory-limit): simplify the meshes");
+                 "the scene's geometry (1000 triangles) needs 245.4 KiB (251296 bytes); the "
+                 "memory limit is 245.4 KiB (251295 bytes, --memory-limit): simplify the meshes");
   }
 }
 

@@ -244,7 +244,7 @@ TEST_F(RenderCommandTest, MemoryLimitRefusesAMeshBeforeReadingItWithTheSceneLine
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_NE(run.output.find("default.yaml:78:13: mesh file '"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("trefoil.obj' (9600 triangles, 4800 vertices) read and built needs "
-                            "3.7 MiB (3893871 bytes); the memory limit is 2.0 MiB (2097152 bytes, "
+                            "3.5 MiB (3625071 bytes); the memory limit is 2.0 MiB (2097152 bytes, "
                             "--memory-limit)"),
             std::string::npos)
       << run.output;

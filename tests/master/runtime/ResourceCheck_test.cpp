@@ -113,20 +113,20 @@ TEST(ResourceCheck, GeometryCountsTrianglesVerticesAndPrimitives) {
   mesh.indices.resize(3 * 1000);
   d.meshes.push_back(mesh);
   d.spheres.resize(2);
-  // 1000 x 240 + 600 x 64 + 2 x 256
-  EXPECT_EQ(geometryMemoryBytes(d), 279296u);
+  // 1000 x 212 + 600 x 64 + 2 x 448
+  EXPECT_EQ(geometryMemoryBytes(d), 251296u);
   d.render.width = 100;
   d.render.height = 100;  // frame 240000, 169 automatic tiles: 10816
-  EXPECT_NO_THROW(checkSceneFits(d, 0, {279296 + 240000 + 10816, "test"}));
+  EXPECT_NO_THROW(checkSceneFits(d, 0, {251296 + 240000 + 10816, "test"}));
   EXPECT_EQ(refusal([&] {
-              checkSceneFits(d, 0, {279295, "test"});
+              checkSceneFits(d, 0, {251295, "test"});
             }),
-            "the scene's geometry (1000 triangles) needs 272.8 KiB (279296 bytes); the memory "
-            "limit is 272.7 KiB (279295 bytes, test): simplify the meshes");
+            "the scene's geometry (1000 triangles) needs 245.4 KiB (251296 bytes); the memory "
+            "limit is 245.4 KiB (251295 bytes, test): simplify the meshes");
   EXPECT_EQ(refusal([&] {
               checkSceneFits(d, 0, {500000, "test"});
             }),
-            "the run (geometry 272.8 KiB, frame 234.4 KiB, caustics 0 B) needs 517.7 KiB (530112 "
+            "the run (geometry 245.4 KiB, frame 234.4 KiB, caustics 0 B) needs 490.3 KiB (502112 "
             "bytes); the memory limit is 488.3 KiB (500000 bytes, test): reduce what is largest");
 }
 
