@@ -70,7 +70,7 @@ int MasterSession::refuse(const std::string& why) {
   return 1;
 }
 
-void MasterSession::start(bool keepEnvironment) {
+void MasterSession::start(bool keepEnvironment, GeometrySending sending) {
   if (transport_) {
     const auto start = SteadyClock::now();
     std::vector<uint8_t> bytes = wire::encodeScene(description_);
@@ -93,15 +93,20 @@ void MasterSession::start(bool keepEnvironment) {
     throw;
   }
   setUp_.buildSeconds = secondsSince(buildStart);
-  if (sendGeometry) {
+  const auto sendGeometryNow = [this](bool rank0Renders) {
+    setUp_.geometryShare.sentWhileRendering = rank0Renders;
     const auto sendStart = SteadyClock::now();
     std::vector<uint8_t> bytes = wire::encode(scene_->geometry());
     transport_->broadcast(bytes, kSceneBroadcastTimeoutSeconds);
     setUp_.geometryShare.sentBytes = bytes.size();
     setUp_.geometryShare.sentSeconds = secondsSince(sendStart);
-  }
+  };
+  if (sendGeometry && sending == GeometrySending::AtStart) sendGeometryNow(false);
   checkCausticMapsFit(*scene_, memoryLimitOrPhysical(options_.memoryLimit));
   dispatcher_ = std::make_unique<WorkDispatcher>(*scene_, transport_, options_.distribution);
+  if (sendGeometry && sending == GeometrySending::WhileRank0Renders) {
+    dispatcher_->openWith(sendGeometryNow);
+  }
 }
 
 void MasterSession::planGeometry(size_t descriptionBytes, double descriptionSeconds) {
@@ -150,6 +155,17 @@ int MasterSession::runToEnd(const std::function<int()>& work, std::ostream& out)
 
 int MasterSession::finish(int exitCode) {
   if (finished_) return exitCode;
+  if (dispatcher_ && dispatcher_->openingPending()) {
+    // No frame began, so the slaves still wait for rank 0's geometry: an Error in its place
+    // ends them, as when rank 0's build fails.
+    dispatcher_->stop();
+    try {
+      dispatcher_->join();
+    } catch (const std::exception&) {  // the run's failure was reported already
+    }
+    cancelGeometry("rank 0 stopped before it sent the geometry");
+    return exitCode;
+  }
   finished_ = true;
   std::vector<bool> silent;
   if (dispatcher_) {

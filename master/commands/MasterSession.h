@@ -63,12 +63,16 @@ class MasterSession {
   bool load(const std::function<void()>& check = {});
   // Refuses the run before any scene is loaded, as load() does on failure. Returns 1.
   int refuse(const std::string& why);
+  // When rank 0 broadcasts the geometry it built: before start() returns (set-up timed apart
+  // from frames, as `speedup` measures), or as the first frame begins, while rank 0's render
+  // threads already render it (`render`: the first pixel right after rank 0's build).
+  enum class GeometrySending { AtStart, WhileRank0Renders };
   // Broadcasts the scene, waits for every slave to accept it (a slave's refusal ends the job
   // here, before any rank builds), chooses who builds the geometry (GeometryShare.h), builds
-  // rank 0's Scene, broadcasts the geometry if so chosen, and opens the run's dispatcher. The
-  // scene takes the description's cube-map faces unless keepEnvironment (the viewer shows them).
-  // Throws on failure; finish() still ends the slaves.
-  void start(bool keepEnvironment = false);
+  // rank 0's Scene, broadcasts the geometry if so chosen (when: `sending`), and opens the run's
+  // dispatcher. The scene takes the description's cube-map faces unless keepEnvironment (the
+  // viewer shows them). Throws on failure; finish() still ends the slaves.
+  void start(bool keepEnvironment = false, GeometrySending sending = GeometrySending::AtStart);
 
   const RenderOptions& options() const { return options_; }
   const SceneDescription& description() const { return description_; }

@@ -87,7 +87,7 @@ void checkOutputs(const RenderOptions& options, const std::string& output) {
 int renderAndWrite(MasterSession& session, const std::string& output, SteadyClock::time_point start,
                    std::ostream& out, std::ostream& err) {
   const RenderOptions& options = session.options();
-  session.start();
+  session.start(false, MasterSession::GeometrySending::WhileRank0Renders);
   FrameOptions frameOptions;
   frameOptions.distribution = options.distribution;
   frameOptions.stopRequested = interruptRequested;
@@ -132,6 +132,10 @@ int renderAndWrite(MasterSession& session, const std::string& output, SteadyCloc
     summary.frame = &result.frames;
     summary.caustics = &result.caustics;
     summary.totalSeconds = secondsSince(start);
+    if (result.frames.firstTileAt) {
+      summary.firstTileSeconds =
+          std::chrono::duration<double>(*result.frames.firstTileAt - start).count();
+    }
     printRunSummary(summary, out);
   }
   return 0;

@@ -202,8 +202,10 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
         << " samples or pixels were NaN or infinite (an extreme light, a light on a surface, "
            "degenerate geometry?) and are black in the image\n";
   }
-  out << "time      render " << fixed(f.seconds, 3) << " s, write " << milliseconds(s.writeSeconds)
-      << ", total " << fixed(s.totalSeconds, 3) << " s\n"
+  out << "time      render " << fixed(f.seconds, 3) << " s, ";
+  if (s.firstTileSeconds) out << "first tile at " << fixed(*s.firstTileSeconds, 3) << " s, ";
+  out << "write " << milliseconds(s.writeSeconds) << ", total " << fixed(s.totalSeconds, 3)
+      << " s\n"
       << "speed     " << fixed(mrays, 2) << " Mrays/s (" << fixed(mrays / std::max(1, f.threads), 2)
       << " per thread)\n"
       << "written   " << s.outputPath << "\n";

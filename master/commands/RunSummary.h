@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 #include "master/runtime/CausticPasses.h"
@@ -28,6 +29,8 @@ struct RunSummary {
   std::string instructionSet;  // JobInstructionSet::describe(): the kernels' set, and why
   double writeSeconds = 0.0;
   double totalSeconds = 0.0;
+  // From the run's start to the first finished tile (what a big scene's set-up costs a user).
+  std::optional<double> firstTileSeconds;
 };
 
 void printRunSummary(const RunSummary& summary, std::ostream& out);

@@ -19,6 +19,7 @@ void addFrame(FrameResult& total, const FrameResult& f, bool first) {
     total = f;
     return;
   }
+  if (!total.firstTileAt) total.firstTileAt = f.firstTileAt;
   total.rays += f.rays;
   total.tileCount += f.tileCount;
   total.seconds += f.seconds;

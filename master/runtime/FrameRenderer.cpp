@@ -19,6 +19,7 @@ class FrameAssembly final : public FrameListener {
       : framebuffer_(width, height, tiles), tileSeconds_(tiles, 0.0) {}
 
   void tileFinished(uint32_t, TileResult&& tile, int) override {
+    if (!firstTileAt_) firstTileAt_ = SteadyClock::now();
     tileSeconds_[tile.tileIndex] = tile.seconds;
     framebuffer_.insert(tile);
   }
@@ -26,10 +27,12 @@ class FrameAssembly final : public FrameListener {
   // Only once the frame has ended (WorkDispatcher::endFrame): no tile is accepted into it then.
   Framebuffer& framebuffer() { return framebuffer_; }
   const std::vector<double>& tileSeconds() const { return tileSeconds_; }
+  std::optional<SteadyClock::time_point> firstTileAt() const { return firstTileAt_; }
 
  private:
   Framebuffer framebuffer_;
   std::vector<double> tileSeconds_;
+  std::optional<SteadyClock::time_point> firstTileAt_;
 };
 
 // Whether a stop is requested within a moment (kStopGraceSeconds): a slave's failure that
@@ -119,8 +122,10 @@ FrameResult renderFrame(WorkDispatcher& dispatcher, const FrameOptions& options)
                  options.masterRenders,
                  options.activeSlaves,
                  options.distribution.schedule};
-  dispatcher.beginFrame(std::move(plan), &assembly);
+  // Rank 0's threads first: they wait for the frame, and render while the dispatcher's opening
+  // broadcast (if any) runs in beginFrame.
   if (options.masterRenders) dispatcher.startLocalWorkers();
+  dispatcher.beginFrame(std::move(plan), &assembly);
   try {
     coordinateFrame(dispatcher, options, rects.size(), result);
   } catch (...) {
@@ -136,6 +141,7 @@ FrameResult renderFrame(WorkDispatcher& dispatcher, const FrameOptions& options)
   result.workers = rosterSince(dispatcher.stats(), rosterBefore);
   result.tiles = rects;
   result.tileSeconds = assembly.tileSeconds();
+  result.firstTileAt = assembly.firstTileAt();
   result.reissuedTiles = dispatcher.reissuedTiles() - reissuedBefore;
   for (const RankStats& w : result.workers) {
     result.rays += w.rays;

@@ -50,6 +50,8 @@ struct FrameResult {
   int tileSize = 0;
   int threads = 0;  // render threads on rank 0
   double seconds = 0.0;
+  // When the first tile of the run's first frame was accepted (none: no tile was).
+  std::optional<SteadyClock::time_point> firstTileAt;
   double busyThreadSeconds = 0.0;
   std::vector<RankStats> workers;   // index = rank
   std::vector<TileRect> tiles;      // the frame's tiles, in plan order

@@ -53,7 +53,8 @@ std::string GeometrySharePlan::describe() const {
   }
   text += ")";
   if (broadcast)
-    text += ", " + formatBytes(static_cast<double>(sentBytes)) + " in " + seconds(sentSeconds);
+    text += ", " + formatBytes(static_cast<double>(sentBytes)) + " in " + seconds(sentSeconds) +
+            (sentWhileRendering ? " while rank 0 rendered" : "");
   return text;
 }
 

@@ -52,6 +52,7 @@ struct GeometrySharePlan {
   // What happened, once it has: the geometry's bytes and the broadcast's time.
   size_t sentBytes = 0;
   double sentSeconds = 0.0;
+  bool sentWhileRendering = false;  // as the first frame began, rank 0's threads rendering it
 
   // For the run summary: "broadcast by rank 0 (auto: 1.20 s against 3.40 s for every rank
   // building; link 1.1 GB/s), 322.7 MiB in 0.41 s".

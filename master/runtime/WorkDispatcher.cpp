@@ -99,8 +99,17 @@ void WorkDispatcher::queueFrame(FramePlan plan, FrameListener* listener) {
   addFrame(std::move(plan), listener, false);
 }
 
+void WorkDispatcher::runOpening(bool rank0Renders) {
+  if (!opening_) return;
+  const std::function<void(bool)> opening = std::move(opening_);
+  opening_ = nullptr;
+  opening(rank0Renders);
+}
+
 void WorkDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endEarlier) {
   std::vector<std::vector<std::vector<uint8_t>>> slaveJobs(static_cast<size_t>(link_.ranks()));
+  const bool opening = static_cast<bool>(opening_);
+  const bool rank0Renders = plan.masterRenders && pool_.started();
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     // Frames that are over leave: all of them when this one replaces them, else the complete.
@@ -119,7 +128,18 @@ void WorkDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endE
     }
     // The slaves' first jobs are taken before rank 0's render threads can see the frame: their
     // round trip overlaps rank 0's first tiles, and even a frame rank 0 could finish alone
-    // in a moment reaches every slave.
+    // in a moment reaches every slave. Not while the slaves still wait for the opening
+    // broadcast: rank 0's threads start on the frame, and the slaves' leases begin after it.
+    if (!opening) {
+      for (int r = 1; r < link_.ranks(); ++r) {
+        slaveJobs[static_cast<size_t>(r)] = jobsForLocked(r);
+      }
+    }
+  }
+  if (opening) {
+    changed_.notify_all();
+    runOpening(rank0Renders);
+    const std::lock_guard<std::mutex> lock(mutex_);
     for (int r = 1; r < link_.ranks(); ++r) slaveJobs[static_cast<size_t>(r)] = jobsForLocked(r);
   }
   for (int r = 1; r < link_.ranks(); ++r) sendJobs(r, slaveJobs[static_cast<size_t>(r)]);
@@ -296,6 +316,7 @@ void WorkDispatcher::route(const SlaveMessage& incoming) {
 }
 
 void WorkDispatcher::service(double waitSeconds) {
+  runOpening(false);
   if (!link_.hasSlaves()) {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait_for(lock, std::chrono::duration<double>(waitSeconds), [this] {

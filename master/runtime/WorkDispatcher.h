@@ -25,6 +25,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -90,6 +91,13 @@ class WorkDispatcher {
   // Starts rank 0's render threads, once a run (later calls do nothing); they take tiles of
   // whatever frame is current.
   void startLocalWorkers();
+  // A collective the coordinating thread runs before it first talks to the slaves (rank 0's
+  // built geometry, broadcast): the first frame's tiles go to rank 0's render threads first, so
+  // they render while it runs, and the slaves get theirs after. Once a run; set before any frame.
+  // It is told whether rank 0's threads render meanwhile (not before a photon pass).
+  void openWith(std::function<void(bool rank0Renders)> opening) { opening_ = std::move(opening); }
+  // Whether the opening has not run yet (no frame or pass began): the slaves still wait for it.
+  bool openingPending() const { return static_cast<bool>(opening_); }
   // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
   // late results are stale). Called by the coordinating thread: it sends the slaves their first
   // jobs before rank 0's render threads take any tile.
@@ -153,6 +161,7 @@ class WorkDispatcher {
   void sendShares(ShareBatch& batch);
   void cancelShares(ShareBatch& batch);
   void retireRank(int rank);
+  void runOpening(bool rank0Renders);
   double now() const { return secondsSince(start_); }
 
   const Scene& scene_;
@@ -160,6 +169,7 @@ class WorkDispatcher {
   SlaveLink link_;
   TileWorkerPool pool_;
   SteadyClock::time_point start_;
+  std::function<void(bool)> opening_;  // coordinating thread only
 
   std::mutex mutex_;
   std::condition_variable changed_;

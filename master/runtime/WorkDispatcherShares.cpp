@@ -37,6 +37,7 @@ void WorkDispatcher::cancelShares(ShareBatch& batch) {
 
 bool WorkDispatcher::runShares(uint32_t pass, const std::vector<ShareRange>& shares,
                                ShareWork& work, const std::atomic<bool>* cancel) {
+  runOpening(false);
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     shares_ =

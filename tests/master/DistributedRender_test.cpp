@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <regex>
 #include <tuple>
 
 #include "PrismProcess.h"
@@ -135,7 +136,7 @@ TEST_F(DistributedRender, TheGeometryBroadcastOrBuiltOnEveryRankGivesTheSamePixe
   const ImageRgb reference = singleProcessReference();
   for (const std::string& link : {std::string(), kOverTcp}) {
     for (const auto& [mode, said] :
-         {std::pair<std::string, std::string>{"broadcast", "geometry broadcast by rank 0"},
+         {std::pair<std::string, std::string>{"broadcast", " while rank 0 rendered"},
           {"local", "geometry built on every rank (local)"},
           {"auto", " (auto: predicted "}}) {
       const std::string image = path(mode + (link.empty() ? "-shm" : "-tcp") + ".exr");
@@ -144,6 +145,7 @@ TEST_F(DistributedRender, TheGeometryBroadcastOrBuiltOnEveryRankGivesTheSamePixe
       ASSERT_EQ(run.exitCode, 0) << run.output;
       EXPECT_TRUE(samePixels(readImage(image), reference)) << mode << run.output;
       EXPECT_NE(run.output.find(said), std::string::npos) << run.output;
+      EXPECT_NE(run.output.find(", first tile at "), std::string::npos) << run.output;
     }
   }
 }
@@ -372,6 +374,25 @@ TEST_F(DistributedRender, BadOptionIsReportedOnceNotByEveryRank) {
 // streams) and the map is sent to every slave, so the caustic image must be bit-identical to
 // the single-process one for any rank count, in classic and in progressive mode.
 const std::string kCausticScene = std::string(PRISM_TEST_DATA_DIR) + "/scenes/caustic-small.yaml";
+
+// A photon pass before the frame: rank 0 sends its geometry as the pass begins (not while a
+// frame renders), and every slave traces its share with it.
+TEST_F(DistributedRender, AGeometryBroadcastBeforeAPhotonPassGivesTheSamePixels) {
+  const test::ProcessRun single =
+      test::runPrism("render " + kCausticScene + " -q -o " + path("reference.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  const test::ProcessRun run = test::runPrismMpi(
+      3, "render " + kCausticScene + " -o " + path("mpi.exr") + " --bvh-share broadcast");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(samePixels(readImage(path("mpi.exr")), readImage(path("reference.exr"))))
+      << run.output;
+  EXPECT_NE(run.output.find("geometry broadcast by rank 0 (broadcast)"), std::string::npos)
+      << run.output;
+  // The slaves had the geometry in time for their shares (else rank 0 traces every photon).
+  EXPECT_TRUE(std::regex_search(run.output, std::regex("photons traced by rank: 0: [0-9]+, "
+                                                       "1: [1-9][0-9]*, 2: [1-9]")))
+      << run.output;
+}
 
 class DistributedCaustics : public DistributedRender,
                             public ::testing::WithParamInterface<std::tuple<int, const char*>> {};
