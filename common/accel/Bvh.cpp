@@ -424,9 +424,12 @@ void Bvh::build(uint32_t count, const std::function<Aabb(uint32_t)>& boundsOf,
     NodeExtent root = halves[0];
     root.box.extend(halves[1].box);
     root.centers.extend(halves[1].centers);
-    // One level of threads per doubling of the cores: two cores build two halves at once.
+    // One level of threads per doubling of the cores, and two more: a split's halves are
+    // seldom equal in work, so two cores build eight subtrees and neither waits for the other
+    // (5 M triangles: first tile 1.7 -> 1.3 s on 2 cores).
     int levels = 0;
     for (unsigned cores = threads; cores > 1; cores /= 2) ++levels;
+    if (levels > 0) levels += 2;
     const uint32_t block = std::max(1u, options.primitiveBlock);
     const int blockShift = (block & (block - 1)) == 0 ? __builtin_ctz(block) : -1;
     const bool countSingles = block > 1 && options.blockedFrom > 0;
