@@ -123,6 +123,49 @@ TEST(WorkDispatcher, LateDuplicateOutOfOrderAndOtherFrameResultsLeaveTheImageExa
   EXPECT_FALSE(f.workers[1].retired);
 }
 
+// The opening (rank 0's geometry broadcast in `prism render`) runs once, as the first frame
+// begins: rank 0's render threads already take its tiles, and the slaves get their first jobs
+// (and their leases start) only after it.
+TEST(WorkDispatcher, TheOpeningRunsWhileRankZeroRendersAndBeforeTheSlavesFirstJobs) {
+  const Scene scene(smallScene());
+  const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
+  TwoRanks job(scene);
+  std::atomic<bool> slaveHadJob{false};
+  job.start([&](ScriptedSlave& s, std::atomic<bool>& stop) {
+    while (!stop) {
+      const auto next = s.nextJob(0.05);
+      if (!next) continue;
+      slaveHadJob = true;
+      s.deliver(s.render(*next));
+    }
+  });
+  WorkDispatcher dispatcher(scene, &job.master(), options(true, 2.0, 30.0).distribution);
+  int openings = 0;
+  bool toldRankZeroRenders = false, rankZeroRendered = false, slaveWaited = false;
+  dispatcher.openWith([&](bool rank0Renders) {
+    ++openings;
+    toldRankZeroRenders = rank0Renders;
+    // Long enough for a slave that had a job to take it (it looks every 50 ms).
+    const auto start = std::chrono::steady_clock::now();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    while (dispatcher.tilesDone() == 0 &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    rankZeroRendered = dispatcher.tilesDone() > 0;
+    slaveWaited = !slaveHadJob;
+  });
+  EXPECT_TRUE(dispatcher.openingPending());
+  const FrameResult f = renderFrame(dispatcher, options(true, 2.0, 30.0));
+  job.join();
+  EXPECT_EQ(openings, 1);
+  EXPECT_FALSE(dispatcher.openingPending());
+  EXPECT_TRUE(toldRankZeroRenders);
+  EXPECT_TRUE(rankZeroRendered);
+  EXPECT_TRUE(slaveWaited);
+  EXPECT_TRUE(bitIdentical(f.image, alone.image));
+}
+
 TEST(WorkDispatcher, ATileTheHeartbeatNamesLostIsReissuedAtOnce) {
   const Scene scene(smallScene());
   const FrameResult alone = renderFrame(scene, options(true, 2.0, 30.0));
