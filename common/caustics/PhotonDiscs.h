@@ -81,7 +81,7 @@ class PhotonDiscs {
         const float margin = 1e-4f * size;
         return low <= limit + margin && high >= -limit - margin;
       };
-      return meets(t.normal, t.slab) && meets(t.dualA, 0.5f) && meets(t.dualB, 0.5f);
+      return meets(t.normal, t.slab) && meets(t.dualA, t.limitA) && meets(t.dualB, t.limitB);
     }
   };
   static_assert(sizeof(Node) == 32);

@@ -43,7 +43,8 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
                                      const PixelFootprint& pixel) const {
   // With a footprint the estimate is the average of the photons' kernels over the sample's cell
   // of its pixel (the pixel itself at 1 spp): a photon narrower than the cell (a disc of less
-  // area) counts its power over the cell's area if it lies in it; one up to the pixel's reach
+  // area) counts the share of its power whose disc the cell holds (narrowKernelShareOfFootprint)
+  // over the cell's area; one up to the pixel's reach
   // wide, the mean of its kernel over the cell; a wider one, its kernel at the sample, as without
   // a footprint. Flipping straight from the first rule to the last left a photon counted in no
   // pixel or in two where pixels' footprints differ (seen through a lens): the glass ball's focus
@@ -60,15 +61,28 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
   // progressive pass), left a frozen error at a focus (2 % at 9 spp, the closed form of
   // tests/common/caustics/ProgressiveFocus_test.cpp).
   const float pixelReach = pixel.valid ? pixel.reach() : 0.0f;
-  const float averaged2 = footprint.valid ? std::max(narrow2, pixelReach * pixelReach) : 0.0f;
+  const float averaged2 =
+      footprint.valid ? std::max(narrow2, 4.0f * pixelReach * pixelReach) : 0.0f;
   const PixelFootprint::Test inFootprint =
       footprint.valid ? footprint.test(normal) : PixelFootprint::Test{};
+  // A narrow photon counts where its disc meets the footprint: its centre lies at most its
+  // radius outside.
+  const PixelFootprint::Test nearFootprint = inFootprint.grownBy(std::sqrt(narrow2));
+  const bool hasArea = inFootprint.slab >= 0.0f;
+  const float dualALength = glm::length(inFootprint.dualA);
+  const float dualBLength = glm::length(inFootprint.dualB);
   const Vec3 centre = footprint.valid ? position + pixel.offset() : position;
   // p: a Photon, or a PhotonDiscs::Disc (the same photon, in tree order).
   const auto overFootprint = [&](const auto& p, float radius2) {
     const Vec3 q = p.position - centre;
-    if (radius2 <= narrow2) return inFootprint.contains(q) ? 1.0f / area : 0.0f;
-    return footprintMeanKernel(settings_.filter, q, footprint.a, footprint.b, radius2);
+    if (radius2 <= narrow2 && !nearFootprint.contains(q)) return 0.0f;
+    // A footprint without area (a grazing sliver) has no dual basis: the kernel's mean along it.
+    if (!hasArea)
+      return footprintMeanKernel(settings_.filter, q, footprint.a, footprint.b, radius2);
+    return kernelShareOfFootprint(settings_.filter, glm::dot(q, inFootprint.dualA),
+                                  glm::dot(q, inFootprint.dualB), dualALength, dualBLength,
+                                  std::sqrt(radius2)) /
+           area;
   };
   // Photons that arrived from behind the surface (through a thin wall) are left out.
   const auto fromFront = [&](const auto& p) {
@@ -82,8 +96,9 @@ Color PhotonGather::irradianceWithin(const Vec3& position, const Vec3& normal,
         sum += p.power * densityKernel(settings_.filter, distance2, radius2);
     });
     if (footprint.valid) {
-      // Narrow photons outside the footprint add nothing (overFootprint's 0): not visited.
-      discs_->reaching(centre, reach, averaged2, narrow2, inFootprint,
+      // Narrow photons whose discs miss the footprint add nothing (overFootprint's 0): not
+      // visited.
+      discs_->reaching(centre, reach, averaged2, narrow2, nearFootprint,
                        [&](const PhotonDiscs::Disc& p, float, float radius2) {
                          if (fromFront(p)) sum += p.power * overFootprint(p, radius2);
                        });
