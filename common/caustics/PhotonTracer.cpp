@@ -120,10 +120,11 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   const uint64_t passStart = static_cast<uint64_t>(pass) * plan.count;
   const uint64_t sequenceIndex = passStart + (index - plan.first);
   const uint64_t cells = plan.map.coveredCellCount();
-  const uint64_t round = sequenceIndex % cells;
-  const uint64_t cell = round * plan.cellStride % cells;  // cells < 2^32
-  // The cell's photons of earlier passes: the rounds begun before passStart at this position.
-  const uint64_t earlier = passStart > round ? (passStart - round + cells - 1) / cells : 0;
+  const uint64_t positionInRound = sequenceIndex % cells;
+  const uint64_t cell = positionInRound * plan.cellStride % cells;  // cells < 2^32
+  // The cell's photons in earlier passes: the rounds that reached its position before passStart.
+  const uint64_t earlier =
+      passStart > positionInRound ? (passStart - positionInRound + cells - 1) / cells : 0;
   const uint64_t inCell = sequenceIndex / cells - earlier;
   const CellRotation rotation = cellRotation(scene_.settings().seed, plan.light, cell, pass);
   const float u1 = rotateUnit(radicalInverse(2, inCell), rotation.position[0]);
