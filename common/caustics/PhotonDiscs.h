@@ -41,9 +41,10 @@ class PhotonDiscs {
   // The same for every photon of squared radius at most max2 whose disc comes within reach of x
   // (distance < radius + reach: it may cover part of a pixel's footprint; PhotonGather), less
   // photons of squared radius at most narrow2 whose centre x + q fails inFootprint.contains(q):
-  // those count nothing (PhotonGather counts such a narrow photon only where it lies in the
-  // footprint). Subtrees without a photon to visit are skipped at once: at grazing angles the
-  // footprint is a sliver of the ball of its reach, which held 9 in 10 of the photons tested.
+  // those count nothing (PhotonGather passes the footprint grown by the narrow photons' largest
+  // radius: a narrow photon counts only where its disc meets the footprint). Subtrees without a
+  // photon to visit are skipped at once: at grazing angles the footprint is a sliver of the ball of
+  // its reach, which held 9 in 10 of the photons tested.
   template <class Visit>
   void reaching(const Vec3& x, float reach, float max2, float narrow2,
                 const PixelFootprint::Test& inFootprint, Visit&& visit) const;
@@ -81,7 +82,7 @@ class PhotonDiscs {
         const float margin = 1e-4f * size;
         return low <= limit + margin && high >= -limit - margin;
       };
-      return meets(t.normal, t.slab) && meets(t.dualA, 0.5f) && meets(t.dualB, 0.5f);
+      return meets(t.normal, t.slab) && meets(t.dualA, t.limitA) && meets(t.dualB, t.limitB);
     }
   };
   static_assert(sizeof(Node) == 32);

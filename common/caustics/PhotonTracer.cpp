@@ -39,9 +39,11 @@ uint64_t goldenCellStride(uint64_t cells) {
   }
 }
 
-CellRotation cellRotation(uint64_t seed, size_t light, uint64_t cell) {
-  Pcg32 rng =
-      Pcg32::forKey(seed, (static_cast<uint64_t>(light) << 32) | cell, kPhotonStreamBase - 1);
+// Pass 0 (every classic render) takes stream kPhotonStreamBase − 1, later passes the streams
+// below it, apart from the photons' own (kPhotonStreamBase + pass).
+CellRotation cellRotation(uint64_t seed, size_t light, uint64_t cell, uint32_t pass) {
+  Pcg32 rng = Pcg32::forKey(seed, (static_cast<uint64_t>(light) << 32) | cell,
+                            kPhotonStreamBase - 1 - pass);
   CellRotation r;
   for (float& s : r.position) s = rng.nextFloat();
   for (float& s : r.roulette) s = rng.nextFloat();
@@ -111,13 +113,20 @@ void PhotonTracer::tracePhoton(uint32_t pass, uint64_t index, const PhotonLightP
   ++stats.emitted;
   Pcg32 rng = Pcg32::forKey(scene_.settings().seed, index, kPhotonStreamBase + pass);
   const PointLightDesc& light = scene_.lights()[plan.light];
-  // Round the marked cells in turn, then along the cell's own (0, 2)-sequence, continued from pass
-  // to pass so that all the passes together stay evenly spread (see PhotonTracer.h).
-  const uint64_t sequenceIndex = static_cast<uint64_t>(pass) * plan.count + (index - plan.first);
+  // Round the marked cells in turn, continued from pass to pass (a cell that got a photon more
+  // than others in one pass does not get it in every pass), then along the cell's own
+  // (0, 2)-sequence from its start in each pass, rotated afresh each pass, so that the passes'
+  // errors are independent and average away (see PhotonTracer.h).
+  const uint64_t passStart = static_cast<uint64_t>(pass) * plan.count;
+  const uint64_t sequenceIndex = passStart + (index - plan.first);
   const uint64_t cells = plan.map.coveredCellCount();
-  const uint64_t cell = (sequenceIndex % cells) * plan.cellStride % cells;  // cells < 2^32
-  const uint64_t inCell = sequenceIndex / cells;
-  const CellRotation rotation = cellRotation(scene_.settings().seed, plan.light, cell);
+  const uint64_t positionInRound = sequenceIndex % cells;
+  const uint64_t cell = positionInRound * plan.cellStride % cells;  // cells < 2^32
+  // The cell's photons in earlier passes: the rounds that reached its position before passStart.
+  const uint64_t earlier =
+      passStart > positionInRound ? (passStart - positionInRound + cells - 1) / cells : 0;
+  const uint64_t inCell = sequenceIndex / cells - earlier;
+  const CellRotation rotation = cellRotation(scene_.settings().seed, plan.light, cell, pass);
   const float u1 = rotateUnit(radicalInverse(2, inCell), rotation.position[0]);
   const float u2 = rotateUnit(sobolSecond(inCell), rotation.position[1]);
   Ray ray{light.position, plan.map.sampleCell(cell, u1, u2)};

@@ -12,18 +12,21 @@
 //
 // Emission is stratified twice. Photons go round the light's c marked cells of the projection
 // map in turn (sequence index s = p · n + i − first, n the light's photons per pass), so every
-// cell gets its share to one photon; the round visits cell (s mod c) · g mod c, g the integer
-// coprime to c nearest c times the golden ratio's fraction, so that fewer photons than cells still
-// spread over all of them, not over the first few. Within its cell, photon s is point s div c of
-// a (0, 2)-sequence (math/LowDiscrepancy.h), rotated by an offset of that cell's keyed by the
-// seed. The photons under any small patch of a caster then number its area's share to about
-// one photon, where the Halton sequence over the whole map (its bases 3 and 5 spread a few
-// hundred points per cell unevenly) left them nearly as uneven as random ones. The photon's first
-// kStratifiedRoulette roulette decisions take further coordinates of its cell's sequence (Halton
-// bases 3, 5, 7, 11, rotated the same way), so that among the photons through a small patch the
-// share reflected, refracted and absorbed is the probabilities' and not a random draw of them.
-// Later decisions come from the photon's own random stream keyed by (seed, i, p). The photons
-// traced do not depend on how the index range is split between threads or ranks.
+// cell gets its share to one photon over all the passes so far; the round visits cell (s mod c) · g
+// mod c, g the integer coprime to c nearest c times the golden ratio's fraction, so that fewer
+// photons than cells still spread over all of them, not over the first few. Within its cell, the
+// photons of a pass are the first points of a (0, 2)-sequence (math/LowDiscrepancy.h), rotated by
+// an offset of that cell's keyed by the seed and the pass: each progressive pass is a fresh
+// stratified set, independent of the others (continuing one sequence across the passes made their
+// errors alike: after 16 passes the focus read twice the error, docs/accuracy.md). The photons
+// under any small patch of a caster then number its area's share to about one photon, where the
+// Halton sequence over the whole map (its bases 3 and 5 spread a few hundred points per cell
+// unevenly) left them nearly as uneven as random ones. The photon's first kStratifiedRoulette
+// roulette decisions take further coordinates of its cell's sequence (Halton bases 3, 5, 7, 11,
+// rotated the same way), so that among the photons through a small patch the share reflected,
+// refracted and absorbed is the probabilities' and not a random draw of them. Later decisions come
+// from the photon's own random stream keyed by (seed, i, p). The photons traced do not depend on
+// how the index range is split between threads or ranks.
 #pragma once
 
 #include <atomic>

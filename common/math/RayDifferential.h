@@ -39,13 +39,22 @@ struct PixelFootprint {
   float reach() const { return 0.5f * (glm::length(a) + glm::length(b)); }
   // Answers "does the point offset by q from the centre lie in the parallelogram, within half
   // its reach of its plane (n: the surface's unit normal)?" with three dot products: q's
-  // coordinates along a and b come from the dual basis, found once.
+  // coordinates along a and b come from the dual basis, found once. grownBy(m) asks the same of
+  // the parallelogram grown by m on every side (its edges moved out by m, perpendicular to them).
   struct Test {
     Vec3 dualA{0.0f}, dualB{0.0f}, normal{0.0f};
-    float slab = -1.0f;  // no point passes a test of a degenerate parallelogram
+    float slab = -1.0f;                  // no point passes a test of a degenerate parallelogram
+    float limitA = 0.5f, limitB = 0.5f;  // the half-widths in the dual coordinates
     bool contains(const Vec3& q) const {
-      return std::fabs(glm::dot(q, normal)) <= slab && std::fabs(glm::dot(q, dualA)) <= 0.5f &&
-             std::fabs(glm::dot(q, dualB)) <= 0.5f;
+      return std::fabs(glm::dot(q, normal)) <= slab && std::fabs(glm::dot(q, dualA)) <= limitA &&
+             std::fabs(glm::dot(q, dualB)) <= limitB;
+    }
+    // An edge u = ½ lies 1/|dualA| from the line u = 0 per unit of u.
+    Test grownBy(float margin) const {
+      Test grown = *this;
+      grown.limitA = limitA + margin * glm::length(dualA);
+      grown.limitB = limitB + margin * glm::length(dualB);
+      return grown;
     }
   };
   Test test(const Vec3& n) const {

@@ -697,9 +697,9 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
   std::printf(
       "region_px %ld regular_px %ld rel_rmse %.5f rel_rmse_regular %.5f flux_ratio %.5f "
       "direct_rel_rmse %.5f direct_flux_ratio %.5f peak_ref %.5g peak_ratio %.4f "
-      "focus9_ratio %.4f\n",
+      "focus9_ratio %.4f regular_share_of_error2 %.3f regular_share_of_ref2 %.3f\n",
       region, regular, std::sqrt(e2 / r2), std::sqrt(re2 / rr2), sx / sr, std::sqrt(de2 / dr2),
-      dsx / dsr, r[peak], x[peak] / r[peak], fx / fr);
+      dsx / dsr, r[peak], x[peak] / r[peak], fx / fr, re2 / e2, rr2 / r2);
   return 0;
 }
 
