@@ -380,11 +380,9 @@ TEST(WhittedIntegrator, AMirrorBallTooSmallForThePixelsFootprintEndsIt) {
   }
 }
 
-// Through a glass ball (radius 1, index 1.5) a parallel bundle converges as if bent at the
-// ball's centre by a lens of focal length nR/(2(n − 1)) = 1.5 (a ball lens's principal planes
-// meet at its centre): on a floor 2.5 below the centre a pixel of width 0.01 has become
-// 0.01·|1 − 2.5/1.5| = 0.00667 wide, flipped.
-TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
+// A clear glass ball (radius 1, index 1.5, no Fresnel reflection) with its centre `height`
+// above a grey Lambert floor at y = 0.
+SceneDescription glassBallOverFloor(float height) {
   SceneDescription d;
   MaterialDesc glass;
   glass.diffuse = Color(0.0f);
@@ -393,8 +391,17 @@ TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
   glass.fresnel = false;
   d.materials.push_back(glass);
   d.materials.push_back(lambert(Color(0.5f)));
-  d.spheres.push_back({{0, 2.5f, 0}, 1.0f, 0, {}, CausticRole::Auto});
+  d.spheres.push_back({{0, height, 0}, 1.0f, 0, {}, CausticRole::Auto});
   d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  return d;
+}
+
+// Through a glass ball (radius 1, index 1.5) a parallel bundle converges as if bent at the
+// ball's centre by a lens of focal length nR/(2(n − 1)) = 1.5 (a ball lens's principal planes
+// meet at its centre): on a floor 2.5 below the centre a pixel of width 0.01 has become
+// 0.01·|1 − 2.5/1.5| = 0.00667 wide, flipped.
+TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
+  const SceneDescription d = glassBallOverFloor(2.5f);
   const std::vector<PixelFootprint> f =
       footprintsAlong(d, Ray{{0, 5, 0}, {0, -1, 0}}, perPixel(0.01f, 0.0f));
   ASSERT_EQ(f.size(), 1u);
@@ -412,16 +419,7 @@ TEST(WhittedIntegrator, AGlassBallFocusesThePixelsFootprintAsABallLens) {
 // and across the ball up to 2.6 mm; the two areas agree within 0.2 %, so the pixel footprint
 // is not what the remaining error at the focus came from (docs/accuracy.md).
 TEST(WhittedIntegrator, APixelsFootprintThroughTheBallIsTheOneItsCornerRaysTrace) {
-  SceneDescription d;
-  MaterialDesc glass;
-  glass.diffuse = Color(0.0f);
-  glass.transmittance = Color(1.0f);
-  glass.ior = 1.5f;
-  glass.fresnel = false;
-  d.materials.push_back(glass);
-  d.materials.push_back(lambert(Color(0.5f)));
-  d.spheres.push_back({{0, 2, 0}, 1.0f, 0, {}, CausticRole::Auto});
-  d.planes.push_back({{0, 0, 0}, {0, 1, 0}, 1, {}});
+  SceneDescription d = glassBallOverFloor(2.0f);
   d.camera.position = {0, 10, 0};
   d.camera.lookAt = {0, 0, 0};
   d.camera.up = {0, 0, -1};
