@@ -100,7 +100,7 @@ class WorkDispatcher {
   bool openingPending() const { return static_cast<bool>(opening_); }
   // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
   // late results are stale). Called by the coordinating thread: it sends the slaves their first
-  // jobs before rank 0's render threads take any tile.
+  // jobs before rank 0's render threads take any tile (after them, when the opening runs here).
   void beginFrame(FramePlan plan, FrameListener* listener);
   // Pipelining (the viewer's frame stream): adds plan as the current frame behind the frames
   // still running, which are not ended. A render thread or slave takes the oldest frame's tiles
