@@ -101,12 +101,12 @@ void MasterSession::start(bool keepEnvironment, GeometrySending sending) {
     setUp_.geometryShare.sentBytes = bytes.size();
     setUp_.geometryShare.sentSeconds = secondsSince(sendStart);
   };
-  if (sendGeometry && sending == GeometrySending::AtStart) sendGeometryNow(false);
+  const bool whileRendering = sendGeometry && sending == GeometrySending::WhileRank0Renders &&
+                              setUp_.geometryShare.transferSeconds >= kSendWhileRenderingSeconds;
+  if (sendGeometry && !whileRendering) sendGeometryNow(false);
   checkCausticMapsFit(*scene_, memoryLimitOrPhysical(options_.memoryLimit));
   dispatcher_ = std::make_unique<WorkDispatcher>(*scene_, transport_, options_.distribution);
-  if (sendGeometry && sending == GeometrySending::WhileRank0Renders) {
-    dispatcher_->openWith(sendGeometryNow);
-  }
+  if (whileRendering) dispatcher_->openWith(sendGeometryNow);
 }
 
 void MasterSession::planGeometry(size_t descriptionBytes, double descriptionSeconds) {

@@ -65,7 +65,8 @@ class MasterSession {
   int refuse(const std::string& why);
   // When rank 0 broadcasts the geometry it built: before start() returns (set-up timed apart
   // from frames, as `speedup` measures), or as the first frame begins, while rank 0's render
-  // threads already render it (`render`: the first pixel right after rank 0's build).
+  // threads already render it (`render`: the first pixel right after rank 0's build), if its
+  // transfer is predicted to take kSendWhileRenderingSeconds or more (GeometryShare.h).
   enum class GeometrySending { AtStart, WhileRank0Renders };
   // Broadcasts the scene, waits for every slave to accept it (a slave's refusal ends the job
   // here, before any rank builds), chooses who builds the geometry (GeometryShare.h), builds

@@ -73,8 +73,8 @@ GeometrySharePlan planGeometryShare(GeometryShareMode requested, size_t triangle
   plan.eachBuildsSeconds = slowest;
   const BuildPlace alone{rank0.threads, rank0.cores, 1};
   const double bytes = static_cast<double>(triangles) * kGeometryBytesPerTriangle;
-  plan.broadcastSeconds =
-      work / alone.pace() + bytes / plan.linkBytesPerSecond + bytes / kGeometryCodecBytesPerSecond;
+  plan.transferSeconds = bytes / plan.linkBytesPerSecond + bytes / kGeometryCodecBytesPerSecond;
+  plan.broadcastSeconds = work / alone.pace() + plan.transferSeconds;
   switch (requested) {
     case GeometryShareMode::Auto:
       plan.broadcast = !slaves.empty() && plan.broadcastSeconds < plan.eachBuildsSeconds;

@@ -42,6 +42,10 @@ struct BuildPlace {
 inline constexpr double kBuildThreadSecondsPerTriangle = 0.5e-6;
 inline constexpr double kGeometryBytesPerTriangle = 68.0;
 inline constexpr double kGeometryCodecBytesPerSecond = 0.5e9;
+// `prism render` sends the geometry while rank 0 renders (MasterSession::GeometrySending) only
+// when the transfer is predicted to take this long: a small scene's geometry goes before the
+// frame, so that the slaves have it when the frame's first jobs go out and take part.
+inline constexpr double kSendWhileRenderingSeconds = 0.1;
 
 struct GeometrySharePlan {
   GeometryShareMode requested = GeometryShareMode::Auto;
@@ -49,6 +53,7 @@ struct GeometrySharePlan {
   double linkBytesPerSecond = 0.0;  // measured by the description's broadcast
   double eachBuildsSeconds = 0.0;   // predicted: every rank builds its own
   double broadcastSeconds = 0.0;    // predicted: rank 0 builds, then broadcasts
+  double transferSeconds = 0.0;     // predicted: of that, encoding, sending and decoding
   // What happened, once it has: the geometry's bytes and the broadcast's time.
   size_t sentBytes = 0;
   double sentSeconds = 0.0;

@@ -136,7 +136,7 @@ TEST_F(DistributedRender, TheGeometryBroadcastOrBuiltOnEveryRankGivesTheSamePixe
   const ImageRgb reference = singleProcessReference();
   for (const std::string& link : {std::string(), kOverTcp}) {
     for (const auto& [mode, said] :
-         {std::pair<std::string, std::string>{"broadcast", " while rank 0 rendered"},
+         {std::pair<std::string, std::string>{"broadcast", "geometry broadcast by rank 0"},
           {"local", "geometry built on every rank (local)"},
           {"auto", " (auto: predicted "}}) {
       const std::string image = path(mode + (link.empty() ? "-shm" : "-tcp") + ".exr");
@@ -375,8 +375,8 @@ TEST_F(DistributedRender, BadOptionIsReportedOnceNotByEveryRank) {
 // the single-process one for any rank count, in classic and in progressive mode.
 const std::string kCausticScene = std::string(PRISM_TEST_DATA_DIR) + "/scenes/caustic-small.yaml";
 
-// A photon pass before the frame: rank 0 sends its geometry as the pass begins (not while a
-// frame renders), and every slave traces its share with it.
+// A photon pass before the frame, with rank 0's geometry broadcast: every slave has it in time
+// to trace its share of the photons.
 TEST_F(DistributedRender, AGeometryBroadcastBeforeAPhotonPassGivesTheSamePixels) {
   const test::ProcessRun single =
       test::runPrism("render " + kCausticScene + " -q -o " + path("reference.exr"));
