@@ -219,7 +219,19 @@ class YamlSceneReader : private CheckedYaml {
       }
     }
     if (const Entry* e = m.find("radius")) c.radius = nonNegative(*e);
-    if (const Entry* e = m.find("time_budget")) c.timeBudgetSeconds = nonNegative(*e);
+    if (const Entry* e = m.find("time_budget")) {
+      c.timeBudgetSeconds = nonNegative(*e);
+      // A budget bounds progressive passes, so it asks for them (a classic render is one pass,
+      // which the budget could not shorten: it was silently ignored).
+      if (c.timeBudgetSeconds > 0.0) {
+        if (const Entry* p = m.find("progressive"); p && !c.progressive) {
+          fail(loc(*p),
+               "'progressive' is false, but 'time_budget' bounds progressive passes: remove "
+               "one of them");
+        }
+        c.progressive = true;
+      }
+    }
     if (const Entry* e = m.find("map_resolution")) {
       c.mapResolution = static_cast<int>(integer(*e, limits::kMapResolution));
     }

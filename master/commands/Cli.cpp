@@ -220,8 +220,9 @@ void addCausticOptions(CLI::App* render, RenderOptions& o) {
   render
       ->add_option(
           "--time-budget", o.timeBudget,
-          "Progressive: seconds for the whole run, start to written image; a pass starts only "
-          "if it (as long as the longest so far) and the write fit (the first always runs)")
+          "Seconds for the whole run, start to written image: progressive photon passes "
+          "(implies --progressive) while they fit; a pass starts only if it (as long as the "
+          "longest so far) and the write fit (the first always runs)")
       ->check(CLI::PositiveNumber)
       ->group(caustics);
   render

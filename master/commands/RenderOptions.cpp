@@ -65,7 +65,11 @@ void applyOverrides(const RenderOptions& o, CausticSettings& c) {
   if (o.passes) c.passes = *o.passes;
   if (o.progressive) c.progressive = *o.progressive;
   if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;
-  if (o.timeBudget) c.timeBudgetSeconds = *o.timeBudget;
+  // A budget bounds progressive passes, so it asks for them (a classic render is one pass).
+  if (o.timeBudget) {
+    c.timeBudgetSeconds = *o.timeBudget;
+    c.progressive = true;
+  }
   if (o.mapResolution) c.mapResolution = *o.mapResolution;
   if (o.mapSteps) c.mapSteps = *o.mapSteps;
   if (o.mapBlurSigma) c.mapBlurSigma = *o.mapBlurSigma;

@@ -222,6 +222,16 @@ TEST(YamlSceneParser, GatherAutoTakesTheNoiseItAimsAt) {
   EXPECT_EQ(fixed.caustics.gather, 30);
 }
 
+// A budget bounds progressive passes: given alone it asks for them (a classic render, one pass,
+// ignored it), and a budget of 0 (none) asks for nothing.
+TEST(YamlSceneParser, ATimeBudgetAsksForProgressivePasses) {
+  const SceneDescription s = parse("caustics:\n  method: photon_map\n  time_budget: 8\n");
+  EXPECT_TRUE(s.caustics.progressive);
+  EXPECT_DOUBLE_EQ(s.caustics.timeBudgetSeconds, 8.0);
+  EXPECT_FALSE(parse("caustics:\n  time_budget: 0\n").caustics.progressive);
+  EXPECT_TRUE(parse("caustics:\n  progressive: true\n  time_budget: 3\n").caustics.progressive);
+}
+
 TEST(YamlSceneParser, CausticsDefaultToNone) {
   const SceneDescription s = parse("objects:\n  - sphere: {center: [0, 0, 0], radius: 1}\n");
   const CausticSettings defaults;
@@ -730,6 +740,8 @@ const BadScene kBadScenes[] = {
     {"gather_not_auto.yaml", 2, 11, "expected an integer for 'gather', found 'automatic'"},
     {"noise_too_large.yaml", 3, 10, "'noise' must lie between 0.0032 and 1, found 2"},
     {"negative_time_budget.yaml", 2, 16, "'time_budget' must not be negative, found -1"},
+    {"budget_without_progressive.yaml", 2, 16,
+     "'progressive' is false, but 'time_budget' bounds progressive passes: remove one of them"},
     {"up_parallel.yaml", 1, 1, "'up' is parallel to the view direction"},
     // references
     {"unknown_material.yaml", 5, 54, "unknown material 'glas' (defined: floor, glass)"},

@@ -180,12 +180,16 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
   EXPECT_NE(progressive.output.find(", shrunk to "), std::string::npos) << progressive.output;
   EXPECT_EQ(progressive.output.find("budget "), std::string::npos) << progressive.output;
 
-  // A time budget says what it bounds (far above what this run takes: all passes fit).
+  // A time budget says what it bounds (far above what this run takes: all passes fit), and asks
+  // for progressive passes by itself (it was ignored without --progressive).
   const ProcessRun budgeted = runPrism("render " + kCausticScene + " -o " + path("b.exr") +
-                                       " --progressive --passes 2 --time-budget 1000");
+                                       " --passes 2 --time-budget 1000");
   ASSERT_EQ(budgeted.exitCode, 0) << budgeted.output;
   EXPECT_NE(budgeted.output.find("budget    1000.00 s for the whole run, start to written image: "
                                  "all 2 passes fitted"),
+            std::string::npos)
+      << budgeted.output;
+  EXPECT_NE(budgeted.output.find("photon map (progressive): 20.0 k photons x 2 passes"),
             std::string::npos)
       << budgeted.output;
 }
