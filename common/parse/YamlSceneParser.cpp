@@ -230,6 +230,8 @@ class YamlSceneReader : private CheckedYaml {
                "one of them");
         }
         c.progressive = true;
+        // A budget that gives no pass count runs passes until it ends.
+        if (!m.find("passes")) c.passes = kPassesUntilBudget;
       }
     }
     if (const Entry* e = m.find("map_resolution")) {

@@ -16,6 +16,7 @@
 #include "image/SrgbImage.h"
 #include "math/Vec.h"
 #include "scene/FileLoc.h"
+#include "scene/SettingLimits.h"
 #include "util/InstructionSet.h"
 
 namespace prism {
@@ -172,7 +173,7 @@ struct CausticSettings {
   int maxBounces = 16;  // specular bounces a photon may take before it is dropped
   // Progressive photon mapping: passes whose radii shrink by the rule of Knaus & Zwicker 2011.
   bool progressive = false;
-  int passes = 16;
+  int passes = 16;      // under a time budget that gives no count, kPassesUntilBudget
   float alpha = 0.7f;   // radius shrink: r²(i+1) = r²(i)·(i + alpha)/(i + 1)
   float radius = 0.0f;  // one fixed first-pass radius for every photon; 0: per-photon k-NN radii
   double timeBudgetSeconds = 0;  // stop starting passes after this long; 0: no limit
@@ -186,6 +187,13 @@ struct CausticSettings {
   int mapBlurRadius = 2;      // Gaussian half-width, texels; 0: no blur
   CausticMapPaths mapPaths = CausticMapPaths::Traced;
 };
+
+// The pass count of a time budget given without one: passes until the budget ends (the largest
+// count `passes` takes, 2^20, far beyond any budget).
+inline constexpr int kPassesUntilBudget = static_cast<int>(limits::kPasses.max);
+inline bool passesUntilBudget(const CausticSettings& c) {
+  return c.timeBudgetSeconds > 0.0 && c.passes == kPassesUntilBudget;
+}
 
 struct SceneDescription {
   std::string sourcePath;

@@ -221,8 +221,8 @@ void addCausticOptions(CLI::App* render, RenderOptions& o) {
       ->add_option(
           "--time-budget", o.timeBudget,
           "Seconds for the whole run, start to written image: progressive photon passes "
-          "(implies --progressive) while they fit; a pass starts only if it (as long as the "
-          "longest so far) and the write fit (the first always runs)")
+          "(implies --progressive) until the budget ends, or --passes if given; a pass starts "
+          "only if it (as long as the longest so far) and the write fit (the first always runs)")
       ->check(CLI::PositiveNumber)
       ->group(caustics);
   render

@@ -65,10 +65,13 @@ void applyOverrides(const RenderOptions& o, CausticSettings& c) {
   if (o.passes) c.passes = *o.passes;
   if (o.progressive) c.progressive = *o.progressive;
   if (o.gatherRadius) c.maxRadius = c.radius = *o.gatherRadius;
-  // A budget bounds progressive passes, so it asks for them (a classic render is one pass).
+  // A budget bounds progressive passes, so it asks for them (a classic render is one pass), and
+  // without --passes it runs them until it ends (the scene's count, 16 by default, stopped a
+  // 60 s budget at 22 s).
   if (o.timeBudget) {
     c.timeBudgetSeconds = *o.timeBudget;
     c.progressive = true;
+    if (!o.passes) c.passes = kPassesUntilBudget;
   }
   if (o.mapResolution) c.mapResolution = *o.mapResolution;
   if (o.mapSteps) c.mapSteps = *o.mapSteps;

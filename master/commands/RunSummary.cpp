@@ -99,10 +99,11 @@ std::string budgetLine(const CausticRunStats& c) {
   line << "budget    " << fixed(c.settings.timeBudgetSeconds, 2)
        << " s for the whole run, start to written image: ";
   if (c.stoppedByBudget) {
-    line << c.passes << " of " << c.settings.passes << " passes; at "
-         << fixed(c.budgetStopSeconds, 2) << " s one more (up to " << fixed(c.longestPassSeconds, 2)
-         << " s) and the write (" << fixed(c.budgetWriteSeconds, 2)
-         << " s budgeted) would not have fitted\n";
+    line << c.passes;
+    if (!passesUntilBudget(c.settings)) line << " of " << c.settings.passes;
+    line << (c.passes == 1 ? " pass; at " : " passes; at ") << fixed(c.budgetStopSeconds, 2)
+         << " s one more (up to " << fixed(c.longestPassSeconds, 2) << " s) and the write ("
+         << fixed(c.budgetWriteSeconds, 2) << " s budgeted) would not have fitted\n";
   } else {
     line << "all " << c.passes << " passes fitted\n";
   }

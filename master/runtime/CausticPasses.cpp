@@ -198,7 +198,9 @@ CausticFrame CausticRun::progressive(const ProgressiveSnapshot& snapshot) {
       out_.frames.interrupted = true;
       break;
     }
-    const std::string label = "pass " + std::to_string(i) + "/" + std::to_string(settings_.passes);
+    const std::string label =
+        "pass " + std::to_string(i) +
+        (passesUntilBudget(settings_) ? std::string() : "/" + std::to_string(settings_.passes));
     gather = progressiveGather(settings_, maxRadius_, i, gather);
     // Per-photon radii: the cap, scaled as the radii are.
     if (i == 1) stats.firstRadius = gather.radius * gather.radiusScale;

@@ -223,13 +223,21 @@ TEST(YamlSceneParser, GatherAutoTakesTheNoiseItAimsAt) {
 }
 
 // A budget bounds progressive passes: given alone it asks for them (a classic render, one pass,
-// ignored it), and a budget of 0 (none) asks for nothing.
-TEST(YamlSceneParser, ATimeBudgetAsksForProgressivePasses) {
+// ignored it) and runs them until it ends unless the scene gives a count; a budget of 0 (none)
+// asks for nothing.
+TEST(YamlSceneParser, ATimeBudgetAsksForProgressivePassesUntilItEnds) {
   const SceneDescription s = parse("caustics:\n  method: photon_map\n  time_budget: 8\n");
   EXPECT_TRUE(s.caustics.progressive);
   EXPECT_DOUBLE_EQ(s.caustics.timeBudgetSeconds, 8.0);
-  EXPECT_FALSE(parse("caustics:\n  time_budget: 0\n").caustics.progressive);
-  EXPECT_TRUE(parse("caustics:\n  progressive: true\n  time_budget: 3\n").caustics.progressive);
+  EXPECT_EQ(s.caustics.passes, kPassesUntilBudget);
+  EXPECT_TRUE(passesUntilBudget(s.caustics));
+  const SceneDescription counted = parse("caustics:\n  time_budget: 3\n  passes: 7\n");
+  EXPECT_TRUE(counted.caustics.progressive);
+  EXPECT_EQ(counted.caustics.passes, 7);
+  EXPECT_FALSE(passesUntilBudget(counted.caustics));
+  const SceneDescription none = parse("caustics:\n  time_budget: 0\n");
+  EXPECT_FALSE(none.caustics.progressive);
+  EXPECT_EQ(none.caustics.passes, CausticSettings{}.passes);
 }
 
 TEST(YamlSceneParser, CausticsDefaultToNone) {

@@ -192,6 +192,16 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
   EXPECT_NE(budgeted.output.find("photon map (progressive): 20.0 k photons x 2 passes"),
             std::string::npos)
       << budgeted.output;
+
+  // Without --passes a budget runs passes until it ends (here at once: set-up alone takes more
+  // than a millisecond, and the first pass always runs).
+  const ProcessRun open =
+      runPrism("render " + kCausticScene + " -o " + path("o.exr") + " --time-budget 0.001");
+  ASSERT_EQ(open.exitCode, 0) << open.output;
+  EXPECT_NE(open.output.find("budget    0.00 s for the whole run, start to written image: 1 pass; "
+                             "at "),
+            std::string::npos)
+      << open.output;
 }
 
 // Caustics on a scene with no caster: a warning, no photon cost, and the very same pixels as
