@@ -417,6 +417,24 @@ TEST_P(DistributedCaustics, PixelsAreBitIdenticalToTheSingleProcessRender) {
   }
 }
 
+// Under MPI a budget's passes are counted by rank 0 alone: a budget that stops after the first
+// pass (set-up takes more than a millisecond; the first pass always runs) gives every rank count
+// the pixels of one progressive pass in one process.
+TEST_F(DistributedRender, ABudgetsPassesAreTheSameForAnyRankCount) {
+  const test::ProcessRun single = test::runPrism(
+      "render " + kCausticScene + " --progressive --passes 1 -q -o " + path("one-pass.exr"));
+  ASSERT_EQ(single.exitCode, 0) << single.output;
+  for (const int ranks : {1, 3}) {
+    const std::string image = path("budget" + std::to_string(ranks) + ".exr");
+    const test::ProcessRun run = test::runPrismMpi(
+        ranks, "render " + kCausticScene + " --time-budget 0.001 --tile-size 8 -o " + image);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("start to written image: 1 pass; at "), std::string::npos)
+        << run.output;
+    EXPECT_TRUE(samePixels(readImage(image), readImage(path("one-pass.exr")))) << run.output;
+  }
+}
+
 // A slave that hangs never sends its photon share: after the lease rank 0 retires it, traces
 // its share itself, and the frames go on without it. The photons are the same, so the pixels
 // are too.
