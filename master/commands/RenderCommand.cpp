@@ -87,6 +87,12 @@ void checkOutputs(const RenderOptions& options, const std::string& output) {
 int renderAndWrite(MasterSession& session, const std::string& output, SteadyClock::time_point start,
                    std::ostream& out, std::ostream& err) {
   const RenderOptions& options = session.options();
+  const CausticSettings& caustics = session.description().caustics;
+  if (caustics.timeBudgetSeconds > 0.0 && caustics.method == CausticMethod::CausticMap &&
+      !options.quiet) {
+    err << "prism: warning: a time budget bounds progressive photon passes, and caustic mapping "
+           "renders one frame: the budget is not used\n";
+  }
   session.start(false, MasterSession::GeometrySending::WhileRank0Renders);
   FrameOptions frameOptions;
   frameOptions.distribution = options.distribution;

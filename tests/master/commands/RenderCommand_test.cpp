@@ -202,6 +202,15 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
                              "at "),
             std::string::npos)
       << open.output;
+
+  // Caustic mapping has no passes for a budget to bound: said, not silently ignored.
+  const ProcessRun mapped = runPrism("render " + kCausticScene + " -o " + path("m.exr") +
+                                     " --caustics caustic-map --time-budget 5");
+  ASSERT_EQ(mapped.exitCode, 0) << mapped.output;
+  EXPECT_NE(mapped.output.find("warning: a time budget bounds progressive photon passes, and "
+                               "caustic mapping renders one frame"),
+            std::string::npos)
+      << mapped.output;
 }
 
 // Caustics on a scene with no caster: a warning, no photon cost, and the very same pixels as
