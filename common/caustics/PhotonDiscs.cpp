@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 #include "util/Parallel.h"
 
@@ -115,6 +116,62 @@ class PhotonDiscs::Builder {
   std::vector<Node>& nodes_;
 };
 
+namespace {
+
+// A Wide node whose entries all fail every test: empty boxes, no radius small enough.
+template <class W>
+W emptyWideOf() {
+  W w{};
+  for (int k = 0; k < 4; ++k) {
+    w.loX[k] = w.loY[k] = w.loZ[k] = std::numeric_limits<float>::infinity();
+    w.hiX[k] = w.hiY[k] = w.hiZ[k] = -std::numeric_limits<float>::infinity();
+    w.minRadius2Bits[k] = 0x7f80;  // infinity's top bits
+  }
+  return w;
+}
+
+}  // namespace
+
+PhotonDiscs::Wide PhotonDiscs::emptyWide() {
+  return emptyWideOf<Wide>();
+}
+
+void PhotonDiscs::setEntry(Wide& w, int k, const Node& n, uint32_t child) {
+  w.loX[k] = n.lo.x;
+  w.loY[k] = n.lo.y;
+  w.loZ[k] = n.lo.z;
+  w.hiX[k] = n.hi.x;
+  w.hiY[k] = n.hi.y;
+  w.hiZ[k] = n.hi.z;
+  w.child[k] = child;
+  w.count[k] = n.count;
+  w.maxRadius2Exponent[k] = n.maxRadius2Exponent;
+  w.minRadius2Bits[k] = n.minRadius2Bits;
+}
+
+uint32_t PhotonDiscs::widen(const std::vector<Node>& nodes, uint32_t binary) {
+  const uint32_t self = static_cast<uint32_t>(wide_.size());
+  wide_.push_back(emptyWide());
+  // The entries: each child, or its two children where it has them, in depth-first order.
+  uint32_t entries[4];
+  int count = 0;
+  for (const uint32_t child : {binary + 1, nodes[binary].first}) {
+    if (nodes[child].count > 0) {
+      entries[count++] = child;
+    } else {
+      entries[count++] = child + 1;
+      entries[count++] = nodes[child].first;
+    }
+  }
+  for (int k = 0; k < count; ++k) {
+    const Node& n = nodes[entries[k]];
+    // wide_ grows below: the entry is written after the subtree's nodes are.
+    const uint32_t child = n.count > 0 ? n.first : widen(nodes, entries[k]);
+    setEntry(wide_[self], k, n, child);
+  }
+  return self;
+}
+
 PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<float>& radii,
                          int threads) {
   const uint32_t n = static_cast<uint32_t>(photons.size());
@@ -124,12 +181,21 @@ PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<f
     const float radius2 = radii[i] * radii[i];
     entries[i] = {photons[i].position, std::sqrt(radius2), radius2, i};
   }
-  nodes_.resize(Builder::nodeCount(n, 0));
+  std::vector<Node> nodes(Builder::nodeCount(n, 0));
   // Enough subtrees below the top levels for every thread to take several.
   const int workers = threads > 0 ? threads : availableCores();
   int levels = 0;
   while (levels < 20 && (1 << levels) < 4 * workers) ++levels;
-  Builder(entries, nodes_).build(n, levels, threads);
+  Builder(entries, nodes).build(n, levels, threads);
+  if (nodes[0].count > 0) {
+    // One leaf: a Wide root with it as its only entry.
+    wide_.push_back(Wide{});
+    wide_[0] = emptyWide();
+    setEntry(wide_[0], 0, nodes[0], nodes[0].first);
+  } else {
+    wide_.reserve(nodes.size() / 3 + 1);
+    widen(nodes, 0);
+  }
   discs_.resize(n);
   parallelFor((n + kDiscBlock - 1) / kDiscBlock, threads, [&](uint64_t block) {
     const uint32_t first = static_cast<uint32_t>(block * kDiscBlock);

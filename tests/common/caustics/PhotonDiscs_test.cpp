@@ -122,5 +122,43 @@ TEST(PhotonDiscs, CoveringFindsEveryCoveringDiscInOneOrderForAnyThreadCount) {
   }
 }
 
+// The walks go depth first, and the slots are laid out depth first: every walk visits its
+// discs in slot order (ascending addresses), which is what makes a gather's sum the same
+// whatever shape the tree is walked in (binary, or two levels at a time). Maps of 1 to 70
+// photons give a root that is one leaf, and nodes with fewer than four entries.
+TEST(PhotonDiscs, WalksVisitDiscsInSlotOrderAndFindEveryOneForSmallMaps) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const int count : {1, 2, 7, 8, 9, 16, 17, 33, 70, 5000}) {
+    std::vector<Photon> photons(static_cast<size_t>(count));
+    std::vector<float> radii(photons.size());
+    for (size_t i = 0; i < photons.size(); ++i) {
+      photons[i].position = Vec3(u(rng), 1e-3f * u(rng), u(rng));
+      radii[i] = 0.02f + 0.3f * u(rng) * u(rng);
+    }
+    const PhotonDiscs discs(photons, radii);
+    PixelFootprint f{true, Vec3(0.01f, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 0.01f)};
+    const PixelFootprint::Test test = f.test(Vec3(0.0f, 1.0f, 0.0f));
+    for (int q = 0; q < 50; ++q) {
+      const Vec3 x(u(rng), 0.0f, u(rng));
+      std::vector<const PhotonDiscs::Disc*> covering, reaching;
+      discs.covering(x, [&](const PhotonDiscs::Disc& d, float, float) { covering.push_back(&d); });
+      discs.reaching(x, 0.02f, 0.04f, 0.0001f, test.grownBy(0.01f),
+                     [&](const PhotonDiscs::Disc& d, float, float) { reaching.push_back(&d); });
+      for (const auto* visited : {&covering, &reaching}) {
+        for (size_t i = 1; i < visited->size(); ++i) {
+          ASSERT_LT((*visited)[i - 1], (*visited)[i]) << count << " photons, query " << q;
+        }
+      }
+      size_t expected = 0;
+      for (size_t i = 0; i < photons.size(); ++i) {
+        const Vec3 d = x - photons[i].position;
+        expected += glm::dot(d, d) < radii[i] * radii[i];
+      }
+      ASSERT_EQ(covering.size(), expected) << count << " photons, query " << q;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prism
