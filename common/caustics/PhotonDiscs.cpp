@@ -116,24 +116,15 @@ class PhotonDiscs::Builder {
   std::vector<Node>& nodes_;
 };
 
-namespace {
-
 // A Wide node whose entries all fail every test: empty boxes, no radius small enough.
-template <class W>
-W emptyWideOf() {
-  W w{};
+PhotonDiscs::Wide PhotonDiscs::emptyWide() {
+  Wide w{};
   for (int k = 0; k < 4; ++k) {
     w.loX[k] = w.loY[k] = w.loZ[k] = std::numeric_limits<float>::infinity();
     w.hiX[k] = w.hiY[k] = w.hiZ[k] = -std::numeric_limits<float>::infinity();
     w.minRadius2Bits[k] = 0x7f80;  // infinity's top bits
   }
   return w;
-}
-
-}  // namespace
-
-PhotonDiscs::Wide PhotonDiscs::emptyWide() {
-  return emptyWideOf<Wide>();
 }
 
 void PhotonDiscs::setEntry(Wide& w, int k, const Node& n, uint32_t child) {
@@ -189,8 +180,7 @@ PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<f
   Builder(entries, nodes).build(n, levels, threads);
   if (nodes[0].count > 0) {
     // One leaf: a Wide root with it as its only entry.
-    wide_.push_back(Wide{});
-    wide_[0] = emptyWide();
+    wide_.push_back(emptyWide());
     setEntry(wide_[0], 0, nodes[0], nodes[0].first);
   } else {
     wide_.reserve(nodes.size() / 3 + 1);
