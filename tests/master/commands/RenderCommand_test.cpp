@@ -179,9 +179,13 @@ TEST_F(RenderCommandTest, CausticRunSummarisesThePhotonPassesAndWritesAPhotonIma
       << progressive.output;
   EXPECT_NE(progressive.output.find(", shrunk to "), std::string::npos) << progressive.output;
   EXPECT_EQ(progressive.output.find("budget "), std::string::npos) << progressive.output;
+}
 
-  // A time budget says what it bounds (far above what this run takes: all passes fit), and asks
-  // for progressive passes by itself (it was ignored without --progressive).
+// A time budget asks for progressive passes by itself (it was ignored without --progressive),
+// runs them until it ends unless --passes gives a count, and says what it bounded; beside
+// caustic mapping, which has no passes, it says it was not used.
+TEST_F(RenderCommandTest, ATimeBudgetRunsProgressivePassesAndSaysWhatItBounded) {
+  // Far above what this run takes: all passes fit.
   const ProcessRun budgeted = runPrism("render " + kCausticScene + " -o " + path("b.exr") +
                                        " --passes 2 --time-budget 1000");
   ASSERT_EQ(budgeted.exitCode, 0) << budgeted.output;
