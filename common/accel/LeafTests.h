@@ -36,12 +36,12 @@ bool SceneGeometry::intersectLeaf(const Ray& ray, const WatertightRay& sheared, 
         }
         break;
       }
-      case PrimitiveKind::Sphere:
-        hitThis = spheres_[index].intersect(ray, tMax, t);
-        break;
-      case PrimitiveKind::Cone:
-        hitThis = cones_[index].intersect(ray, tMax, t);
-        break;
+#define PRISM_SHAPE_LEAF_TEST(Shape, plural)            \
+  case PrimitiveKind::Shape:                            \
+    hitThis = plural##_[index].intersect(ray, tMax, t); \
+    break;
+        PRISM_SHAPE_KINDS(PRISM_SHAPE_LEAF_TEST)
+#undef PRISM_SHAPE_LEAF_TEST
       case PrimitiveKind::Plane:
         break;
     }

@@ -1,9 +1,10 @@
 #include "accel/SceneGeometry.h"
 
+#include <array>
+#include <stdexcept>
 #include <utility>
 
 #include "accel/PrimitiveRef.h"
-#include "geometry/ConeSegments.h"
 #include "util/HugePages.h"
 #include "util/Parallel.h"
 
@@ -22,8 +23,8 @@ SceneGeometry::SceneGeometry(GeometryInput in)
       kernels_(&geometryKernels(resolveInstructionSet(in.instructionSet))),
       planes_(std::move(in.planes)),
       planeCaustic_(std::move(in.planeCaustic)) {
-  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs. Spheres and
-  // cones, gathered before the triangles, are tested one at a time.
+  // The SIMD walk tests four triangles for the price of one: let the SAH fill packs. The shapes,
+  // gathered before the triangles, are tested one at a time.
   const bool packed =
       traversal_ == Traversal::WideSimd && triangleTest_ != TriangleTest::PlaneThenInside;
   BvhBuildOptions buildOptions;
@@ -32,18 +33,33 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   const unsigned gatherThreads =
       triangleCount >= kParallelGatherMinTriangles ? buildOptions.threads : 1;
 
-  // Bounded primitives are numbered in input order: spheres, cone parts, then every mesh's
-  // triangles. The BVH asks for their boxes by number, so no array of boxes is kept; after the
-  // build they are reordered by leaf so a leaf's primitives sit together in memory. Packed
-  // triangles are not gathered: the packs read them from the meshes.
-  std::vector<Cone> cones;
-  std::vector<uint8_t> coneCaustic;
-  for (size_t c = 0; c < in.cones.size(); ++c) {
-    for (const Cone& part : splitForBvh(in.cones[c])) {
-      cones.push_back(part);
-      coneCaustic.push_back(in.coneCaustic[c]);
+  // Bounded primitives are numbered in input order: the parts of each kind of
+  // geometry/ShapeKinds.h in the list's order, then every mesh's triangles. The BVH asks for
+  // their boxes by number, so no array of boxes is kept; after the build they are reordered by
+  // leaf so a leaf's primitives sit together in memory. Packed triangles are not gathered: the
+  // packs read them from the meshes.
+  GeometryInput parts;                                    // the shapes as the BVH takes them
+  std::array<uint32_t, kShapeKindCount + 1> kindFirst{};  // each kind's first number
+  size_t kind = 0;
+  const auto gatherParts = [&](const auto& shapes, const std::vector<uint8_t>& caustic,
+                               auto& partsOut, std::vector<uint8_t>& partsCaustic) {
+    kindFirst[kind + 1] = kindFirst[kind];
+    for (size_t i = 0; i < shapes.size(); ++i) {
+      for (const auto& part : partsForBvh(shapes[i])) {
+        partsOut.push_back(part);
+        partsCaustic.push_back(caustic[i]);
+      }
     }
-  }
+    if (partsOut.size() > PrimitiveRef::kMaxIndex) {
+      throw std::length_error("too many shapes of one kind for the BVH's entries");
+    }
+    kindFirst[kind + 1] += static_cast<uint32_t>(partsOut.size());
+    ++kind;
+  };
+#define PRISM_GATHER_PARTS(Shape, plural) \
+  gatherParts(in.plural, in.plural##Caustic, parts.plural, parts.plural##Caustic);
+  PRISM_SHAPE_KINDS(PRISM_GATHER_PARTS)
+#undef PRISM_GATHER_PARTS
   uint32_t triangleNumber = 0;  // over all meshes, in order
   for (const MeshInput& mesh : in.meshes) {
     MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber};
@@ -54,14 +70,17 @@ SceneGeometry::SceneGeometry(GeometryInput in)
     meshes_.push_back(std::move(shading));
     triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
   }
-  const uint32_t sphereCount = static_cast<uint32_t>(in.spheres.size());
-  const uint32_t firstTriangle = sphereCount + static_cast<uint32_t>(cones.size());
+  const uint32_t firstTriangle = kindFirst[kShapeKindCount];
+  if (triangleCount > PrimitiveRef::kMaxTriangleIndex / TrianglePack4::kWidth) {
+    throw std::length_error("too many triangles for the BVH's entries");
+  }
   const auto refOf = [&](uint32_t primitive) {
-    if (primitive < sphereCount) return PrimitiveRef::make(PrimitiveKind::Sphere, primitive);
-    if (primitive < firstTriangle) {
-      return PrimitiveRef::make(PrimitiveKind::Cone, primitive - sphereCount);
+    if (primitive >= firstTriangle) {
+      return PrimitiveRef::make(PrimitiveKind::Triangle, primitive - firstTriangle);
     }
-    return PrimitiveRef::make(PrimitiveKind::Triangle, primitive - firstTriangle);
+    size_t k = 0;
+    while (primitive >= kindFirst[k + 1]) ++k;
+    return PrimitiveRef::make(shapeKind(k), primitive - kindFirst[k]);
   };
   const auto triangleNumbered = [&](uint32_t number) {
     const uint32_t m = meshOfTriangle(number);
@@ -83,10 +102,23 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   bvh_.build(
       bounded,
       [&](uint32_t primitive) {
-        if (primitive < sphereCount) return in.spheres[primitive].bounds();
-        if (primitive < firstTriangle) return cones[primitive - sphereCount].bounds();
-        const uint32_t number = primitive - firstTriangle;
-        return packed ? triangleNumbered(number).bounds() : triangles[number].bounds();
+        if (primitive >= firstTriangle) {
+          const uint32_t number = primitive - firstTriangle;
+          return packed ? triangleNumbered(number).bounds() : triangles[number].bounds();
+        }
+        const uint32_t ref = refOf(primitive);
+        const uint32_t index = PrimitiveRef::index(ref);
+        switch (PrimitiveRef::kind(ref)) {
+#define PRISM_PART_BOUNDS(Shape, plural) \
+  case PrimitiveKind::Shape:             \
+    return parts.plural[index].bounds();
+          PRISM_SHAPE_KINDS(PRISM_PART_BOUNDS)
+#undef PRISM_PART_BOUNDS
+          case PrimitiveKind::Triangle:
+          case PrimitiveKind::Plane:
+            break;
+        }
+        return Aabb();
       },
       buildOptions);
   bounds_ = bvh_.bounds();  // the root's box: every primitive's, extended in input order
@@ -106,16 +138,14 @@ SceneGeometry::SceneGeometry(GeometryInput in)
         leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Triangle, triangles_.size()));
         triangles_.push_back(triangles[index]);
         break;
-      case PrimitiveKind::Sphere:
-        leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Sphere, spheres_.size()));
-        spheres_.push_back(in.spheres[index]);
-        sphereCaustic_.push_back(in.sphereCaustic[index]);
-        break;
-      case PrimitiveKind::Cone:
-        leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Cone, cones_.size()));
-        cones_.push_back(cones[index]);
-        coneCaustic_.push_back(coneCaustic[index]);
-        break;
+#define PRISM_REORDER_PART(Shape, plural)                                                      \
+  case PrimitiveKind::Shape:                                                                   \
+    leafRefs_.push_back(PrimitiveRef::make(PrimitiveKind::Shape, uint32_t(plural##_.size()))); \
+    plural##_.push_back(parts.plural[index]);                                                  \
+    plural##Caustic_.push_back(parts.plural##Caustic[index]);                                  \
+    break;
+        PRISM_SHAPE_KINDS(PRISM_REORDER_PART)
+#undef PRISM_REORDER_PART
       case PrimitiveKind::Plane:
         break;  // planes are unbounded and never enter the BVH
     }
@@ -133,23 +163,24 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   if (packed) {
     buildTrianglePacks(in.meshes, gatherThreads);
     packed_ = true;
-    // The packs hold every triangle's vertices and source: unless spheres or cones share the
-    // leaves, the leaf entries are no longer read.
-    if (spheres_.empty() && cones_.empty()) std::vector<uint32_t>().swap(leafRefs_);
+    // The packs hold every triangle's vertices and source: unless shapes share the leaves, the
+    // leaf entries are no longer read.
+    if (firstTriangle == 0) std::vector<uint32_t>().swap(leafRefs_);
   }
 
   testTreeBoxFirst_ = !planes_.empty() && traversal_ != Traversal::BinaryScalar;
 
-  stats_.spheres = spheres_.size();
   stats_.planes = planes_.size();
-  stats_.cones = in.cones.size();
-  stats_.coneSegments = cones_.size();
   stats_.triangles = triangleCount;
   stats_.wideBvh = wideBvh_.stats();
   stats_.packBytes = packs_.size() * sizeof(LeafPack);
-  stats_.geometryBytes = triangles_.capacity() * sizeof(Triangle) +
-                         spheres_.size() * sizeof(Sphere) + cones_.size() * sizeof(Cone) +
-                         planes_.size() * sizeof(Plane) + leafRefs_.capacity() * sizeof(uint32_t);
+  stats_.geometryBytes = triangles_.capacity() * sizeof(Triangle) + planes_.size() * sizeof(Plane) +
+                         leafRefs_.capacity() * sizeof(uint32_t);
+#define PRISM_SHAPE_STATS(Shape, plural)                \
+  stats_.plural = {in.plural.size(), plural##_.size()}; \
+  stats_.geometryBytes += plural##_.size() * sizeof(Shape);
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_STATS)
+#undef PRISM_SHAPE_STATS
   for (const MeshShading& m : meshes_) {
     stats_.geometryBytes += m.normals.size() * sizeof(Vec3) + m.indices.size() * sizeof(uint32_t);
   }

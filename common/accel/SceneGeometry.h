@@ -15,14 +15,14 @@
 #include "accel/GeometryKernels.h"
 #include "accel/Traversal.h"
 #include "accel/WideBvh.h"
-#include "geometry/Cone.h"
 #include "geometry/HitRecord.h"
 #include "geometry/Plane.h"
-#include "geometry/Sphere.h"
+#include "geometry/ShapeKinds.h"
 #include "geometry/Triangle.h"
 #include "geometry/TrianglePack4.h"
 #include "geometry/TriangleTest.h"
 #include "geometry/TriangleWatertight.h"
+#include "util/FieldList.h"
 #include "util/InstructionSet.h"
 
 namespace prism {
@@ -52,10 +52,13 @@ struct MeshInput {
 
 // Everything the build takes: primitives with their caustic bits, and how to walk them.
 struct GeometryInput {
-  std::vector<Sphere> spheres;
-  std::vector<uint8_t> sphereCaustic;
-  std::vector<Cone> cones;  // whole cones; the build enters a slanted one in parts
-  std::vector<uint8_t> coneCaustic;
+  // Each kind of geometry/ShapeKinds.h whole (the build enters a slanted cone in parts) with
+  // its caustic bits: spheres, spheresCaustic, cones, conesCaustic, ...
+#define PRISM_SHAPE_INPUT(Shape, plural) \
+  std::vector<Shape> plural;             \
+  std::vector<uint8_t> plural##Caustic;
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_INPUT)
+#undef PRISM_SHAPE_INPUT
   std::vector<Plane> planes;  // unbounded: outside the BVH, tested on every ray
   std::vector<uint8_t> planeCaustic;
   std::vector<MeshInput> meshes;
@@ -70,9 +73,19 @@ struct GeometryInput {
   }
 };
 
+// How many of one kind the scene holds, and their entries in the BVH (a slanted cone enters in
+// parts).
+struct ShapeCount {
+  size_t count = 0;
+  size_t bvhParts = 0;
+  PRISM_WIRE_FIELDS(count, bvhParts)
+};
+
 struct SceneBuildStats {
-  size_t spheres = 0, planes = 0, cones = 0, triangles = 0;
-  size_t coneSegments = 0;         // the cones' entries in the BVH (a slanted cone enters in parts)
+#define PRISM_SHAPE_COUNT(Shape, plural) ShapeCount plural;
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_COUNT)  // spheres, cones, ... (geometry/ShapeKinds.h)
+#undef PRISM_SHAPE_COUNT
+  size_t planes = 0, triangles = 0;
   BvhBuildStats bvh;               // the binary SAH build
   bool binaryBvhReleased = false;  // the wide walk dropped the binary tree once collapsed
   WideBvhStats wideBvh;            // empty under Traversal::BinaryScalar
@@ -83,7 +96,9 @@ struct SceneBuildStats {
   size_t accelerationBytes() const {
     return (binaryBvhReleased ? 0 : bvh.memoryBytes) + wideBvh.memoryBytes + packBytes;
   }
-  size_t heldBytes() const { return accelerationBytes() + geometryBytes; }
+  size_t heldBytes() const {
+    return accelerationBytes() + geometryBytes;
+  }
 };
 
 class SceneGeometry {
@@ -163,7 +178,7 @@ class SceneGeometry {
     TrianglePack4 triangles;
     uint32_t leafFirst = 0;
     uint16_t leafCount = 0;
-    bool hasOtherKinds = false;  // spheres or cones share the leaf
+    bool hasOtherKinds = false;  // shapes (spheres, cones, ...) share the leaf
     uint8_t unused[9] = {};      // what alignment would pad, zeroed: the memory is the wire form
   };
   static_assert(sizeof(LeafPack) == 176);
@@ -229,12 +244,17 @@ class SceneGeometry {
   Traversal traversal_;
   const GeometryKernels* kernels_;
   std::vector<Triangle> triangles_;  // in BVH order; empty once packs hold the triangles
-  std::vector<Sphere> spheres_;
-  std::vector<Cone> cones_;
+  // Each kind of geometry/ShapeKinds.h in BVH order (a cone's parts as cones) with its caustic
+  // bits: spheres_, spheresCaustic_, cones_, conesCaustic_, ...
+#define PRISM_SHAPE_ARRAYS(Shape, plural) \
+  std::vector<Shape> plural##_;           \
+  std::vector<uint8_t> plural##Caustic_;
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_ARRAYS)
+#undef PRISM_SHAPE_ARRAYS
   std::vector<Plane> planes_;
   bool testTreeBoxFirst_ = false;  // occluded() asks WideBvh::entersTree before the walk
   std::vector<MeshShading> meshes_;
-  std::vector<uint8_t> sphereCaustic_, coneCaustic_, planeCaustic_;  // parallel to the arrays
+  std::vector<uint8_t> planeCaustic_;  // parallel to planes_
   Aabb bounds_;
   std::vector<uint32_t> leafRefs_;  // PrimitiveRef per BVH leaf entry (packs: only if mixed)
   Bvh bvh_;                         // empty once the wide BVH is collapsed from it

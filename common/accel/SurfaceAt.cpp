@@ -87,23 +87,18 @@ void SceneGeometry::Kernels::surface(const SceneGeometry& g, const Ray& ray, con
       finishSurface(ray, hit.t, position, positionError, geometric, shading, s);
       return;
     }
-    case PrimitiveKind::Sphere: {
-      const Vec3 normal = g.spheres_[index].normalAt(ray.at(hit.t));
-      Vec3 positionError;
-      const Vec3 position = g.spheres_[index].pointAlong(normal, positionError);
-      s.material = g.spheres_[index].material;
-      s.caustic = g.sphereCaustic_[index];
-      finishSurface(ray, hit.t, position, positionError, normal, normal, s);
-      return;
-    }
-    case PrimitiveKind::Cone: {
-      Vec3 positionError, normal;
-      const Vec3 position = g.cones_[index].surfacePoint(ray.at(hit.t), positionError, normal);
-      s.material = g.cones_[index].material();
-      s.caustic = g.coneCaustic_[index];
-      finishSurface(ray, hit.t, position, positionError, normal, normal, s);
-      return;
-    }
+#define PRISM_SHAPE_SURFACE(Shape, plural)                                          \
+  case PrimitiveKind::Shape: {                                                      \
+    const Shape& shape = g.plural##_[index];                                        \
+    Vec3 positionError, normal;                                                     \
+    const Vec3 position = shape.surfacePoint(ray.at(hit.t), positionError, normal); \
+    s.material = shape.materialId();                                                \
+    s.caustic = g.plural##Caustic_[index];                                          \
+    finishSurface(ray, hit.t, position, positionError, normal, normal, s);          \
+    return;                                                                         \
+  }
+      PRISM_SHAPE_KINDS(PRISM_SHAPE_SURFACE)
+#undef PRISM_SHAPE_SURFACE
     case PrimitiveKind::Plane: {
       Vec3 positionError;
       const Vec3 position = g.planes_[index].surfacePoint(ray.at(hit.t), positionError);

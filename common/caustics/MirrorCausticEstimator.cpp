@@ -28,12 +28,13 @@ MirrorCausticEstimator::MirrorCausticEstimator(const SceneDescription& d, const 
     throw std::invalid_argument("no analytic caustics for this scene: " + why +
                                 " (the closed form covers flat mirrors in one plane)");
   };
-  for (const SphereDesc& s : d.spheres) {
-    if (casts(s.caustic, d.materials[s.material])) refuse("a sphere casts caustics");
-  }
-  for (const ConeDesc& c : d.cones) {
-    if (casts(c.caustic, d.materials[c.material])) refuse("a cone or cylinder casts caustics");
-  }
+  forEachShapeList(d, [&](const auto& shapes) {
+    for (const auto& shape : shapes) {
+      if (casts(shape.caustic, d.materials[shape.material])) {
+        refuse("a " + std::string(shape.kName) + " casts caustics");
+      }
+    }
+  });
   for (const PlaneDesc& p : d.planes) {
     const MaterialDesc& m = d.materials[p.material];
     if (!casts(p.caustic, m)) continue;

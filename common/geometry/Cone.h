@@ -1,17 +1,23 @@
 // Open truncated cone (NFF "c"): the lateral surface between a base circle and an apex circle,
 // without caps; a cylinder when both radii are equal. A cone may also stand for one axial
 // segment of itself (segment()): the same surface, equation and arithmetic, with hits accepted
-// only between two heights, so a long slanted cone can enter the BVH as several tight boxes.
+// only between two heights, so a long slanted cone can enter the BVH as several tight boxes
+// (geometry/ConeSegments.h). A primitive kind of geometry/ShapeKinds.h: ConeDesc is what a scene
+// file gives.
 #pragma once
 
+#include <array>
+#include <optional>
+
+#include "geometry/CausticRole.h"
 #include "geometry/MaterialId.h"
+#include "geometry/ShapeKeys.h"
 #include "math/Aabb.h"
+#include "math/Ball.h"
+#include "util/FieldList.h"
+#include "util/FileLoc.h"
 
 namespace prism {
-namespace wire {
-template <class T>
-struct Fields;
-}
 
 class Cone {
  public:
@@ -33,13 +39,16 @@ class Cone {
   // outward normal there (normalAt's, from the same radial direction).
   Vec3 surfacePoint(const Vec3& q, Vec3& error, Vec3& normal) const;
 
-  MaterialId material() const { return material_; }
+  MaterialId materialId() const { return material_; }
+  Ball boundingBall() const { return ballAround(bounds()); }
   float height() const { return height_; }
+  static constexpr bool kFlat = false;
+
+  // The wire form of a built cone (wire/GeometryCodec.h): every member.
+  PRISM_WIRE_FIELDS(base_, axis_, side1_, side2_, height_, baseRadius_, slope_, normalScale_,
+                    apexRadius_, zLow_, zHigh_, material_)
 
  private:
-  template <class T>
-  friend struct wire::Fields;  // the wire form lists the members (wire/GeometryCodec.h)
-
   Vec3 base_{0.0f};
   Vec3 axis_{0.0f, 0.0f, 1.0f};  // unit, base to apex
   Vec3 side1_{1.0f, 0.0f, 0.0f}, side2_{0.0f, 1.0f, 0.0f};
@@ -51,6 +60,34 @@ class Cone {
   // The segment this cone stands for: hits with zLow_ ≤ z ≤ zHigh_ (the whole cone: 0, height_).
   float zLow_ = 0.0f, zHigh_ = 0.0f;
   MaterialId material_ = 0;
+};
+
+struct ConeDesc {
+  Vec3 base{0.0f};
+  float baseRadius = 1.0f;
+  Vec3 apex{0.0f, 1.0f, 0.0f};
+  float apexRadius = 0.0f;
+  MaterialId material = 0;
+  FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
+
+  PRISM_WIRE_FIELDS(base, baseRadius, apex, apexRadius, material, loc, caustic)
+  static constexpr std::string_view kName = "cone";
+  static constexpr auto keys() {
+    using Key = ShapeKey<ConeDesc>;
+    return std::array{Key::point("base", &ConeDesc::base), Key::point("apex", &ConeDesc::apex),
+                      Key::nonNegative("base_radius", &ConeDesc::baseRadius),
+                      Key::nonNegative("apex_radius", &ConeDesc::apexRadius, false)};
+  }
+  // Base and apex must differ or the cone has no axis; one radius at least is above 0.
+  std::optional<ShapeProblem> problem() const {
+    if (base == apex) return ShapeProblem{"apex", "'apex' must differ from 'base'"};
+    if (baseRadius == 0.0f && apexRadius == 0.0f) {
+      return ShapeProblem{"base_radius", "a cone needs 'base_radius' or 'apex_radius' above 0"};
+    }
+    return std::nullopt;
+  }
+  Cone shape() const { return Cone(base, baseRadius, apex, apexRadius, material); }
 };
 
 }  // namespace prism

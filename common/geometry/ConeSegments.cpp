@@ -36,7 +36,7 @@ int bvhPartCount(const Cone& cone) {
   return segments;
 }
 
-std::vector<Cone> splitForBvh(const Cone& cone) {
+std::vector<Cone> bvhParts(const Cone& cone) {
   const int segments = bvhPartCount(cone);
   std::vector<Cone> parts;
   parts.reserve(segments);

@@ -11,9 +11,9 @@ namespace prism {
 // The parts (Cone::segment) a cone enters the BVH as: one, the cone itself, unless cutting it
 // shrinks the boxes' total surface area (what the SAH charges a ray for) enough to pay for the
 // extra entries.
-std::vector<Cone> splitForBvh(const Cone& cone);
+std::vector<Cone> bvhParts(const Cone& cone);
 
-// How many parts splitForBvh makes, without making them (the memory estimate counts them).
+// How many parts bvhParts makes, without making them (the memory estimate counts them).
 int bvhPartCount(const Cone& cone);
 
 }  // namespace prism

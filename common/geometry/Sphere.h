@@ -1,9 +1,18 @@
-// Sphere: centre and radius.
+// Sphere: centre and radius. A primitive kind of geometry/ShapeKinds.h: the description a scene
+// file gives (SphereDesc) and the sphere the walks test.
 #pragma once
 
+#include <array>
+#include <optional>
+
+#include "geometry/CausticRole.h"
 #include "geometry/MaterialId.h"
+#include "geometry/ShapeKeys.h"
 #include "math/Aabb.h"
+#include "math/Ball.h"
 #include "math/FloatError.h"
+#include "util/FieldList.h"
+#include "util/FileLoc.h"
 
 namespace prism {
 
@@ -11,6 +20,13 @@ struct Sphere {
   Vec3 center{0.0f};
   float radius = 1.0f;
   MaterialId material = 0;
+
+  PRISM_WIRE_FIELDS(center, radius, material)
+  static constexpr bool kMemoryIsWireForm = true;  // three packed fields of four bytes
+  static constexpr bool kFlat = false;
+
+  MaterialId materialId() const { return material; }
+  Ball boundingBall() const { return {center, radius}; }
 
   Aabb bounds() const { return {center - Vec3(radius), center + Vec3(radius)}; }
 
@@ -51,6 +67,30 @@ struct Sphere {
     error = gammaBound(7) * absComponents(fromCenter) + gammaBound(1) * absComponents(center);
     return center + fromCenter;
   }
+  // The hit q put back on the sphere (pointAlong), its rounding bound and the outward normal.
+  Vec3 surfacePoint(const Vec3& q, Vec3& error, Vec3& normal) const {
+    normal = normalAt(q);
+    return pointAlong(normal, error);
+  }
+};
+static_assert(sizeof(Sphere) == 20);
+
+struct SphereDesc {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+  MaterialId material = 0;
+  FileLoc loc;
+  CausticRole caustic = CausticRole::Auto;
+
+  PRISM_WIRE_FIELDS(center, radius, material, loc, caustic)
+  static constexpr std::string_view kName = "sphere";
+  static constexpr auto keys() {
+    using Key = ShapeKey<SphereDesc>;
+    return std::array{Key::point("center", &SphereDesc::center),
+                      Key::positive("radius", &SphereDesc::radius)};
+  }
+  std::optional<ShapeProblem> problem() const { return std::nullopt; }
+  Sphere shape() const { return {center, radius, material}; }
 };
 
 }  // namespace prism

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "math/Vec.h"
-#include "scene/FileLoc.h"
 #include "scene/SettingLimits.h"
 #include "scene/SettingNames.h"
+#include "util/FileLoc.h"
 
 namespace prism::yaml {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "scene/FileLoc.h"
+#include "util/FileLoc.h"
 #include "util/MemorySize.h"
 
 namespace prism {

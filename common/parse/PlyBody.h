@@ -12,7 +12,7 @@
 
 #include "parse/PlyHeader.h"
 #include "parse/PrintableText.h"
-#include "scene/FileLoc.h"
+#include "util/FileLoc.h"
 
 namespace prism {
 

@@ -3,7 +3,7 @@
 #include <charconv>
 
 #include "parse/PrintableText.h"
-#include "scene/FileLoc.h"
+#include "util/FileLoc.h"
 
 namespace prism {
 

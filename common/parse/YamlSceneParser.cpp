@@ -57,12 +57,24 @@ constexpr std::string_view kMaterialKeys[] = {
     "shininess", "reflectance", "transmittance", "ior",     "fresnel"};
 constexpr std::string_view kCheckerKeys[] = {"colors", "scale"};
 constexpr std::string_view kLightKeys[] = {"position", "intensity", "attenuation"};
-constexpr std::string_view kObjectKinds[] = {"sphere",   "plane",    "cone",
+// The shapes of geometry/ShapeKinds.h by their own names, then the other objects.
+#define PRISM_SHAPE_NAME(Shape, plural) Shape##Desc::kName,
+constexpr std::string_view kObjectKinds[] = {PRISM_SHAPE_KINDS(PRISM_SHAPE_NAME) "plane",
                                              "cylinder", "triangle", "mesh"};
-constexpr std::string_view kSphereKeys[] = {"center", "radius", "material", "caustic"};
+#undef PRISM_SHAPE_NAME
+// A shape's keys: its own (geometry/ShapeKeys.h), then the two every object takes.
+template <class Desc>
+constexpr auto shapeKeyNames() {
+  constexpr auto keys = Desc::keys();
+  std::array<std::string_view, keys.size() + 2> names{};
+  for (size_t i = 0; i < keys.size(); ++i) names[i] = keys[i].name;
+  names[keys.size()] = "material";
+  names[keys.size() + 1] = "caustic";
+  return names;
+}
+template <class Desc>
+constexpr auto kShapeKeys = shapeKeyNames<Desc>();
 constexpr std::string_view kPlaneKeys[] = {"point", "normal", "material", "caustic"};
-constexpr std::string_view kConeKeys[] = {"base",        "base_radius", "apex",
-                                          "apex_radius", "material",    "caustic"};
 constexpr std::string_view kCylinderKeys[] = {"base", "apex", "radius", "material", "caustic"};
 constexpr std::string_view kTriangleKeys[] = {"vertices", "normals", "material", "caustic"};
 constexpr std::string_view kMeshKeys[] = {"file", "material", "transform", "caustic"};
@@ -390,9 +402,11 @@ class YamlSceneReader : private CheckedYaml {
                  "' and '" + kinds.entries[1].key + "'; start each object with its own '-'");
       }
       const Entry& object = kinds.entries.front();
-      if (object.key == "sphere") readSphere(object);
+#define PRISM_READ_SHAPE(Shape, plural) \
+  if (object.key == Shape##Desc::kName) readShape(object, scene_.plural);
+      PRISM_SHAPE_KINDS(PRISM_READ_SHAPE)
+#undef PRISM_READ_SHAPE
       if (object.key == "plane") readPlane(object);
-      if (object.key == "cone") readCone(object);
       if (object.key == "cylinder") readCylinder(object);
       if (object.key == "triangle") readTriangle(object);
       if (object.key == "mesh") readMesh(object);
@@ -427,15 +441,36 @@ class YamlSceneReader : private CheckedYaml {
     return *defaultMaterial_;
   }
 
-  void readSphere(const Entry& object) {
-    const Mapping m = mapping(object, "sphere", kSphereKeys);
-    SphereDesc s;
-    s.loc = m.loc;
-    s.center = vec3(m.require("center"));
-    s.radius = positive(m.require("radius"));
-    s.material = material(m);
-    s.caustic = causticRole(m);
-    scene_.spheres.push_back(s);
+  // Any shape of geometry/ShapeKinds.h, by the keys it declares (geometry/ShapeKeys.h).
+  template <class Desc>
+  void readShape(const Entry& object, std::vector<Desc>& shapes) {
+    const Mapping m = mapping(object, Desc::kName, kShapeKeys<Desc>);
+    Desc d;
+    d.loc = m.loc;
+    for (const ShapeKey<Desc>& key : Desc::keys()) {
+      const Entry* e = key.required ? &m.require(key.name) : m.find(key.name);
+      if (!e) continue;
+      switch (key.value) {
+        case KeyValue::Point:
+          d.*key.vector = vec3(*e);
+          break;
+        case KeyValue::Direction:
+          d.*key.vector = direction(*e);
+          break;
+        case KeyValue::Positive:
+          d.*key.number = positive(*e);
+          break;
+        case KeyValue::NonNegative:
+          d.*key.number = nonNegative(*e);
+          break;
+      }
+    }
+    if (const std::optional<ShapeProblem> problem = d.problem()) {
+      fail(loc(m.require(problem->key)), problem->message);
+    }
+    d.material = material(m);
+    d.caustic = causticRole(m);
+    shapes.push_back(d);
   }
 
   void readPlane(const Entry& object) {
@@ -449,36 +484,14 @@ class YamlSceneReader : private CheckedYaml {
     scene_.planes.push_back(p);
   }
 
-  // base and apex must differ or the cone has no axis.
-  void checkAxis(const Mapping& m, const ConeDesc& c) const {
-    if (c.base == c.apex) fail(loc(m.require("apex")), "'apex' must differ from 'base'");
-  }
-
-  void readCone(const Entry& object) {
-    const Mapping m = mapping(object, "cone", kConeKeys);
-    ConeDesc c;
-    c.loc = m.loc;
-    c.base = vec3(m.require("base"));
-    c.apex = vec3(m.require("apex"));
-    checkAxis(m, c);
-    c.baseRadius = nonNegative(m.require("base_radius"));
-    c.apexRadius = 0.0f;
-    if (const Entry* e = m.find("apex_radius")) c.apexRadius = nonNegative(*e);
-    if (c.baseRadius == 0.0f && c.apexRadius == 0.0f) {
-      fail(loc(m.require("base_radius")), "a cone needs 'base_radius' or 'apex_radius' above 0");
-    }
-    c.material = material(m);
-    c.caustic = causticRole(m);
-    scene_.cones.push_back(c);
-  }
-
+  // A cylinder is written as one but read as a cone of equal radii.
   void readCylinder(const Entry& object) {
     const Mapping m = mapping(object, "cylinder", kCylinderKeys);
     ConeDesc c;
     c.loc = m.loc;
     c.base = vec3(m.require("base"));
     c.apex = vec3(m.require("apex"));
-    checkAxis(m, c);
+    if (c.base == c.apex) fail(loc(m.require("apex")), "'apex' must differ from 'base'");
     c.baseRadius = c.apexRadius = positive(m.require("radius"));
     c.material = material(m);
     c.caustic = causticRole(m);
@@ -590,14 +603,24 @@ SceneDescription parseYamlScene(const std::string& text, const std::string& path
 
 const std::map<std::string, std::vector<std::string>>& yamlSceneKeys() {
   static const std::map<std::string, std::vector<std::string>> keys = {
-      {"top level", toStrings(kTopLevelKeys)},  {"camera", toStrings(kCameraKeys)},
-      {"render", toStrings(kRenderKeys)},       {"environment", toStrings(kEnvironmentKeys)},
-      {"caustics", toStrings(kCausticsKeys)},   {"cubemap", toStrings(kCubeMapKeys)},
-      {"materials", toStrings(kMaterialKeys)},  {"checker", toStrings(kCheckerKeys)},
-      {"lights", toStrings(kLightKeys)},        {"objects", toStrings(kObjectKinds)},
-      {"sphere", toStrings(kSphereKeys)},       {"plane", toStrings(kPlaneKeys)},
-      {"cone", toStrings(kConeKeys)},           {"cylinder", toStrings(kCylinderKeys)},
-      {"triangle", toStrings(kTriangleKeys)},   {"mesh", toStrings(kMeshKeys)},
+      {"top level", toStrings(kTopLevelKeys)},
+      {"camera", toStrings(kCameraKeys)},
+      {"render", toStrings(kRenderKeys)},
+      {"environment", toStrings(kEnvironmentKeys)},
+      {"caustics", toStrings(kCausticsKeys)},
+      {"cubemap", toStrings(kCubeMapKeys)},
+      {"materials", toStrings(kMaterialKeys)},
+      {"checker", toStrings(kCheckerKeys)},
+      {"lights", toStrings(kLightKeys)},
+      {"objects", toStrings(kObjectKinds)},
+#define PRISM_SHAPE_KEYS(Shape, plural) \
+  {std::string(Shape##Desc::kName), toStrings(kShapeKeys<Shape##Desc>)},
+      PRISM_SHAPE_KINDS(PRISM_SHAPE_KEYS)
+#undef PRISM_SHAPE_KEYS
+          {"plane", toStrings(kPlaneKeys)},
+      {"cylinder", toStrings(kCylinderKeys)},
+      {"triangle", toStrings(kTriangleKeys)},
+      {"mesh", toStrings(kMeshKeys)},
       {"transform", toStrings(kTransformKeys)},
   };
   return keys;

@@ -64,16 +64,16 @@ Color WhittedIntegrator::surfaceRadiance(const ShadingPoint& p, const Color& dir
 bool WhittedIntegrator::bounceTurn(const HitRecord& hit, const SurfaceHit& s,
                                    const PixelFootprint& footprint,
                                    RayDifferential::Turn& turn) const {
-  // Planes, flat triangles and spheres pass the pixel's footprint on, turned by their curvature;
-  // other curved surfaces (cones, smooth-shaded meshes) end it, and estimates past them are
-  // taken at the point. So does a footprint too wide for its sphere: the turn is first order, and
-  // over a footprint of reach ρ on a ball of radius R the neglected terms are about ρ/2R of the
-  // spread it gives (the surface leaves the footprint's plane by ρ²/2R). Past ρ = R/4 (an eighth)
-  // the model stops standing for the pixel's rays, and a pixel holding a whole small mirror ball
-  // would send them over radians: gathers past it averaged the photons of much of the scene
-  // (sphereflakes: over ten thousand per estimate).
+  // Planes, flat shapes (discs), flat triangles and spheres pass the pixel's footprint on, turned
+  // by their curvature; other curved surfaces (cones, smooth-shaded meshes) end it, and estimates
+  // past them are taken at the point. So does a footprint too wide for its sphere: the turn is
+  // first order, and over a footprint of reach ρ on a ball of radius R the neglected terms are
+  // about ρ/2R of the spread it gives (the surface leaves the footprint's plane by ρ²/2R). Past ρ =
+  // R/4 (an eighth) the model stops standing for the pixel's rays, and a pixel holding a whole
+  // small mirror ball would send them over radians: gathers past it averaged the photons of much of
+  // the scene (sphereflakes: over ten thousand per estimate).
   const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
-  if (kind == PrimitiveKind::Plane ||
+  if (kind == PrimitiveKind::Plane || isFlatShape(kind) ||
       (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal)) {
     return true;
   }

@@ -2,24 +2,28 @@
 
 #include <string>
 
-#include "geometry/ConeSegments.h"
 #include "image/MipPyramid.h"
 #include "scene/MeshBudget.h"
 
 namespace prism {
+
+// kBytesPerOtherPrimitive counts a shape's copy in the Scene as at most this: a bigger kind
+// needs the estimate raised (scene/MeshBudget.h).
+#define PRISM_SHAPE_FITS_ESTIMATE(Shape, plural) \
+  static_assert(sizeof(Shape) <= 96, #Shape " is larger than scene/MeshBudget.h counts");
+PRISM_SHAPE_KINDS(PRISM_SHAPE_FITS_ESTIMATE)
+#undef PRISM_SHAPE_FITS_ESTIMATE
 
 uint64_t geometryMemoryBytes(const SceneDescription& d) {
   uint64_t bytes = 0;
   for (const MeshDesc& m : d.meshes) {
     bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
   }
-  // A slanted cone enters the BVH in parts, each costing what a sphere does.
-  uint64_t coneParts = 0;
-  for (const ConeDesc& c : d.cones) {
-    coneParts += static_cast<uint64_t>(
-        bvhPartCount(Cone(c.base, c.baseRadius, c.apex, c.apexRadius, c.material)));
-  }
-  const uint64_t primitives = d.spheres.size() + d.planes.size() + coneParts;
+  // Each shape's parts in the BVH (a slanted cone enters in parts) cost what a sphere does.
+  uint64_t primitives = d.planes.size();
+  forEachShapeList(d, [&](const auto& descs) {
+    for (const auto& desc : descs) primitives += partCountForBvh(desc.shape());
+  });
   bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
   if (d.environment) {
     const CubeMapDesc& cube = *d.environment;

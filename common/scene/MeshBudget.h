@@ -23,12 +23,13 @@ inline constexpr uint64_t kBytesPerTriangle = 212;
 // Per vertex: position and normal in the wire bytes and the description (24 + 24), the
 // Scene's shading normal (12), rounded up.
 inline constexpr uint64_t kBytesPerVertex = 64;
-// A sphere, plane or cone part (geometry/ConeSegments.h), at the peak (the collapse into the
-// wide BVH): its wire bytes and description (about 60), the builder's box and the BVH order
-// (36), up to two 32-byte binary nodes and the parallel build's copy of them (96), its share of
-// the wide nodes (about 80: spheres and cones get leaves of their own, one test each), the
-// Scene's copy (20 for a sphere, 72 for a cone part) and leaf entry, with room for 2 MiB pages
-// rounding up. Measured (docs/reliability.md): 323–354 per sphere, 312 per cone part.
+// A plane or a shape's BVH part (geometry/ShapeKinds.h; a slanted cone enters in parts), at the
+// peak (the collapse into the wide BVH): its wire bytes and description (about 60), the
+// builder's box and the BVH order (36), up to two 32-byte binary nodes and the parallel build's
+// copy of them (96), its share of the wide nodes (about 80: shapes get leaves of their own, one
+// test each), the Scene's copy (20 for a sphere, 36 for a disc, 80 for a cone part) and leaf
+// entry, with room for 2 MiB pages rounding up. Measured (docs/reliability.md): 323–354 per
+// sphere, 312 per cone part.
 inline constexpr uint64_t kBytesPerOtherPrimitive = 448;
 
 inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {

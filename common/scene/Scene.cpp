@@ -10,9 +10,10 @@ bool anyPositive(const Color& c) {
 }
 
 CasterBounds boundingSphere(const Aabb& b) {
+  const Ball ball = ballAround(b);
   CasterBounds c;
-  c.center = b.center();
-  c.radius = 0.5f * glm::length(b.extent());
+  c.center = ball.center;
+  c.radius = ball.radius;
   return c;
 }
 
@@ -80,23 +81,22 @@ GeometryInput Scene::geometryInput(const SceneDescription& d, Traversal traversa
   const auto materialOf = [&](MaterialId id) -> const MaterialDesc& {
     return materials_[id < materials_.size() ? id : 0];
   };
-  for (const SphereDesc& s : d.spheres) {
-    in.spheres.push_back({s.center, s.radius, s.material});
-    in.sphereCaustic.push_back(causticFlags(s.caustic, materialOf(s.material)));
-    if (in.sphereCaustic.back() & kCastsCaustics) {
-      CasterBounds c;
-      c.center = s.center;
-      c.radius = s.radius;
-      casters_.push_back(c);
+  const auto addShapes = [&](const auto& descs, auto& shapes, std::vector<uint8_t>& caustic) {
+    for (const auto& desc : descs) {
+      shapes.push_back(desc.shape());
+      caustic.push_back(causticFlags(desc.caustic, materialOf(desc.material)));
+      if (caustic.back() & kCastsCaustics) {
+        const Ball ball = shapes.back().boundingBall();
+        CasterBounds c;
+        c.center = ball.center;
+        c.radius = ball.radius;
+        casters_.push_back(c);
+      }
     }
-  }
-  for (const ConeDesc& c : d.cones) {
-    in.cones.emplace_back(c.base, c.baseRadius, c.apex, c.apexRadius, c.material);
-    in.coneCaustic.push_back(causticFlags(c.caustic, materialOf(c.material)));
-    if (in.coneCaustic.back() & kCastsCaustics) {
-      casters_.push_back(boundingSphere(in.cones.back().bounds()));
-    }
-  }
+  };
+#define PRISM_ADD_SHAPES(Shape, plural) addShapes(d.plural, in.plural, in.plural##Caustic);
+  PRISM_SHAPE_KINDS(PRISM_ADD_SHAPES)
+#undef PRISM_ADD_SHAPES
   for (const MeshDesc& mesh : d.meshes) {
     const uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
     in.meshes.push_back({mesh.positions, mesh.indices, mesh.normals, mesh.material, caustic});

@@ -8,15 +8,18 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "geometry/CausticRole.h"
 #include "geometry/MaterialId.h"
+#include "geometry/ShapeKinds.h"
 #include "geometry/TriangleTest.h"
 #include "image/ImageRgb.h"
 #include "image/SrgbImage.h"
 #include "math/Vec.h"
-#include "scene/FileLoc.h"
 #include "scene/SettingLimits.h"
+#include "util/FileLoc.h"
 #include "util/InstructionSet.h"
 
 namespace prism {
@@ -69,33 +72,9 @@ struct MaterialDesc {
   FileLoc loc;
 };
 
-// An object's part in caustics. Auto: casts when its material reflects or transmits
-// specularly, receives when it has a diffuse albedo. Cast/Receive restrict it to one role,
-// Both forces both, Off takes it out of caustics entirely (photons that reach it are absorbed).
-enum class CausticRole : uint8_t { Auto, Cast, Receive, Both, Off };
-
-struct SphereDesc {
-  Vec3 center{0.0f};
-  float radius = 1.0f;
-  MaterialId material = 0;
-  FileLoc loc;
-  CausticRole caustic = CausticRole::Auto;
-};
-
 struct PlaneDesc {
   Vec3 point{0.0f};
   Vec3 normal{0.0f, 1.0f, 0.0f};  // unit length after parsing
-  MaterialId material = 0;
-  FileLoc loc;
-  CausticRole caustic = CausticRole::Auto;
-};
-
-// An open (uncapped) truncated cone between two circles; a cylinder when the radii are equal.
-struct ConeDesc {
-  Vec3 base{0.0f};
-  float baseRadius = 1.0f;
-  Vec3 apex{0.0f, 1.0f, 0.0f};
-  float apexRadius = 0.0f;
   MaterialId material = 0;
   FileLoc loc;
   CausticRole caustic = CausticRole::Auto;
@@ -205,9 +184,10 @@ struct SceneDescription {
   std::optional<CubeMapDesc> environment;
   std::vector<MaterialDesc> materials;
   std::vector<PointLightDesc> lights;
-  std::vector<SphereDesc> spheres;
+#define PRISM_SHAPE_LIST(Shape, plural) std::vector<Shape##Desc> plural;
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_LIST)  // spheres, cones, ... (geometry/ShapeKinds.h)
+#undef PRISM_SHAPE_LIST
   std::vector<PlaneDesc> planes;
-  std::vector<ConeDesc> cones;
   std::vector<MeshDesc> meshes;
 
   size_t triangleCount() const {
@@ -216,5 +196,15 @@ struct SceneDescription {
     return n;
   }
 };
+
+// Calls f(list) with each shape kind's list of descriptions, in the order of
+// geometry/ShapeKinds.h.
+template <class Description, class F>
+requires std::is_same_v<std::remove_const_t<Description>, SceneDescription>
+void forEachShapeList(Description& d, F&& f) {
+#define PRISM_SHAPE_VISIT(Shape, plural) f(d.plural);
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_VISIT)
+#undef PRISM_SHAPE_VISIT
+}
 
 }  // namespace prism

@@ -22,12 +22,13 @@ namespace prism::wire {
 
 // A vector of these travels as its memory, copied in one go: numbers on a little-endian machine,
 // Vec3 (three packed floats), and described structs that declare kMemoryIsWireForm (no padding,
-// every field a number: a photon).
+// every field a number: a photon), in their own list or in Fields<T>.
 template <class T>
 inline constexpr bool kMemoryIsWireForm = kWireOrderIsNative &&
                                           ((std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) ||
                                            std::is_same_v<T, Vec3> ||
-                                           requires { requires Fields<T>::kMemoryIsWireForm; });
+                                           requires { requires Fields<T>::kMemoryIsWireForm; } ||
+                                           requires { requires T::kMemoryIsWireForm; });
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
 
 // Elements of a vector read in one go are checked this many at a time (28 KiB of photons).

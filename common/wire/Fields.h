@@ -38,18 +38,14 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "util/FieldList.h"
+
 namespace prism::wire {
 
 // Specialised for the structs of other layers that travel: fields(self, visit) as above, and
 // optionally check(const T&) and kMemoryIsWireForm (see FieldCodec.h).
 template <class T>
 struct Fields {};
-
-#define PRISM_WIRE_FIELDS(...)                   \
-  static void fields(auto& self, auto&& visit) { \
-    auto& [__VA_ARGS__] = self;                  \
-    visit(__VA_ARGS__);                          \
-  }
 
 // A bool whose bad byte the error names ("invalid jitter flag 3" rather than "invalid bool").
 template <class B>

@@ -34,17 +34,20 @@ bool isUnusedSlot(const WideBvhNode& node, int slot) {
 
 // Friends of SceneGeometry (and so of its private parts) by being this specialisation's member.
 void Fields<SceneGeometry>::check(const SceneGeometry& g) {
-  static_assert(sizeof(SceneGeometry) == 584,
+  static_assert(sizeof(SceneGeometry) == 656,
                 "a member was added to SceneGeometry: list it (kernels_ is not sent)");
   const size_t triangleCount = g.stats_.triangles;
-  if (g.sphereCaustic_.size() != g.spheres_.size() || g.coneCaustic_.size() != g.cones_.size() ||
-      g.planeCaustic_.size() != g.planes_.size()) {
-    fault("caustic flags do not match the primitives");
+  if (g.planeCaustic_.size() != g.planes_.size()) fault("caustic flags do not match the planes");
+  if (g.stats_.planes != g.planes_.size()) fault("counts do not match the planes");
+#define PRISM_CHECK_SHAPE_ARRAYS(Shape, plural)          \
+  if (g.plural##Caustic_.size() != g.plural##_.size()) { \
+    fault("caustic flags do not match the " #plural);    \
+  }                                                      \
+  if (g.stats_.plural.bvhParts != g.plural##_.size()) {  \
+    fault("counts do not match the " #plural);           \
   }
-  if (g.stats_.spheres != g.spheres_.size() || g.stats_.planes != g.planes_.size() ||
-      g.stats_.coneSegments != g.cones_.size()) {
-    fault("counts do not match the primitives");
-  }
+  PRISM_SHAPE_KINDS(PRISM_CHECK_SHAPE_ARRAYS)
+#undef PRISM_CHECK_SHAPE_ARRAYS
 
   // Meshes: numbered in order from 0, three indices a face, normals (if any) for every index.
   size_t nextTriangle = 0;
@@ -81,12 +84,12 @@ void Fields<SceneGeometry>::check(const SceneGeometry& g) {
       case PrimitiveKind::Triangle:
         inside = index < (g.packed_ ? triangleCount : g.triangles_.size());
         break;
-      case PrimitiveKind::Sphere:
-        inside = index < g.spheres_.size();
-        break;
-      case PrimitiveKind::Cone:
-        inside = index < g.cones_.size();
-        break;
+#define PRISM_SHAPE_INSIDE(Shape, plural) \
+  case PrimitiveKind::Shape:              \
+    inside = index < g.plural##_.size();  \
+    break;
+        PRISM_SHAPE_KINDS(PRISM_SHAPE_INSIDE)
+#undef PRISM_SHAPE_INSIDE
       case PrimitiveKind::Plane:
         break;  // planes never enter the BVH
     }
@@ -174,33 +177,43 @@ void Fields<SceneGeometry>::checkFitsScene(const SceneGeometry& g, const SceneDe
   const SceneBuildStats& stats = g.stats_;
   size_t triangles = 0;
   for (const MeshDesc& mesh : scene.meshes) triangles += mesh.indices.size() / 3;
-  if (stats.spheres != scene.spheres.size() || stats.cones != scene.cones.size() ||
-      stats.planes != scene.planes.size() || g.meshes_.size() != scene.meshes.size() ||
-      stats.triangles != triangles) {
-    fault("built from another scene (" + std::to_string(stats.triangles) + " triangles, " +
-          std::to_string(stats.spheres) + " spheres, " + std::to_string(stats.cones) + " cones, " +
-          std::to_string(stats.planes) + " planes)");
+  bool sameCounts = stats.planes == scene.planes.size() &&
+                    g.meshes_.size() == scene.meshes.size() && stats.triangles == triangles;
+  std::string counts = std::to_string(stats.triangles) + " triangles, ";
+#define PRISM_COUNT_SHAPES(Shape, plural)                               \
+  sameCounts = sameCounts && stats.plural.count == scene.plural.size(); \
+  counts += std::to_string(stats.plural.count) + " " #plural ", ";
+  PRISM_SHAPE_KINDS(PRISM_COUNT_SHAPES)
+#undef PRISM_COUNT_SHAPES
+  if (!sameCounts) {
+    fault("built from another scene (" + counts + std::to_string(stats.planes) + " planes)");
   }
   const size_t materials = std::max<size_t>(1, scene.materials.size());  // Scene adds a default
   const auto check = [&](MaterialId id, const char* kind) {
     if (id >= materials) fault(std::string("a ") + kind + "'s material is past the scene's");
   };
-  for (const Sphere& s : g.spheres_) check(s.material, "sphere");
-  for (const Cone& c : g.cones_) check(c.material(), "cone");
+#define PRISM_CHECK_SHAPE_MATERIALS(Shape, plural) \
+  for (const Shape& shape : g.plural##_) check(shape.materialId(), Shape##Desc::kName.data());
+  PRISM_SHAPE_KINDS(PRISM_CHECK_SHAPE_MATERIALS)
+#undef PRISM_CHECK_SHAPE_MATERIALS
   for (const Plane& p : g.planes_) check(p.material, "plane");
   for (const SceneGeometry::MeshShading& m : g.meshes_) check(m.material, "mesh");
 }
 
 size_t Fields<SceneGeometry>::wireBytes(const SceneGeometry& g) {
-  size_t bytes = 4096 + g.triangles_.size() * sizeof(Triangle) + g.cones_.size() * 128 +
-                 g.spheres_.size() * sizeof(Sphere) + g.planes_.size() * sizeof(Plane) +
+  size_t bytes = 4096 + g.triangles_.size() * sizeof(Triangle) + g.planes_.size() * 21 +
                  g.leafRefs_.size() * 4 + g.bvh_.nodes_.size() * sizeof(BvhNode) +
                  g.bvh_.order_.size() * 4 + g.wideBvh_.nodes_.size() * sizeof(WideBvhNode) +
                  g.packs_.size() * sizeof(SceneGeometry::LeafPack);
   for (const SceneGeometry::MeshShading& m : g.meshes_) {
     bytes += 64 + m.normals.size() * sizeof(Vec3) + m.indices.size() * 4;
   }
-  return bytes + g.spheres_.size() + g.cones_.size() + g.planes_.size();  // caustic bytes
+  // Each shape with its caustic byte; a shape whose fields are sent one by one may take more
+  // than its memory (a cone: 80 bytes in memory, 128 allowed).
+#define PRISM_SHAPE_WIRE_BYTES(Shape, plural) bytes += g.plural##_.size() * (2 * sizeof(Shape) + 1);
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_WIRE_BYTES)
+#undef PRISM_SHAPE_WIRE_BYTES
+  return bytes;
 }
 
 void checkGeometryFitsScene(const SceneGeometry& geometry, const SceneDescription& scene) {

@@ -53,25 +53,9 @@ struct Fields<Triangle> {
 };
 
 template <>
-struct Fields<Sphere> {
-  PRISM_WIRE_FIELDS(center, radius, material)
-  static constexpr bool kMemoryIsWireForm = sizeof(Sphere) == 20;
-};
-
-template <>
 struct Fields<Plane> {
   PRISM_WIRE_FIELDS(normal, offset, material)
   static constexpr bool kMemoryIsWireForm = sizeof(Plane) == 20;
-};
-
-template <>
-struct Fields<Cone> {
-  static void fields(auto& self, auto&& visit) {
-    static_assert(sizeof(Cone) == 80, "a member was added to Cone: list it here");
-    visit(self.base_, self.axis_, self.side1_, self.side2_, self.height_, self.baseRadius_,
-          self.slope_, self.normalScale_, self.apexRadius_, self.zLow_, self.zHigh_,
-          self.material_);
-  }
 };
 
 template <>
@@ -127,17 +111,19 @@ struct Fields<SceneGeometry::MeshShading> {
 
 template <>
 struct Fields<SceneBuildStats> {
-  PRISM_WIRE_FIELDS(spheres, planes, cones, triangles, coneSegments, bvh, binaryBvhReleased,
-                    wideBvh, packBytes, geometryBytes)
+  PRISM_WIRE_FIELDS(PRISM_SHAPE_KINDS(PRISM_SHAPE_PLURAL_COMMA) planes, triangles, bvh,
+                    binaryBvhReleased, wideBvh, packBytes, geometryBytes)
 };
 
 template <>
 struct Fields<SceneGeometry> {
   static void fields(auto& self, auto&& visit) {
-    visit(self.triangleTest_, self.traversal_, self.triangles_, self.spheres_, self.cones_,
-          self.planes_, self.testTreeBoxFirst_, self.meshes_, self.sphereCaustic_,
-          self.coneCaustic_, self.planeCaustic_, self.bounds_, self.leafRefs_, self.bvh_,
-          self.wideBvh_, self.packs_, self.packed_, self.stats_);
+#define PRISM_SHAPE_MEMBERS(Shape, plural) self.plural##_, self.plural##Caustic_,
+    visit(self.triangleTest_, self.traversal_, self.triangles_,
+          PRISM_SHAPE_KINDS(PRISM_SHAPE_MEMBERS) self.planes_, self.testTreeBoxFirst_, self.meshes_,
+          self.planeCaustic_, self.bounds_, self.leafRefs_, self.bvh_, self.wideBvh_, self.packs_,
+          self.packed_, self.stats_);
+#undef PRISM_SHAPE_MEMBERS
   }
   // Everything a walk or a surface lookup would index with (see the top of this file). Throws
   // WireError naming the first fault.
@@ -147,7 +133,7 @@ struct Fields<SceneGeometry> {
   static size_t wireBytes(const SceneGeometry& geometry);
 };
 
-// Whether the geometry is the description's: as many spheres, cones, planes and triangles, and
+// Whether the geometry is the description's: as many shapes of each kind, planes and triangles, and
 // every material id within the description's materials. Throws WireError.
 void checkGeometryFitsScene(const SceneGeometry& geometry, const SceneDescription& scene);
 

@@ -49,7 +49,7 @@ inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
 // 13: cube-map faces read from 8-bit files travel as their sRGB bytes.
 // 14: SceneAccepted, BuildGeometry and Geometry (rank 0 broadcasts the geometry it built).
-inline constexpr uint16_t kVersion = 14;
+inline constexpr uint16_t kVersion = 15;
 // magic u32, version u16, type u16, payload size u64, payloadChecksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 

@@ -103,9 +103,17 @@ void Fields<CubeMapDesc>::check(const CubeMapDesc& cube) {
 void Fields<SceneDescription>::check(const SceneDescription& scene) {
   for (size_t i = 0; i < scene.meshes.size(); ++i) checkMesh(scene.meshes[i], i);
   const size_t materials = scene.materials.size();
-  checkMaterials(scene.spheres, "sphere", materials);
+  forEachShapeList(scene, [&](const auto& shapes) {
+    using Desc = typename std::decay_t<decltype(shapes)>::value_type;
+    const std::string kind(Desc::kName);
+    checkMaterials(shapes, kind.c_str(), materials);
+    for (size_t i = 0; i < shapes.size(); ++i) {
+      if (const std::optional<ShapeProblem> problem = shapeProblem(shapes[i])) {
+        throw WireError(describe(kind.c_str(), i, shapes[i].loc) + ": " + problem->message);
+      }
+    }
+  });
   checkMaterials(scene.planes, "plane", materials);
-  checkMaterials(scene.cones, "cone", materials);
   checkMaterials(scene.meshes, "mesh", materials);
 }
 

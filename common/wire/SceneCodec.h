@@ -73,28 +73,12 @@ struct Fields<PointLightDesc> {
   PRISM_WIRE_FIELDS(position, intensity, attenuation, loc)
 };
 
-// The shapes send their caustic role before their location.
-template <>
-struct Fields<SphereDesc> {
-  static void fields(auto& self, auto&& visit) {
-    auto& [center, radius, material, loc, caustic] = self;
-    visit(center, radius, material, caustic, loc);
-  }
-};
-
+// The plane and the mesh send their caustic role before their location.
 template <>
 struct Fields<PlaneDesc> {
   static void fields(auto& self, auto&& visit) {
     auto& [point, normal, material, loc, caustic] = self;
     visit(point, normal, material, caustic, loc);
-  }
-};
-
-template <>
-struct Fields<ConeDesc> {
-  static void fields(auto& self, auto&& visit) {
-    auto& [base, baseRadius, apex, apexRadius, material, loc, caustic] = self;
-    visit(base, baseRadius, apex, apexRadius, material, caustic, loc);
   }
 };
 
@@ -109,7 +93,7 @@ struct Fields<MeshDesc> {
 template <>
 struct Fields<SceneDescription> {
   PRISM_WIRE_FIELDS(sourcePath, camera, render, caustics, background, ambientLight, environment,
-                    materials, lights, spheres, planes, cones, meshes)
+                    materials, lights, PRISM_SHAPE_KINDS(PRISM_SHAPE_PLURAL_COMMA) planes, meshes)
   // What would crash the renderer later: mesh indices past the positions, normals not parallel
   // to positions, index counts not a multiple of three, material ids past the material list.
   static void check(const SceneDescription& scene);

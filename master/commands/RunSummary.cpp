@@ -170,6 +170,26 @@ std::string formatCount(double count) {
   return fixed(count, 0);
 }
 
+namespace {
+
+// "3 spheres, 2 cones (5 BVH parts), " for the kinds the scene holds (geometry/ShapeKinds.h).
+std::string shapeCounts(const SceneBuildStats& g) {
+  std::string line;
+#define PRISM_SHAPE_COUNT_TEXT(Shape, plural)                           \
+  if (g.plural.count > 0) {                                             \
+    line += std::to_string(g.plural.count) + " " #plural;               \
+    if (g.plural.bvhParts != g.plural.count) {                          \
+      line += " (" + std::to_string(g.plural.bvhParts) + " BVH parts)"; \
+    }                                                                   \
+    line += ", ";                                                       \
+  }
+  PRISM_SHAPE_KINDS(PRISM_SHAPE_COUNT_TEXT)
+#undef PRISM_SHAPE_COUNT_TEXT
+  return line;
+}
+
+}  // namespace
+
 void printRunSummary(const RunSummary& s, std::ostream& out) {
   const FrameResult& f = *s.frame;
   const SceneBuildStats& g = s.sceneStats;
@@ -177,10 +197,9 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
   const double mrays =
       f.seconds > 0.0 ? static_cast<double>(f.rays.total()) / f.seconds / 1e6 : 0.0;
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
-      << "geometry  " << g.spheres << " spheres, " << g.cones << " cones"
-      << (g.coneSegments != g.cones ? " (" + std::to_string(g.coneSegments) + " BVH parts)" : "")
-      << ", " << g.triangles << " triangles (" << triangleTestTitle(r.triangleTest) << "), "
-      << g.planes << " planes, " << s.lightCount << " lights\n"
+      << "geometry  " << shapeCounts(g) << g.triangles << " triangles ("
+      << triangleTestTitle(r.triangleTest) << "), " << g.planes << " planes, " << s.lightCount
+      << " lights\n"
       << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
       << formatBytes(static_cast<double>(g.accelerationBytes())) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "fuzz/Harnesses.h"
-#include "scene/FileLoc.h"
 #include "scene/SceneDescription.h"
+#include "util/FileLoc.h"
 
 namespace prism::fuzz {
 

@@ -31,18 +31,18 @@ Vec3 randomPoint(Pcg32& rng, float spread) {
 TEST(ConeSegments, AnAxisAlignedCylinderStaysWhole) {
   // Its box is already tight: cutting it only adds entries.
   const Cone cylinder({0, 0, 0}, 0.1f, {0, 0, 5}, 0.1f, 0);
-  EXPECT_EQ(splitForBvh(cylinder).size(), 1u);
+  EXPECT_EQ(bvhParts(cylinder).size(), 1u);
 }
 
 TEST(ConeSegments, AShortSlantedConeStaysWhole) {
   const Cone stub({0, 0, 0}, 1.0f, {0.3f, 0.3f, 0.3f}, 1.0f, 0);
-  EXPECT_EQ(splitForBvh(stub).size(), 1u);
+  EXPECT_EQ(bvhParts(stub).size(), 1u);
 }
 
 TEST(ConeSegments, ALongSlantedCylinderIsCutIntoTighterBoxes) {
   // An SPD rings-style segment: length 1.1, radius 0.074, at 45 degrees.
   const Cone cylinder({0.93f, 2.61f, 0}, 0.074f, {0.29f, 3.50f, 0}, 0.074f, 0);
-  const std::vector<Cone> parts = splitForBvh(cylinder);
+  const std::vector<Cone> parts = bvhParts(cylinder);
   ASSERT_GT(parts.size(), 1u);
   float area = 0.0f;
   for (const Cone& part : parts) area += part.bounds().surfaceArea();
@@ -59,7 +59,7 @@ TEST(ConeSegments, PartsHitWhereTheWholeConeHitsWithTheSameT) {
   };
   Pcg32 rng(41, 3);
   for (const Cone& cone : cones) {
-    const std::vector<Cone> parts = splitForBvh(cone);
+    const std::vector<Cone> parts = bvhParts(cone);
     ASSERT_GT(parts.size(), 1u);
     const Aabb box = cone.bounds();
     int hits = 0;
@@ -82,7 +82,7 @@ TEST(ConeSegments, PartsHitWhereTheWholeConeHitsWithTheSameT) {
 
 TEST(ConeSegments, EachPartsBoxHoldsItsSurfaceAndTheHitsInIt) {
   const Cone cone({1, 2, 3}, 0.5f, {6, -4, 9}, 0.1f, 0);
-  const std::vector<Cone> parts = splitForBvh(cone);
+  const std::vector<Cone> parts = bvhParts(cone);
   Pcg32 rng(7, 11);
   int hits = 0;
   for (int i = 0; i < 20000; ++i) {

@@ -352,6 +352,22 @@ objects:
   EXPECT_EQ(s.cones[0].apexRadius, 0.5f);
 }
 
+TEST(YamlSceneParser, DiscHasAUnitNormalAndTheObjectsCommonKeys) {
+  const SceneDescription s = parse(R"(
+materials:
+  - {name: mirror, reflectance: 1}
+objects:
+  - disc: {center: [1, 2, 3], normal: [0, 0, 2], radius: 0.5, material: mirror, caustic: cast}
+)");
+  ASSERT_EQ(s.discs.size(), 1u);
+  expectVec(s.discs[0].center, {1, 2, 3});
+  expectVec(s.discs[0].normal, {0, 0, 1});
+  EXPECT_EQ(s.discs[0].radius, 0.5f);
+  EXPECT_EQ(s.discs[0].material, 0u);
+  EXPECT_EQ(s.discs[0].caustic, CausticRole::Cast);
+  EXPECT_EQ(s.discs[0].loc.line, 5);
+}
+
 TEST(YamlSceneParser, TriangleIsAOneTriangleMeshWithNormalisedNormals) {
   const SceneDescription s = parse(R"(
 objects:
@@ -726,6 +742,8 @@ const BadScene kBadScenes[] = {
     {"zero_attenuation.yaml", 3, 18, "infinitely bright"},
     {"zero_normal.yaml", 2, 39, "'normal' must not be the zero vector"},
     {"cone_without_axis.yaml", 2, 51, "'apex' must differ from 'base'"},
+    {"disc_zero_radius.yaml", 2, 58, "'radius' must be greater than 0, found 0"},
+    {"disc_without_normal.yaml", 2, 11, "disc needs 'normal'"},
     {"mesh_zero_scale.yaml", 5, 16, "'scale' must not be zero"},
     {"fov_zero.yaml", 2, 8, "'fov' must be between 0 and 180 degrees (exclusive), found 0"},
     {"fov_180.yaml", 1, 15, "'fov' must be between 0 and 180"},

@@ -61,6 +61,51 @@ TEST(WhittedIntegrator, LambertianPlaneUnderPointLightMatchesTheClosedForm) {
   }
 }
 
+// The same closed form on a tilted disc seen from above: inside its rim the Lambertian
+// radiance, outside it the background (and nothing of the disc leaks past the rim).
+TEST(WhittedIntegrator, LambertianDiscUnderPointLightMatchesTheClosedFormInsideItsRim) {
+  SceneDescription d = topDownScene(41, 6.0f);
+  const Color albedo(0.6f, 0.5f, 0.25f);
+  d.materials.push_back(lambert(albedo));
+  const Vec3 center(0.2f, 0.1f, -0.3f), normal = glm::normalize(Vec3(0.2f, 1.0f, 0.1f));
+  const float radius = 2.2f;
+  d.discs.push_back({center, normal, radius, 0, {}, {}});
+  d.background = Color(0.125f);
+  PointLightDesc light;
+  light.position = {0.3f, 2.0f, -0.4f};
+  light.intensity = {10.0f, 5.0f, 2.0f};
+  d.lights.push_back(light);
+
+  const Scene scene(d);
+  const FrameResult frame = renderFrame(scene, {});
+  int inside = 0, outside = 0;
+  for (int y = 0; y < d.render.height; ++y) {
+    for (int x = 0; x < d.render.width; ++x) {
+      const Ray ray = scene.camera().generateRay(x + 0.5f, y + 0.5f);
+      const float t = glm::dot(normal, center - ray.origin) / glm::dot(normal, ray.direction);
+      const Vec3 p = ray.at(t);
+      const float fromCenter = glm::length(p - center);
+      const Color actual = frame.image.at(x, y);
+      if (std::abs(fromCenter - radius) < 0.05f) continue;  // the rim's pixels may go either way
+      if (fromCenter > radius) {
+        ++outside;
+        ASSERT_EQ(actual, d.background) << x << "," << y;
+        continue;
+      }
+      ++inside;
+      const Vec3 toLight = light.position - p;
+      const float distance = glm::length(toLight);
+      const float cosTheta = glm::dot(toLight, normal) / distance;
+      const Color expected = albedo / kPi * light.intensity * cosTheta / (distance * distance);
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_NEAR(actual[c], expected[c], 1e-4f * expected[c]) << x << "," << y << " ch " << c;
+      }
+    }
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 200);
+}
+
 TEST(WhittedIntegrator, AttenuationCoefficientsFollowTheFormula) {
   SceneDescription d = topDownScene(9, 2.0f);
   d.materials.push_back(lambert(Color(1.0f)));

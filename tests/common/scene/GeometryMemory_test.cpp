@@ -48,8 +48,8 @@ TEST(GeometryMemory, CountsEachPartASlantedConeEntersTheBvhAs) {
   ConeDesc slanted = upright;
   slanted.apex = {4, 4, 4};
   d.cones.push_back(slanted);
-  // Each of the parts splitForBvh makes costs a sphere's 448 bytes.
-  const std::vector<Cone> parts = splitForBvh(Cone(slanted.base, 0.1f, slanted.apex, 0.1f, 0));
+  // Each of the parts bvhParts makes costs a sphere's 448 bytes.
+  const std::vector<Cone> parts = bvhParts(Cone(slanted.base, 0.1f, slanted.apex, 0.1f, 0));
   ASSERT_GT(parts.size(), 1u);
   EXPECT_EQ(geometryMemoryBytes(d), 448u * (1 + parts.size()));
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -105,7 +106,8 @@ TEST(Scene, ReportsWhatItBuilt) {
   const Scene scene(d);
   const SceneBuildStats& s = scene.buildStats();
   EXPECT_EQ(s.triangles, 1u);
-  EXPECT_EQ(s.spheres, 1u);
+  EXPECT_EQ(s.spheres.count, 1u);
+  EXPECT_EQ(s.spheres.bvhParts, 1u);
   EXPECT_EQ(s.planes, 1u);
   EXPECT_GE(s.bvh.nodeCount, 1u);
   EXPECT_GT(s.bvh.memoryBytes, 0u);
@@ -170,6 +172,13 @@ TEST(Scene, LeavesWithoutTrianglesTakeNoPackAndAnswerAsTheBinaryWalk) {
     cone.apexRadius = 0.05f;
     d.cones.push_back(cone);
   }
+  for (int i = 0; i < 150; ++i) {
+    DiscDesc disc;
+    disc.center = inBox();
+    disc.normal = glm::normalize(inBox() + Vec3(0.01f));
+    disc.radius = 0.1f + 0.3f * rng.nextFloat();
+    d.discs.push_back(disc);
+  }
   const Scene alone(d, Traversal::WideSimd);
   EXPECT_EQ(alone.buildStats().packBytes, 0u);
 
@@ -180,7 +189,7 @@ TEST(Scene, LeavesWithoutTrianglesTakeNoPackAndAnswerAsTheBinaryWalk) {
   d.meshes.push_back(mesh);
   const Scene mixed(d, Traversal::WideSimd), binary(d, Traversal::BinaryScalar);
   EXPECT_GT(mixed.buildStats().packBytes, 0u);
-  size_t hits[3] = {};
+  std::map<PrimitiveKind, size_t> hits;
   for (int i = 0; i < 20000; ++i) {
     const Vec3 origin = 1.6f * inBox();
     const Ray ray{origin, glm::normalize(inBox() - origin)};
@@ -191,9 +200,12 @@ TEST(Scene, LeavesWithoutTrianglesTakeNoPackAndAnswerAsTheBinaryWalk) {
     if (!hit) continue;
     ASSERT_EQ(a.t, b.t) << i;
     ASSERT_EQ(PrimitiveRef::kind(a.primitive), PrimitiveRef::kind(b.primitive)) << i;
-    ++hits[static_cast<int>(PrimitiveRef::kind(a.primitive)) % 3];
+    ++hits[PrimitiveRef::kind(a.primitive)];
   }
-  for (size_t h : hits) EXPECT_GT(h, 100u);  // every kind was hit
+  for (PrimitiveKind kind :
+       {PrimitiveKind::Triangle, PrimitiveKind::Sphere, PrimitiveKind::Cone, PrimitiveKind::Disc}) {
+    EXPECT_GT(hits[kind], 100u) << static_cast<int>(kind);  // every kind was hit
+  }
 }
 
 // ---- caustic roles -------------------------------------------------------------------------

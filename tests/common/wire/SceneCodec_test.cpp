@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 
 #include "parse/SceneLoader.h"
 #include "wire/Messages.h"
@@ -94,6 +95,7 @@ SceneDescription fullScene() {
   d.cones = {
       {{2, 0, 0}, 1.0f, {2, 2, 0}, 0.5f, 1, {"everything.yaml", 42, 5}, CausticRole::Both},
       {{-2, 0, 0}, 0.25f, {-2, 3, 0}, 0.25f, 0, {"everything.yaml", 43, 5}, CausticRole::Off}};
+  d.discs = {{{0, 2, 1}, {0.6f, 0.8f, 0}, 0.5f, 1, {"everything.yaml", 45, 5}, CausticRole::Cast}};
 
   MeshDesc smooth;
   smooth.source = "meshes/quad.obj";
@@ -283,6 +285,16 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     expectSameLoc(a.cones[i].loc, b.cones[i].loc);
   }
 
+  ASSERT_EQ(a.discs.size(), b.discs.size());
+  for (size_t i = 0; i < a.discs.size(); ++i) {
+    EXPECT_SAME_VEC3(a.discs[i].center, b.discs[i].center);
+    EXPECT_SAME_VEC3(a.discs[i].normal, b.discs[i].normal);
+    EXPECT_SAME_FLOAT(a.discs[i].radius, b.discs[i].radius);
+    EXPECT_EQ(a.discs[i].material, b.discs[i].material);
+    EXPECT_EQ(a.discs[i].caustic, b.discs[i].caustic);
+    expectSameLoc(a.discs[i].loc, b.discs[i].loc);
+  }
+
   ASSERT_EQ(a.meshes.size(), b.meshes.size());
   for (size_t i = 0; i < a.meshes.size(); ++i) {
     EXPECT_EQ(a.meshes[i].source, b.meshes[i].source);
@@ -313,7 +325,8 @@ TEST(SceneCodec, DefaultSceneRoundTrips) {
 TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
 #if defined(__GLIBCXX__) && UINTPTR_MAX == UINT64_MAX
   const char* update =
-      "a SceneDescription struct changed: update its field list in common/wire/SceneCodec.h "
+      "a SceneDescription struct changed: update its field list (common/wire/SceneCodec.h or "
+      "the struct's own) "
       "(and kVersion if its wire form changed), fullScene() and expectSameScene() in this file, "
       "then the size here";
   EXPECT_EQ(sizeof(FileLoc), 40u) << update;
@@ -325,13 +338,14 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(SphereDesc), 72u) << update;
   EXPECT_EQ(sizeof(PlaneDesc), 80u) << update;
   EXPECT_EQ(sizeof(ConeDesc), 88u) << update;
+  EXPECT_EQ(sizeof(DiscDesc), 80u) << update;
   EXPECT_EQ(sizeof(MeshDesc), 160u) << update;
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(SrgbImage), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 584u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 48u) << update;
   EXPECT_EQ(sizeof(CausticSettings), 88u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 1024u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 1048u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -430,17 +444,44 @@ TEST(SceneCodec, MaterialIdsMustNameAMaterial) {
   d.cones[0].material = 2;
   expectWireError(d, "cone 0");
   d = fullScene();
+  d.discs[0].material = 2;
+  expectWireError(d, "disc 0 (everything.yaml:45:5): material 2");
+  d = fullScene();
   d.meshes[1].material = 2;
   expectWireError(d, "mesh 1");
+}
+
+// A shape from the wire meets what its keys require in a scene file (geometry/ShapeKeys.h) and
+// its own problem(): nothing the parser refuses reaches a build through the wire.
+TEST(SceneCodec, ShapesAreCheckedAsTheParserChecksThem) {
+  SceneDescription d = fullScene();
+  d.spheres[1].radius = 0.0f;
+  expectWireError(d, "sphere 1: 'radius' must be a finite number above 0");
+  d = fullScene();
+  d.discs[0].normal = Vec3(0.0f);
+  expectWireError(d, "disc 0 (everything.yaml:45:5): 'normal' must be a finite vector other");
+  d = fullScene();
+  d.discs[0].center.y = std::numeric_limits<float>::infinity();
+  expectWireError(d, "disc 0 (everything.yaml:45:5): 'center' must be finite");
+  d = fullScene();
+  d.cones[1].apex = d.cones[1].base;
+  expectWireError(d, "cone 1 (everything.yaml:43:5): 'apex' must differ from 'base'");
+  d = fullScene();
+  d.cones[0].baseRadius = d.cones[0].apexRadius = 0.0f;
+  expectWireError(d, "cone 0 (everything.yaml:42:5): a cone needs 'base_radius' or");
+  d = fullScene();
+  d.cones[0].apexRadius = -1.0f;
+  expectWireError(d, "cone 0 (everything.yaml:42:5): 'apex_radius' must be a finite number of");
 }
 
 // Scene supplies a default material when the list is empty, so id 0 is valid then.
 TEST(SceneCodec, MaterialZeroIsValidWithoutMaterials) {
   SceneDescription d = fullScene();
   d.materials.clear();
-  for (auto& s : d.spheres) s.material = 0;
+  forEachShapeList(d, [](auto& shapes) {
+    for (auto& shape : shapes) shape.material = 0;
+  });
   for (auto& p : d.planes) p.material = 0;
-  for (auto& c : d.cones) c.material = 0;
   for (auto& m : d.meshes) m.material = 0;
   EXPECT_NO_THROW(decodeBytes(payloadOf(d)));
   d.meshes[0].material = 1;
