@@ -148,27 +148,21 @@ QWidget* MainWindow::buildSidePanel() {
 QWidget* MainWindow::buildCausticsGroup(QWidget* parent) {
   auto* group = new QGroupBox("Caustics", parent);
   auto* form = new QFormLayout(group);
-  noCausticsButton_ = new QRadioButton("none", group);
-  photonMapButton_ = new QRadioButton("photon map (progressive)", group);
-  causticMapButton_ = new QRadioButton("caustic map", group);
-  noCausticsButton_->setObjectName("causticsNone");
-  photonMapButton_->setObjectName("causticsPhotonMap");
-  causticMapButton_->setObjectName("causticsCausticMap");
-  photonMapButton_->setToolTip(
-      "Every full pass traces its own photons and gathers them with a shrinking radius; the "
-      "averaged passes are progressive photon mapping");
-  causticMapButton_->setToolTip(
-      "Light-space caustic maps (Shah et al. 2007), built once per blur setting on every rank; "
-      "the preview shows them too");
+  // One button a method of scene/CausticMethods.h, named "caustics" and the method's enumerator.
   auto* buttons = new QButtonGroup(group);
-  const std::pair<QRadioButton*, CausticMethod> methods[] = {
-      {noCausticsButton_, CausticMethod::None},
-      {photonMapButton_, CausticMethod::PhotonMap},
-      {causticMapButton_, CausticMethod::CausticMap}};
-  for (const auto& [button, method] : methods) {
+  for (const CausticMethodInfo& info : kCausticMethods) {
+    auto* button = new QRadioButton(info.title, group);
+    static const char* const kObjectNames[] = {
+#define PRISM_CAUSTIC_BUTTON_NAME(Method, name, title, description) "caustics" #Method,
+        PRISM_CAUSTIC_METHODS(PRISM_CAUSTIC_BUTTON_NAME)
+#undef PRISM_CAUSTIC_BUTTON_NAME
+    };
+    button->setObjectName(kObjectNames[static_cast<size_t>(info.method)]);
+    button->setToolTip(info.description);
+    causticButtons_[static_cast<size_t>(info.method)] = button;
     buttons->addButton(button);
-    button->setChecked(settings_.caustics == method);
-    connect(button, &QRadioButton::toggled, this, [this, method = method](bool on) {
+    button->setChecked(settings_.caustics == info.method);
+    connect(button, &QRadioButton::toggled, this, [this, method = info.method](bool on) {
       if (on) setCausticMethod(method);
     });
     form->addRow(button);
@@ -204,10 +198,7 @@ void MainWindow::setCausticMethod(CausticMethod method) {
     statusBar()->showMessage("caustic maps refused: " + causticMapsRefusal_, 15000);
     method = settings_.caustics;  // the switch goes back to the method in use
   }
-  (method == CausticMethod::PhotonMap    ? photonMapButton_
-   : method == CausticMethod::CausticMap ? causticMapButton_
-                                         : noCausticsButton_)
-      ->setChecked(true);
+  causticButtons_[static_cast<size_t>(method)]->setChecked(true);
   if (settings_.caustics == method) return;
   settings_.caustics = method;
   viewChanged();
@@ -223,8 +214,8 @@ void MainWindow::setCausticMapBlur(bool blur) {
 
 void MainWindow::refuseCausticMaps(const QString& why) {
   causticMapsRefusal_ = why;
-  for (QRadioButton* button :
-       {causticMapButton_, castersButton_, receiversButton_, causticMapViewButton_}) {
+  for (QRadioButton* button : {causticButtons_[static_cast<size_t>(CausticMethod::CausticMap)],
+                               castersButton_, receiversButton_, causticMapViewButton_}) {
     button->setEnabled(false);
     button->setToolTip("Not available: " + why);
   }

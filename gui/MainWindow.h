@@ -7,6 +7,7 @@
 #pragma once
 
 #include <QMainWindow>
+#include <array>
 #include <functional>
 #include <future>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "gui/LightSpaceImage.h"
 #include "master/runtime/DisplayFrame.h"
 #include "master/runtime/LiveSource.h"
+#include "scene/CausticMethods.h"
 
 class QSpinBox;
 class QRadioButton;
@@ -128,9 +130,7 @@ class MainWindow : public QMainWindow {
   QRadioButton* castersButton_;
   QRadioButton* receiversButton_;
   QRadioButton* causticMapViewButton_;
-  QRadioButton* noCausticsButton_;
-  QRadioButton* photonMapButton_;
-  QRadioButton* causticMapButton_;
+  std::array<QRadioButton*, kCausticMethodCount> causticButtons_{};  // by CausticMethod
   QCheckBox* blur_;
   QSpinBox* photons_;
   QAction* tilesAction_;

@@ -71,7 +71,7 @@ SceneGeometry::SceneGeometry(GeometryInput in)
     triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
   }
   const uint32_t firstTriangle = kindFirst[kShapeKindCount];
-  if (triangleCount > PrimitiveRef::kMaxTriangleIndex / TrianglePack4::kWidth) {
+  if (triangleCount > kMaxTriangles) {
     throw std::length_error("too many triangles for the BVH's entries");
   }
   const auto refOf = [&](uint32_t primitive) {

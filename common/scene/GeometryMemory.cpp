@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "accel/PrimitiveRef.h"
 #include "image/MipPyramid.h"
 #include "scene/MeshBudget.h"
 
@@ -14,6 +15,18 @@ namespace prism {
 PRISM_SHAPE_KINDS(PRISM_SHAPE_FITS_ESTIMATE)
 #undef PRISM_SHAPE_FITS_ESTIMATE
 
+namespace {
+
+// The entries a kind's shapes take in the BVH (a slanted cone enters in parts).
+template <class Descs>
+uint64_t bvhPartsOf(const Descs& descs) {
+  uint64_t parts = 0;
+  for (const auto& desc : descs) parts += partCountForBvh(desc.shape());
+  return parts;
+}
+
+}  // namespace
+
 uint64_t geometryMemoryBytes(const SceneDescription& d) {
   uint64_t bytes = 0;
   for (const MeshDesc& m : d.meshes) {
@@ -21,9 +34,7 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
   }
   // Each shape's parts in the BVH (a slanted cone enters in parts) cost what a sphere does.
   uint64_t primitives = d.planes.size();
-  forEachShapeList(d, [&](const auto& descs) {
-    for (const auto& desc : descs) primitives += partCountForBvh(desc.shape());
-  });
+  forEachShapeList(d, [&](const auto& descs) { primitives += bvhPartsOf(descs); });
   bytes = saturatingAdd(bytes, saturatingMultiply(primitives, kBytesPerOtherPrimitive));
   if (d.environment) {
     const CubeMapDesc& cube = *d.environment;
@@ -46,6 +57,21 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
 }
 
 void checkGeometryFits(const SceneDescription& d, const MemoryLimit& limit) {
+  // The BVH's entries number each kind's primitives in PrimitiveRef's index bits.
+  if (d.triangleCount() > kMaxTriangles) {
+    throw ResourceLimitError("the scene's " + std::to_string(d.triangleCount()) +
+                             " triangles are more than a BVH numbers (at most " +
+                             std::to_string(kMaxTriangles) + "): split the scene");
+  }
+  forEachShapeList(d, [](const auto& descs) {
+    const uint64_t parts = bvhPartsOf(descs);
+    if (parts > PrimitiveRef::kMaxIndex) {
+      throw ResourceLimitError("the scene's " + std::to_string(parts) + " BVH parts of " +
+                               std::string(descs.front().kName) +
+                               "s are more than a BVH numbers (at most " +
+                               std::to_string(PrimitiveRef::kMaxIndex) + ")");
+    }
+  });
   const uint64_t needed = geometryMemoryBytes(d);
   if (needed > limit.bytes) {
     throw ResourceLimitError(

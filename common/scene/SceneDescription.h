@@ -18,6 +18,7 @@
 #include "image/ImageRgb.h"
 #include "image/SrgbImage.h"
 #include "math/Vec.h"
+#include "scene/CausticMethods.h"
 #include "scene/SettingLimits.h"
 #include "util/FileLoc.h"
 #include "util/InstructionSet.h"
@@ -131,7 +132,6 @@ struct RenderSettings {
   InstructionSet instructionSet = InstructionSet::Auto;
 };
 
-enum class CausticMethod { None, PhotonMap, CausticMap };
 // What caustic mapping does past the first caster surface (docs/caustics.md, "Caustic mapping"):
 // FrontFace refracts/reflects once at the surface the light sees, as the thesis does; Traced
 // follows the light through the casters exactly and estimates only the last leg's receiver.

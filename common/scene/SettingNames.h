@@ -65,11 +65,11 @@ inline constexpr NamedValue<TriangleTest> kTriangleTestList[] = {
     {"watertight", TriangleTest::Watertight}};
 inline constexpr NameTable<TriangleTest> kTriangleTestNames{kTriangleTestList};
 
+#define PRISM_CAUSTIC_NAME(Method, name, title, description) {name, CausticMethod::Method},
 inline constexpr NamedValue<CausticMethod> kCausticMethodList[] = {
-    {"none", CausticMethod::None},
-    {"photon_map", CausticMethod::PhotonMap},
-    {"caustic_map", CausticMethod::CausticMap}};
-// "map" is the short name the design brief uses for caustic mapping.
+    PRISM_CAUSTIC_METHODS(PRISM_CAUSTIC_NAME)};
+#undef PRISM_CAUSTIC_NAME
+// "map" is the short name of caustic mapping.
 inline constexpr NamedValue<CausticMethod> kCausticMethodAliases[] = {
     {"map", CausticMethod::CausticMap}};
 inline constexpr NameTable<CausticMethod> kCausticMethodNames{kCausticMethodList,

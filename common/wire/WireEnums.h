@@ -41,13 +41,7 @@ inline bool isKnown(InstructionSet isa) {
 }
 
 inline bool isKnown(CausticMethod m) {
-  switch (m) {
-    case CausticMethod::None:
-    case CausticMethod::PhotonMap:
-    case CausticMethod::CausticMap:
-      return true;
-  }
-  return false;
+  return static_cast<size_t>(m) < kCausticMethodCount;  // scene/CausticMethods.h numbers them
 }
 
 inline bool isKnown(CausticMapPaths p) {
