@@ -26,16 +26,7 @@ void addFrame(FrameResult& total, const FrameResult& f, bool first) {
   total.busyThreadSeconds += f.busyThreadSeconds;
   total.reissuedTiles += f.reissuedTiles;
   for (size_t r = 0; r < total.workers.size() && r < f.workers.size(); ++r) {
-    RankStats& w = total.workers[r];
-    const RankStats& o = f.workers[r];
-    w.tiles += o.tiles;
-    w.rays += o.rays;
-    w.busySeconds += o.busySeconds;
-    w.staleTiles += o.staleTiles;
-    w.lostTiles += o.lostTiles;
-    w.retired = w.retired || o.retired;
-    if (o.threads > 0) w.threads = o.threads;
-    if (o.buildSeconds > 0.0) w.buildSeconds = o.buildSeconds;
+    total.workers[r] += f.workers[r];
   }
 }
 
