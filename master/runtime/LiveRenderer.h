@@ -233,7 +233,7 @@ class LiveRenderer final : private FrameListener {
   struct Pass;
   struct PassPlan;
 
-  // FrameListener: the dispatcher's calls, with its lock held (so never call it from these).
+  // FrameListener: the dispatcher's calls, one at a time, without its lock.
   void tileAssigned(uint32_t frame, uint32_t tile, int rank) override;
   void tileFinished(uint32_t frame, TileResult&& tile, int rank) override;
   bool wantsTiles(uint32_t frame) override;
@@ -273,7 +273,8 @@ class LiveRenderer final : private FrameListener {
   LiveOptions options_;
   SteadyClock::time_point start_;
 
-  // Guards what follows. Order: the dispatcher's lock, then this one; never the other way.
+  // Guards what follows. The dispatcher calls this listener holding its delivery lock, which
+  // takes this one: never call the dispatcher with this one held.
   std::mutex mutex_;
   std::condition_variable changed_;
   bool stopped_ = false;

@@ -549,5 +549,53 @@ TEST(WorkDispatcher, BeginningAFrameEndsAQueuedOne) {
   EXPECT_EQ(listener.finished(2), tiles.size());
 }
 
+// A listener may call the dispatcher from its calls, which come without the dispatcher's lock
+// (with it held, as they once were, the first call below deadlocked): each call asks how many
+// tiles are done, and the frame's last tile ends the frame, as the viewer ends a pass.
+class CallingBackListener : public FrameListener {
+ public:
+  CallingBackListener(WorkDispatcher& dispatcher, size_t tiles)
+      : dispatcher_(dispatcher), tiles_(tiles) {}
+  void tileAssigned(uint32_t, uint32_t, int) override {
+    assignedSeen_.push_back(dispatcher_.tilesDone());
+  }
+  void tileFinished(uint32_t frame, TileResult&&, int) override {
+    doneSeen_.push_back(dispatcher_.tilesDone());
+    if (doneSeen_.size() == tiles_) dispatcher_.endFrame(frame);
+    ++finished_;
+  }
+  size_t finished() const { return finished_; }
+  // Only after the threads stop:
+  const std::vector<size_t>& assignedSeen() const { return assignedSeen_; }
+  const std::vector<size_t>& doneSeen() const { return doneSeen_; }
+
+ private:
+  WorkDispatcher& dispatcher_;
+  size_t tiles_;
+  std::vector<size_t> assignedSeen_, doneSeen_;
+  std::atomic<size_t> finished_{0};
+};
+
+TEST(WorkDispatcher, AListenerMayCallTheDispatcherFromItsCalls) {
+  const Scene scene(smallScene());
+  DistributionOptions o;
+  o.threads = 2;
+  WorkDispatcher dispatcher(scene, nullptr, o);
+  const std::vector<TileRect> tiles = planTiles(64, 48, 16);
+  CallingBackListener listener(dispatcher, tiles.size());
+  dispatcher.beginFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.startLocalWorkers();
+  while (listener.finished() < tiles.size()) dispatcher.service(0.05);
+  EXPECT_EQ(dispatcher.tilesDone(), 0u);  // the listener ended the frame
+  dispatcher.stop();
+  dispatcher.join();
+  EXPECT_EQ(listener.assignedSeen().size(), tiles.size());
+  const std::vector<size_t>& done = listener.doneSeen();
+  ASSERT_EQ(done.size(), tiles.size());
+  // A tile is counted done before it is told, and the calls come one at a time, in order.
+  for (size_t i = 0; i < done.size(); ++i) EXPECT_GE(done[i], i + 1);
+  EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+}
+
 }  // namespace
 }  // namespace prism
