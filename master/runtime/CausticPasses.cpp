@@ -6,7 +6,6 @@
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "master/runtime/PassBudget.h"
-#include "master/runtime/PhotonPass.h"
 #include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
@@ -28,22 +27,6 @@ void addFrame(FrameResult& total, const FrameResult& f, bool first) {
   for (size_t r = 0; r < total.workers.size() && r < f.workers.size(); ++r) {
     total.workers[r] += f.workers[r];
   }
-}
-
-void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
-  c.trace += p.trace;
-  c.traceSeconds += p.traceSeconds;
-  c.buildSeconds += p.buildSeconds;
-  c.distributeSeconds += p.distributeSeconds;
-  c.radiiSeconds += p.radiiSeconds;
-  c.mapBytes = std::max(c.mapBytes, p.mapBytes);
-  c.sentBytes += p.sentBytes;
-  const auto addByRank = [](std::vector<uint64_t>& total, const std::vector<uint64_t>& pass) {
-    if (total.size() < pass.size()) total.resize(pass.size());
-    for (size_t r = 0; r < pass.size(); ++r) total[r] += pass[r];
-  };
-  addByRank(c.photonsByRank, p.photonsByRank);
-  addByRank(c.radiiByRank, p.radiiByRank);
 }
 
 // The progressive estimate after `passes` caustic passes: direct light plus their mean.
@@ -137,9 +120,8 @@ std::shared_ptr<const PhotonGather> CausticRun::photonPass(uint32_t pass, const 
       options_.distribution.threads > 0 ? options_.distribution.threads : availableCores();
   if (progress_) progress_(label + " photons", 0, 1);
   PhotonPassStats p;
-  std::vector<Photon> photons = *tracePhotonPass(*tracer_, pass, threads, dispatcher_, p);
-  auto estimator = gatherFromPhotons(std::move(photons), pass, gather, threads, dispatcher_, p);
-  addPhotonStats(out_.caustics, p);
+  auto estimator = runPhotonPass(*tracer_, pass, gather, threads, dispatcher_, p);
+  out_.caustics.photons += p;
   ++out_.caustics.passes;
   return estimator;
 }

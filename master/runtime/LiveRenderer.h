@@ -134,15 +134,8 @@ struct PhotonLiveStats {
   uint64_t photonsPerPass = 0;  // budget: photons emitted per pass
   int passes = 0;               // photon passes traced (or reused) for the current view
   bool reused = false;          // the last is the first view's pass 1, not traced again
-  // The last photon pass:
-  uint64_t stored = 0;             // photons in its map
-  size_t mapBytes = 0;             // photons + kd-tree
-  double traceSeconds = 0.0;       // wall time until every rank's share was in
-  double buildSeconds = 0.0;       // kd-tree
-  double distributeSeconds = 0.0;  // map sent to the slaves
-  double radiiSeconds = 0.0;       // every photon's radius (all ranks) and rank 0's discs
-  double photonsPerSecond = 0.0;   // emitted / traceSeconds
-  float radius = 0.0f;             // its gather radius
+  PhotonPassStats last;         // the last photon pass (its map: last.trace.stored photons)
+  float radius = 0.0f;          // its gather radius
   // Caustic mapping (method CausticMap):
   int mapResolution = 0;         // texels per side of each light-space view
   int mapViews = 0;              // views over all lights

@@ -318,11 +318,11 @@ TEST(WorkDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_EQ(exitCodes[1], 0);
   EXPECT_EQ(exitCodes[2], 0);
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
-  EXPECT_EQ(f.caustics.photonsByRank.size(), 3u);
-  EXPECT_GT(f.caustics.photonsByRank[1], 0u);
-  ASSERT_EQ(f.caustics.radiiByRank.size(), 3u);  // every rank found a share of the radii
-  EXPECT_GT(f.caustics.radiiByRank[1], 0u);
-  EXPECT_GT(f.caustics.radiiByRank[2], 0u);
+  EXPECT_EQ(f.caustics.photons.photonsByRank.size(), 3u);
+  EXPECT_GT(f.caustics.photons.photonsByRank[1], 0u);
+  ASSERT_EQ(f.caustics.photons.radiiByRank.size(), 3u);  // every rank found a share of the radii
+  EXPECT_GT(f.caustics.photons.radiiByRank[1], 0u);
+  EXPECT_GT(f.caustics.photons.radiiByRank[2], 0u);
   EXPECT_EQ(f.frames.workers[0].tiles, 0u);
   EXPECT_EQ(f.frames.workers[1].tiles + f.frames.workers[2].tiles, f.frames.tileCount);
 }
