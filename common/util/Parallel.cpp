@@ -4,6 +4,7 @@
 
 #include <thread>
 
+#include "util/ThreadCount.h"
 #include "util/ThreadPool.h"
 
 namespace prism {
@@ -23,7 +24,7 @@ int machineCores() {
 }
 
 void parallelFor(uint64_t count, int threads, const std::function<void(uint64_t)>& body) {
-  ThreadPool::shared().run(count, threads > 0 ? threads : availableCores(), body);
+  ThreadPool::shared().run(count, ThreadCount::resolve(threads).value(), body);
 }
 
 }  // namespace prism

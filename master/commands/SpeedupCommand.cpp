@@ -51,7 +51,7 @@ PreparedPass prepareCaustics(WorkDispatcher& dispatcher) {
   PreparedPass prepared;
   const auto start = SteadyClock::now();
   if (settings.method == CausticMethod::CausticMap) {
-    auto maps = std::make_shared<const CausticMapEstimator>(scene, availableCores());
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, dispatcher.localThreads());
     prepared.stage = "caustic map (rank 0)";
     prepared.pass = RenderPass::withCausticMaps(0, std::move(maps));
   } else if (settings.method == CausticMethod::PhotonMap) {
@@ -61,7 +61,8 @@ PreparedPass prepareCaustics(WorkDispatcher& dispatcher) {
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather = classicGather(settings, radius);
-      auto estimator = runPhotonPass(tracer, 0, gather, availableCores(), dispatcher, stats);
+      auto estimator =
+          runPhotonPass(tracer, 0, gather, dispatcher.localThreads(), dispatcher, stats);
       prepared.stage = "photon pass (" + std::to_string(estimator->map().size()) + " photons)";
       prepared.pass = RenderPass::withPhotons(0, true, std::move(estimator));
       prepared.progressiveAsOneFrame = settings.progressive;

@@ -6,7 +6,6 @@
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "master/runtime/PassBudget.h"
-#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -104,7 +103,7 @@ CausticFrame CausticRun::causticMaps() {
   // alone, so every rank's copy is bit-identical and nothing is sent.
   if (progress_) progress_("caustic map", 0, 1);
   const auto start = SteadyClock::now();
-  auto maps = std::make_shared<const CausticMapEstimator>(scene_, options_.distribution.threads);
+  auto maps = std::make_shared<const CausticMapEstimator>(scene_, dispatcher_.localThreads());
   CausticRunStats& stats = out_.caustics;
   stats.mapBuildSeconds = secondsSince(start);
   stats.map = maps->stats();
@@ -115,9 +114,8 @@ CausticFrame CausticRun::causticMaps() {
 
 std::shared_ptr<const PhotonGather> CausticRun::photonPass(uint32_t pass, const std::string& label,
                                                            const PhotonGatherSettings& gather) {
-  // Resolved here: the photon shares are sized by thread counts.
-  const int threads =
-      options_.distribution.threads > 0 ? options_.distribution.threads : availableCores();
+  // Rank 0's share is sized by its threads, the slaves' by theirs.
+  const int threads = dispatcher_.localThreads();
   if (progress_) progress_(label + " photons", 0, 1);
   PhotonPassStats p;
   auto estimator = runPhotonPass(*tracer_, pass, gather, threads, dispatcher_, p);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "master/runtime/ShareBatch.h"
+#include "util/ThreadCount.h"
 #include "wire/TileJobWire.h"
 
 namespace prism {
@@ -56,7 +57,7 @@ WorkDispatcher::WorkDispatcher(const Scene& scene, Transport* cluster,
     : scene_(scene),
       options_(options),
       link_(cluster, options),
-      pool_(scene, options.threads),
+      pool_(scene, ThreadCount::resolve(options.threads)),
       start_(SteadyClock::now()) {}
 
 WorkDispatcher::~WorkDispatcher() {

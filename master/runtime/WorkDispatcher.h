@@ -89,6 +89,8 @@ class WorkDispatcher {
 
   const Scene& scene() const { return scene_; }
   SlaveLink& link() { return link_; }
+  // Rank 0's threads, resolved here once from options.threads (util/ThreadCount.h): they render
+  // its tiles, and its photon passes and caustic maps are made with as many.
   int localThreads() const { return pool_.threadCount(); }
   // Live ranks' render threads (a slave's from its Ready, else rank 0's count in its place).
   int liveThreads();

@@ -597,5 +597,20 @@ TEST(WorkDispatcher, AListenerMayCallTheDispatcherFromItsCalls) {
   EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
 }
 
+// Rank 0's threads are decided once, by the dispatcher (util/ThreadCount.h): the count the command
+// line names, or every available core; a frame renders with them.
+TEST(WorkDispatcher, DecidesRankZerosThreadsOnce) {
+  const Scene scene(smallScene());
+  WorkDispatcher unnamed(scene, nullptr, DistributionOptions{});
+  EXPECT_EQ(unnamed.localThreads(), availableCores());
+  DistributionOptions o;
+  o.threads = 3;
+  WorkDispatcher named(scene, nullptr, o);
+  EXPECT_EQ(named.localThreads(), 3);
+  FrameOptions frame;
+  frame.distribution = o;
+  EXPECT_EQ(renderFrame(named, frame).threads, 3);
+}
+
 }  // namespace
 }  // namespace prism
