@@ -49,19 +49,20 @@ QString photonLines(const PhotonLiveStats& p) {
   if (p.method != CausticMethod::PhotonMap) return {};
   if (p.noCasters) return "\nphotons      none: no light reaches a caustic caster";
   if (p.passes == 0) return "\nphotons      waiting for the first full pass";
+  const PhotonPassStats& last = p.last;
   return QString("\nphotons/s    %1photons/s (%2 per pass)\n")
-             .arg(siRate(p.photonsPerSecond))
+             .arg(siRate(last.photonsPerSecond()))
              .arg(p.photonsPerPass) +
          QString("stored       %1 photons, map %2\n")
-             .arg(p.stored)
-             .arg(QString::fromStdString(formatBytes(static_cast<double>(p.mapBytes)))) +
+             .arg(last.trace.stored)
+             .arg(QString::fromStdString(formatBytes(static_cast<double>(last.mapBytes)))) +
          QString("passes       %1 of this view\n").arg(p.passes) +
          QString("photon pass  trace %1, kd-tree %2, %3\n")
-             .arg(milliseconds(p.traceSeconds))
-             .arg(milliseconds(p.buildSeconds))
+             .arg(milliseconds(last.traceSeconds))
+             .arg(milliseconds(last.buildSeconds))
              .arg(p.reused ? QString("the first view's, reused")
-                           : "send " + milliseconds(p.distributeSeconds)) +
-         QString("radii        %1 (each rank a share)\n").arg(milliseconds(p.radiiSeconds)) +
+                           : "send " + milliseconds(last.distributeSeconds)) +
+         QString("radii        %1 (each rank a share)\n").arg(milliseconds(last.radiiSeconds)) +
          QString("gather r     %1 (progressive)").arg(p.radius, 0, 'g', 4);
 }
 

@@ -200,10 +200,10 @@ void printSummary(const DisplayFrame& shown, const LiveStats& s, std::ostream& o
   const PhotonLiveStats& p = s.photons;
   if (p.method == CausticMethod::PhotonMap && p.passes > 0) {
     out << "photons    " << p.passes << " passes of " << p.photonsPerPass
-        << ", the last: " << p.stored << " stored, trace " << 1e3 * p.traceSeconds << " ms ("
-        << p.photonsPerSecond << " photons/s), kd-tree " << 1e3 * p.buildSeconds << " ms, radii "
-        << 1e3 * p.radiiSeconds << " ms, send " << 1e3 * p.distributeSeconds
-        << " ms, gather radius " << p.radius
+        << ", the last: " << p.last.trace.stored << " stored, trace " << 1e3 * p.last.traceSeconds
+        << " ms (" << p.last.photonsPerSecond() << " photons/s), kd-tree "
+        << 1e3 * p.last.buildSeconds << " ms, radii " << 1e3 * p.last.radiiSeconds << " ms, send "
+        << 1e3 * p.last.distributeSeconds << " ms, gather radius " << p.radius
         << (p.reused ? " (the first view's pass 1, reused)" : "") << "\n";
   }
   if (p.method == CausticMethod::CausticMap && p.mapResolution > 0) {

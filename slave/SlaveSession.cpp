@@ -31,7 +31,10 @@ constexpr double kIdleCheckSeconds = 0.1;
 
 SlaveSession::SlaveSession(Transport& transport, const DistributionOptions& options,
                            const MemoryLimit& memoryLimit)
-    : transport_(transport), options_(options), memoryLimit_(memoryLimit) {}
+    : transport_(transport),
+      options_(options),
+      threads_(ThreadCount::resolve(options.threads)),
+      memoryLimit_(memoryLimit) {}
 
 SlaveSession::~SlaveSession() = default;
 
@@ -78,7 +81,7 @@ std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
     wire::Message plan = wire::decodeMessage(std::move(bytes));
     if (!description || plan.type == wire::MessageType::Error) return SlaveEnd{1};
     work_ = std::make_unique<SlaveWork>(transport_, build(*description, plan, startSeconds),
-                                        options_, memoryLimit_);
+                                        threads_, memoryLimit_);
     return std::nullopt;
   } catch (const std::exception& e) {
     transport_.send(
@@ -112,8 +115,7 @@ std::unique_ptr<Scene> SlaveSession::build(SceneDescription& description, const 
     scene = std::make_unique<Scene>(description, std::move(environment));
   }
   checkCausticMapsFit(*scene, memoryLimit_);  // before any map is built
-  const int threads = options_.threads > 0 ? options_.threads : availableCores();
-  transport_.send(0, wire::encode(wire::ReadyMessage{secondsSince(buildStart), threads,
+  transport_.send(0, wire::encode(wire::ReadyMessage{secondsSince(buildStart), threads_.value(),
                                                      startSeconds, transport_.setUpSeconds()}));
   return scene;
 }

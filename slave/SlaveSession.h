@@ -13,6 +13,7 @@
 #include "slave/SlaveLoop.h"
 #include "transport/Transport.h"
 #include "util/MemorySize.h"
+#include "util/ThreadCount.h"
 #include "wire/Messages.h"
 
 namespace prism {
@@ -22,7 +23,8 @@ struct SlaveWork;
 
 class SlaveSession {
  public:
-  // Reads options.threads and masterTimeoutSeconds; memoryLimit as runSlave's.
+  // Reads options.threads (resolved here, once for the rank: util/ThreadCount.h) and
+  // masterTimeoutSeconds; memoryLimit as runSlave's.
   SlaveSession(Transport& transport, const DistributionOptions& options,
                const MemoryLimit& memoryLimit);
   ~SlaveSession();
@@ -51,6 +53,7 @@ class SlaveSession {
 
   Transport& transport_;
   DistributionOptions options_;
+  ThreadCount threads_;  // the rank's render and photon threads, which its Ready announces
   MemoryLimit memoryLimit_;
   std::unique_ptr<SlaveWork> work_;
   bool interrupted_ = false;

@@ -2,18 +2,15 @@
 
 #include <utility>
 
-#include "util/Parallel.h"
-
 namespace prism {
 
 SlaveWork::SlaveWork(Transport& transport_, std::unique_ptr<const Scene> scene_,
-                     const DistributionOptions& options, const MemoryLimit& memoryLimit)
+                     ThreadCount threads, const MemoryLimit& memoryLimit)
     : transport(transport_),
       scene(std::move(scene_)),
       outbox(transport_),
-      photons(*scene, options.threads > 0 ? options.threads : availableCores(), transport_,
-              memoryLimit),
-      pool(*scene, options.threads),
+      photons(*scene, threads.value(), transport_, memoryLimit),
+      pool(*scene, threads),
       heartbeat(transport_, shared, frames) {
   pool.start([this] { return jobs.pop(); },
              [this](const TileJob& job, TileResult&& tile) {

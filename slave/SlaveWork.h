@@ -17,15 +17,17 @@
 #include "slave/Outbox.h"
 #include "slave/PhotonWork.h"
 #include "util/MemorySize.h"
+#include "util/ThreadCount.h"
 
 namespace prism {
 
 class Transport;
 
 struct SlaveWork {
-  // Starts the render threads and the heartbeat.
-  SlaveWork(Transport& transport, std::unique_ptr<const Scene> scene,
-            const DistributionOptions& options, const MemoryLimit& memoryLimit);
+  // Starts the render threads and the heartbeat; the rank's threads render its tiles and do its
+  // photon work.
+  SlaveWork(Transport& transport, std::unique_ptr<const Scene> scene, ThreadCount threads,
+            const MemoryLimit& memoryLimit);
   ~SlaveWork();  // stops whatever still runs
   SlaveWork(const SlaveWork&) = delete;
   SlaveWork& operator=(const SlaveWork&) = delete;

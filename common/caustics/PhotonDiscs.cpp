@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "util/Parallel.h"
+#include "util/ThreadCount.h"
 
 namespace prism {
 namespace {
@@ -174,10 +175,10 @@ PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<f
   }
   std::vector<Node> nodes(Builder::nodeCount(n, 0));
   // Enough subtrees below the top levels for every thread to take several.
-  const int workers = threads > 0 ? threads : availableCores();
+  const int workers = ThreadCount::resolve(threads).value();
   int levels = 0;
   while (levels < 20 && (1 << levels) < 4 * workers) ++levels;
-  Builder(entries, nodes).build(n, levels, threads);
+  Builder(entries, nodes).build(n, levels, workers);
   if (nodes[0].count > 0) {
     // One leaf: a Wide root with it as its only entry.
     wide_.push_back(emptyWide());
@@ -187,7 +188,7 @@ PhotonDiscs::PhotonDiscs(const std::vector<Photon>& photons, const std::vector<f
     widen(nodes, 0);
   }
   discs_.resize(n);
-  parallelFor((n + kDiscBlock - 1) / kDiscBlock, threads, [&](uint64_t block) {
+  parallelFor((n + kDiscBlock - 1) / kDiscBlock, workers, [&](uint64_t block) {
     const uint32_t first = static_cast<uint32_t>(block * kDiscBlock);
     const uint32_t last = std::min<uint32_t>(n, first + kDiscBlock);
     for (uint32_t s = first; s < last; ++s) {

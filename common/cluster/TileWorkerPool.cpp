@@ -5,8 +5,8 @@
 
 namespace prism {
 
-TileWorkerPool::TileWorkerPool(const Scene& scene, int threadCount)
-    : scene_(scene), threadCount_(threadCount > 0 ? threadCount : availableCores()) {}
+TileWorkerPool::TileWorkerPool(const Scene& scene, ThreadCount threads)
+    : scene_(scene), threadCount_(threads.value()) {}
 
 TileWorkerPool::~TileWorkerPool() {
   for (std::thread& t : threads_) {

@@ -18,6 +18,7 @@
 #include "cluster/TileJob.h"
 #include "render/Tile.h"
 #include "scene/Scene.h"
+#include "util/ThreadCount.h"
 
 namespace prism {
 
@@ -28,7 +29,7 @@ class TileWorkerPool {
   // Also told which job the result answers (its frame, its view).
   using JobResultHandler = std::function<void(const TileJob&, TileResult&&)>;
 
-  TileWorkerPool(const Scene& scene, int threadCount);
+  TileWorkerPool(const Scene& scene, ThreadCount threads);
   ~TileWorkerPool();  // joins
 
   int threadCount() const { return threadCount_; }

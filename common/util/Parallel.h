@@ -14,10 +14,10 @@ int availableCores();
 // ranks × threads with to label a point oversubscribed (rank 0 is often bound to one core).
 int machineCores();
 
-// Calls body(i) once for each i in [0, count), on up to `threads` threads (0: availableCores()),
-// the calling thread among them, and returns when all are done. Indices are handed out one at a
-// time in increasing order, so uneven items balance; results must not depend on which thread
-// runs an index (callers write item i to slot i).
+// Calls body(i) once for each i in [0, count) on up to `threads` threads (0: availableCores()):
+// the caller and threads of the process's pool (util/ThreadPool.h). Returns when all are done,
+// rethrowing a call's exception. Indices go out one at a time in increasing order, so uneven
+// items balance; results must not depend on which thread runs an index (item i to slot i).
 void parallelFor(uint64_t count, int threads, const std::function<void(uint64_t)>& body);
 
 // body(begin, end) over [0, count) in chunks of `chunk`, on up to `threads` threads, for items

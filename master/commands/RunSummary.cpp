@@ -119,13 +119,14 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
     out << "caustics  photon map asked for, but no light reaches a caster: no photons traced\n";
     return;
   }
-  const double stored = static_cast<double>(c.trace.stored);
+  const PhotonPassStats& p = c.photons;
+  const double stored = static_cast<double>(p.trace.stored);
   out << "caustics  photon map" << (c.progressive ? " (progressive)" : "") << ": "
       << formatCount(static_cast<double>(c.photonsPerPass)) << " photons x " << c.passes
       << (c.passes == 1 ? " pass" : " passes") << ", " << formatCount(stored) << " stored ("
-      << fixed(100.0 * stored / std::max<double>(1.0, static_cast<double>(c.trace.emitted)), 1)
+      << fixed(100.0 * stored / std::max<double>(1.0, static_cast<double>(p.trace.emitted)), 1)
       << " %), " << sizeof(Photon) << " B per photon, map "
-      << formatBytes(static_cast<double>(c.mapBytes)) << "\n"
+      << formatBytes(static_cast<double>(p.mapBytes)) << "\n"
       << "          ";
   if (c.progressive && c.settings.radius > 0.0f) {
     out << "gather radius " << fixed(c.firstRadius, 4) << " -> " << fixed(c.lastRadius, 4);
@@ -137,25 +138,25 @@ void printCaustics(const RunSummary& s, std::ostream& out) {
     out << "each photon over its " << k << " within " << fixed(c.firstRadius, 4);
     if (c.progressive) out << ", shrunk to " << fixed(c.lastRadius, 4);
   }
-  out << "; trace " << milliseconds(c.traceSeconds) << ", kd-tree " << milliseconds(c.buildSeconds);
-  if (c.radiiSeconds > 0.0) out << ", photon radii " << milliseconds(c.radiiSeconds);
-  if (c.sentBytes > 0) {
-    out << ", maps sent " << formatBytes(static_cast<double>(c.sentBytes)) << " in "
-        << milliseconds(c.distributeSeconds);
+  out << "; trace " << milliseconds(p.traceSeconds) << ", kd-tree " << milliseconds(p.buildSeconds);
+  if (p.radiiSeconds > 0.0) out << ", photon radii " << milliseconds(p.radiiSeconds);
+  if (p.sentBytes > 0) {
+    out << ", maps sent " << formatBytes(static_cast<double>(p.sentBytes)) << " in "
+        << milliseconds(p.distributeSeconds);
   }
   out << ", frames with gathers " << fixed(c.gatherRenderSeconds, 3) << " s\n";
   if (c.progressive && c.settings.timeBudgetSeconds > 0.0) out << budgetLine(c);
-  if (c.photonsByRank.size() > 1) {
+  if (p.photonsByRank.size() > 1) {
     const auto byRank = [&](const std::vector<uint64_t>& counts) {
       for (size_t r = 0; r < counts.size(); ++r) {
         out << (r ? ", " : " ") << r << ": " << formatCount(static_cast<double>(counts[r]));
       }
     };
     out << "          photons traced by rank:";
-    byRank(c.photonsByRank);
-    if (c.radiiByRank.size() > 1) {
+    byRank(p.photonsByRank);
+    if (p.radiiByRank.size() > 1) {
       out << "; radii found by rank:";
-      byRank(c.radiiByRank);
+      byRank(p.radiiByRank);
     }
     out << "\n";
   }

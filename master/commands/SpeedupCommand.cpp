@@ -51,21 +51,20 @@ PreparedPass prepareCaustics(WorkDispatcher& dispatcher) {
   PreparedPass prepared;
   const auto start = SteadyClock::now();
   if (settings.method == CausticMethod::CausticMap) {
-    auto maps = std::make_shared<const CausticMapEstimator>(scene, availableCores());
+    auto maps = std::make_shared<const CausticMapEstimator>(scene, dispatcher.localThreads());
     prepared.stage = "caustic map (rank 0)";
     prepared.pass = RenderPass::withCausticMaps(0, std::move(maps));
   } else if (settings.method == CausticMethod::PhotonMap) {
     const PhotonTracer tracer(scene, settings.photons, settings.maxBounces);
     if (tracer.hasWork()) {
       PhotonPassStats stats;
-      std::vector<Photon> photons = *tracePhotonPass(tracer, 0, 1, dispatcher, stats);
       const float radius =
           settings.maxRadius > 0.0f ? settings.maxRadius : automaticMaxRadius(scene);
       const PhotonGatherSettings gather = classicGather(settings, radius);
-      prepared.stage = "photon pass (" + std::to_string(photons.size()) + " photons)";
-      prepared.pass = RenderPass::withPhotons(
-          0, true,
-          gatherFromPhotons(std::move(photons), 0, gather, availableCores(), dispatcher, stats));
+      auto estimator =
+          runPhotonPass(tracer, 0, gather, dispatcher.localThreads(), dispatcher, stats);
+      prepared.stage = "photon pass (" + std::to_string(estimator->map().size()) + " photons)";
+      prepared.pass = RenderPass::withPhotons(0, true, std::move(estimator));
       prepared.progressiveAsOneFrame = settings.progressive;
     }
   }

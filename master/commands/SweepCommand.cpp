@@ -16,6 +16,7 @@
 #include "util/AtomicFile.h"
 #include "util/Parallel.h"
 #include "util/Stopwatch.h"
+#include "util/ThreadCount.h"
 
 namespace prism {
 namespace {
@@ -159,8 +160,7 @@ int runSweep(const SweepOptions& options, std::ostream& out, std::ostream& err, 
     report.height = scene.render.height;
     report.samplesPerPixel = scene.render.samplesPerPixel;
     report.cores = availableCores();
-    report.threads = options.render.distribution.threads > 0 ? options.render.distribution.threads
-                                                             : report.cores;
+    report.threads = ThreadCount::resolve(options.render.distribution.threads).value();
     report.repeats = options.repeats;
     report.cpuAxis = options.cpuAxis;
     report.metric = options.metric;

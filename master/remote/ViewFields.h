@@ -121,14 +121,18 @@ struct Fields<FrameTimeStats> {
 };
 
 template <>
+struct Fields<PhotonPassStats> {
+  PRISM_WIRE_FIELDS(trace, traceSeconds, buildSeconds, distributeSeconds, radiiSeconds, mapBytes,
+                    sentBytes, photonsByRank, radiiByRank)
+};
+
+template <>
 struct Fields<PhotonLiveStats> {
   static void fields(auto& self, auto&& visit) {
-    auto& [method, noCasters, photonsPerPass, passes, reused, stored, mapBytes, traceSeconds,
-           buildSeconds, distributeSeconds, radiiSeconds, photonsPerSecond, radius, mapResolution,
-           mapViews, mapBlur, mapBuildSeconds] = self;
+    auto& [method, noCasters, photonsPerPass, passes, reused, last, radius, mapResolution, mapViews,
+           mapBlur, mapBuildSeconds] = self;
     visit(method, flag(noCasters, "no-casters flag"), photonsPerPass, passes,
-          flag(reused, "reused flag"), stored, mapBytes, traceSeconds, buildSeconds,
-          distributeSeconds, radiiSeconds, photonsPerSecond, radius, mapResolution, mapViews,
+          flag(reused, "reused flag"), last, radius, mapResolution, mapViews,
           flag(mapBlur, "map blur flag"), mapBuildSeconds);
   }
 };

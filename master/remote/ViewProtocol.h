@@ -25,7 +25,7 @@ namespace prism::view {
 
 inline constexpr uint32_t kMagic = 0x56535250;  // "PRSV" little-endian
 // 2: ViewerStart names the ray kernels' instruction set.
-inline constexpr uint16_t kVersion = 2;
+inline constexpr uint16_t kVersion = 3;
 // magic u32, version u16, type u16, payload size u64, FNV-1a 64 checksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 

@@ -6,8 +6,6 @@
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonGather.h"
 #include "master/runtime/PassBudget.h"
-#include "master/runtime/PhotonPass.h"
-#include "util/Parallel.h"
 #include "util/Stopwatch.h"
 
 namespace prism {
@@ -26,33 +24,8 @@ void addFrame(FrameResult& total, const FrameResult& f, bool first) {
   total.busyThreadSeconds += f.busyThreadSeconds;
   total.reissuedTiles += f.reissuedTiles;
   for (size_t r = 0; r < total.workers.size() && r < f.workers.size(); ++r) {
-    RankStats& w = total.workers[r];
-    const RankStats& o = f.workers[r];
-    w.tiles += o.tiles;
-    w.rays += o.rays;
-    w.busySeconds += o.busySeconds;
-    w.staleTiles += o.staleTiles;
-    w.lostTiles += o.lostTiles;
-    w.retired = w.retired || o.retired;
-    if (o.threads > 0) w.threads = o.threads;
-    if (o.buildSeconds > 0.0) w.buildSeconds = o.buildSeconds;
+    total.workers[r] += f.workers[r];
   }
-}
-
-void addPhotonStats(CausticRunStats& c, const PhotonPassStats& p) {
-  c.trace += p.trace;
-  c.traceSeconds += p.traceSeconds;
-  c.buildSeconds += p.buildSeconds;
-  c.distributeSeconds += p.distributeSeconds;
-  c.radiiSeconds += p.radiiSeconds;
-  c.mapBytes = std::max(c.mapBytes, p.mapBytes);
-  c.sentBytes += p.sentBytes;
-  const auto addByRank = [](std::vector<uint64_t>& total, const std::vector<uint64_t>& pass) {
-    if (total.size() < pass.size()) total.resize(pass.size());
-    for (size_t r = 0; r < pass.size(); ++r) total[r] += pass[r];
-  };
-  addByRank(c.photonsByRank, p.photonsByRank);
-  addByRank(c.radiiByRank, p.radiiByRank);
 }
 
 // The progressive estimate after `passes` caustic passes: direct light plus their mean.
@@ -130,7 +103,7 @@ CausticFrame CausticRun::causticMaps() {
   // alone, so every rank's copy is bit-identical and nothing is sent.
   if (progress_) progress_("caustic map", 0, 1);
   const auto start = SteadyClock::now();
-  auto maps = std::make_shared<const CausticMapEstimator>(scene_, options_.distribution.threads);
+  auto maps = std::make_shared<const CausticMapEstimator>(scene_, dispatcher_.localThreads());
   CausticRunStats& stats = out_.caustics;
   stats.mapBuildSeconds = secondsSince(start);
   stats.map = maps->stats();
@@ -141,14 +114,12 @@ CausticFrame CausticRun::causticMaps() {
 
 std::shared_ptr<const PhotonGather> CausticRun::photonPass(uint32_t pass, const std::string& label,
                                                            const PhotonGatherSettings& gather) {
-  // Resolved here: the photon shares are sized by thread counts.
-  const int threads =
-      options_.distribution.threads > 0 ? options_.distribution.threads : availableCores();
+  // Rank 0's share is sized by its threads, the slaves' by theirs.
+  const int threads = dispatcher_.localThreads();
   if (progress_) progress_(label + " photons", 0, 1);
   PhotonPassStats p;
-  std::vector<Photon> photons = *tracePhotonPass(*tracer_, pass, threads, dispatcher_, p);
-  auto estimator = gatherFromPhotons(std::move(photons), pass, gather, threads, dispatcher_, p);
-  addPhotonStats(out_.caustics, p);
+  auto estimator = runPhotonPass(*tracer_, pass, gather, threads, dispatcher_, p);
+  out_.caustics.photons += p;
   ++out_.caustics.passes;
   return estimator;
 }

@@ -23,6 +23,7 @@
 #include "caustics/PhotonMap.h"
 #include "caustics/PhotonTracer.h"
 #include "master/runtime/FrameRenderer.h"
+#include "master/runtime/PhotonPass.h"
 
 namespace prism {
 
@@ -31,13 +32,9 @@ struct CausticRunStats {
   bool progressive = false;
   bool noCasters = false;  // photon mapping was asked for but no light reaches a caster
   uint64_t photonsPerPass = 0;
-  int passes = 0;  // photon passes traced
-  PhotonTraceStats trace;
-  double traceSeconds = 0.0, buildSeconds = 0.0, distributeSeconds = 0.0;
+  int passes = 0;                    // photon passes traced
+  PhotonPassStats photons;           // every photon pass added up (the largest map's bytes)
   double gatherRenderSeconds = 0.0;  // frames that gathered photons
-  double radiiSeconds = 0.0;         // every photon's k-NN radius (all ranks), rank 0's discs
-  size_t mapBytes = 0;               // largest photon map (photons + kd-tree)
-  size_t sentBytes = 0;              // photon maps sent to slaves
   int k = 0;
   float firstRadius = 0.0f, lastRadius = 0.0f;  // gather radius (progressive) or k-NN cap
   // Progressive under a time budget (master/runtime/PassBudget.h): whether it stopped a pass
@@ -45,9 +42,7 @@ struct CausticRunStats {
   // reserved.
   bool stoppedByBudget = false;
   double budgetStopSeconds = 0.0, longestPassSeconds = 0.0, budgetWriteSeconds = 0.0;
-  std::vector<uint64_t> photonsByRank;
-  std::vector<uint64_t> radiiByRank;  // photons whose radius each rank found
-  CausticMapStats map;                // caustic mapping: summed over the lights (rank 0's build)
+  CausticMapStats map;  // caustic mapping: summed over the lights (rank 0's build)
   double mapBuildSeconds = 0.0;
   CausticSettings settings;  // the run's, for the parameters the summary prints
 };

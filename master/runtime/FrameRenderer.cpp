@@ -52,15 +52,7 @@ bool stopFollows(const FrameOptions& options) {
 // as they are now.
 std::vector<RankStats> rosterSince(std::vector<RankStats> now,
                                    const std::vector<RankStats>& before) {
-  for (size_t r = 0; r < now.size() && r < before.size(); ++r) {
-    RankStats& n = now[r];
-    const RankStats& b = before[r];
-    n.tiles -= b.tiles;
-    n.rays -= b.rays;
-    n.busySeconds -= b.busySeconds;
-    n.staleTiles -= b.staleTiles;
-    n.lostTiles -= b.lostTiles;
-  }
+  for (size_t r = 0; r < now.size() && r < before.size(); ++r) now[r] -= before[r];
   return now;
 }
 

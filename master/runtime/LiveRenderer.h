@@ -134,15 +134,8 @@ struct PhotonLiveStats {
   uint64_t photonsPerPass = 0;  // budget: photons emitted per pass
   int passes = 0;               // photon passes traced (or reused) for the current view
   bool reused = false;          // the last is the first view's pass 1, not traced again
-  // The last photon pass:
-  uint64_t stored = 0;             // photons in its map
-  size_t mapBytes = 0;             // photons + kd-tree
-  double traceSeconds = 0.0;       // wall time until every rank's share was in
-  double buildSeconds = 0.0;       // kd-tree
-  double distributeSeconds = 0.0;  // map sent to the slaves
-  double radiiSeconds = 0.0;       // every photon's radius (all ranks) and rank 0's discs
-  double photonsPerSecond = 0.0;   // emitted / traceSeconds
-  float radius = 0.0f;             // its gather radius
+  PhotonPassStats last;         // the last photon pass (its map: last.trace.stored photons)
+  float radius = 0.0f;          // its gather radius
   // Caustic mapping (method CausticMap):
   int mapResolution = 0;         // texels per side of each light-space view
   int mapViews = 0;              // views over all lights
@@ -233,7 +226,7 @@ class LiveRenderer final : private FrameListener {
   struct Pass;
   struct PassPlan;
 
-  // FrameListener: the dispatcher's calls, with its lock held (so never call it from these).
+  // FrameListener: the dispatcher's calls, one at a time, without its lock.
   void tileAssigned(uint32_t frame, uint32_t tile, int rank) override;
   void tileFinished(uint32_t frame, TileResult&& tile, int rank) override;
   bool wantsTiles(uint32_t frame) override;
@@ -273,7 +266,8 @@ class LiveRenderer final : private FrameListener {
   LiveOptions options_;
   SteadyClock::time_point start_;
 
-  // Guards what follows. Order: the dispatcher's lock, then this one; never the other way.
+  // Guards what follows. The dispatcher calls this listener holding its delivery lock, which
+  // takes this one: never call the dispatcher with this one held.
   std::mutex mutex_;
   std::condition_variable changed_;
   bool stopped_ = false;

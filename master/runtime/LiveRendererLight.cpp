@@ -79,14 +79,10 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     p.distributeSeconds = 0.0;
     sendPhotonMapAgain(plan.frame, firstPhotonPass_->frame, link_);  // the slaves kept it too
   } else {
-    std::optional<std::vector<Photon>> photons = tracePhotonPass(
-        *tracer_, plan.frame, dispatcher_.localThreads(), dispatcher_, p, &cancelPhotons_);
-    if (!photons) return nullptr;  // the camera moved: the pass is dropped before it starts
     gather = progressiveGather(c, maxRadius_, static_cast<int>(plan.index), gather_);
-    estimator =
-        gatherFromPhotons(std::move(*photons), plan.frame, gather, dispatcher_.localThreads(),
-                          dispatcher_, p, plan.index == 1, &cancelPhotons_);
-    if (!estimator) return nullptr;  // the camera moved while the radii were found
+    estimator = runPhotonPass(*tracer_, plan.frame, gather, dispatcher_.localThreads(), dispatcher_,
+                              p, plan.index == 1, &cancelPhotons_);
+    if (!estimator) return nullptr;  // the camera moved: the pass is dropped before it starts
     map = estimator->sharedMap();
     if (plan.index == 1) firstPhotonPass_ = FirstPhotonPass{budget, plan.frame, map, estimator, p};
   }
@@ -97,13 +93,7 @@ std::shared_ptr<const RenderPass> LiveRenderer::passLight(const PassPlan& plan) 
     PhotonLiveStats& s = live_.photons;
     s.photonsPerPass = tracer_->photonsPerPass();
     ++s.passes;
-    s.stored = map->size();
-    s.mapBytes = p.mapBytes;
-    s.traceSeconds = p.traceSeconds;
-    s.buildSeconds = p.buildSeconds;
-    s.distributeSeconds = p.distributeSeconds;
-    s.radiiSeconds = p.radiiSeconds;
-    s.photonsPerSecond = static_cast<double>(p.trace.emitted) / std::max(p.traceSeconds, 1e-6);
+    s.last = p;
     s.radius = gather.radius * gather.radiusScale;  // per-photon radii: their cap
     s.reused = reused;
   }

@@ -212,6 +212,39 @@ std::shared_ptr<const PhotonGather> gatherFromPhotons(std::vector<Photon> photon
   return made;
 }
 
+std::shared_ptr<const PhotonGather> runPhotonPass(const PhotonTracer& tracer, uint32_t pass,
+                                                  const PhotonGatherSettings& gather, int threads,
+                                                  WorkDispatcher& dispatcher,
+                                                  PhotonPassStats& stats, bool keep,
+                                                  const std::atomic<bool>* cancel) {
+  std::optional<std::vector<Photon>> photons =
+      tracePhotonPass(tracer, pass, threads, dispatcher, stats, cancel);
+  if (!photons) return nullptr;
+  return gatherFromPhotons(std::move(*photons), pass, gather, threads, dispatcher, stats, keep,
+                           cancel);
+}
+
+PhotonPassStats& PhotonPassStats::operator+=(const PhotonPassStats& later) {
+  trace += later.trace;
+  traceSeconds += later.traceSeconds;
+  buildSeconds += later.buildSeconds;
+  distributeSeconds += later.distributeSeconds;
+  radiiSeconds += later.radiiSeconds;
+  mapBytes = std::max(mapBytes, later.mapBytes);
+  sentBytes += later.sentBytes;
+  const auto addByRank = [](std::vector<uint64_t>& total, const std::vector<uint64_t>& pass) {
+    if (total.size() < pass.size()) total.resize(pass.size());
+    for (size_t r = 0; r < pass.size(); ++r) total[r] += pass[r];
+  };
+  addByRank(photonsByRank, later.photonsByRank);
+  addByRank(radiiByRank, later.radiiByRank);
+  return *this;
+}
+
+double PhotonPassStats::photonsPerSecond() const {
+  return static_cast<double>(trace.emitted) / std::max(traceSeconds, 1e-6);
+}
+
 void sendPhotonMapAgain(uint32_t pass, uint32_t keptPass, SlaveLink& link) {
   sendToEverySlave(link, wire::encode(wire::PhotonMapAgainMessage{pass, keptPass}));
 }

@@ -21,17 +21,32 @@
 
 namespace prism {
 
+// What a photon pass did: `prism render`'s run sums its passes, the viewer shows its last.
 struct PhotonPassStats {
   PhotonTraceStats trace;
   double traceSeconds = 0.0;       // wall time until every share was in
   double buildSeconds = 0.0;       // kd-tree on rank 0
   double distributeSeconds = 0.0;  // sending the map to the slaves
   double radiiSeconds = 0.0;       // finding every photon's radius, and the gather's discs
-  size_t mapBytes = 0;
+  size_t mapBytes = 0;             // photons + kd-tree (summed passes: the largest map)
   size_t sentBytes = 0;
   std::vector<uint64_t> photonsByRank;  // photon indices each rank traced
   std::vector<uint64_t> radiiByRank;    // photons whose radius each rank found
+
+  // Adds a later pass: counts, times and bytes sent summed, mapBytes the larger.
+  PhotonPassStats& operator+=(const PhotonPassStats& later);
+  double photonsPerSecond() const;  // emitted / traceSeconds
 };
+
+// One photon pass, the sequence `prism render`, the viewer and `prism speedup` all run: pass
+// `pass`'s photons traced across the ranks (tracePhotonPass), then sent with their gather
+// settings, each photon's radius found where the gather needs it, and rank 0's map and discs
+// built (gatherFromPhotons). Returns rank 0's gather; null once *cancel is set.
+std::shared_ptr<const PhotonGather> runPhotonPass(const PhotonTracer& tracer, uint32_t pass,
+                                                  const PhotonGatherSettings& gather, int threads,
+                                                  WorkDispatcher& dispatcher,
+                                                  PhotonPassStats& stats, bool keep = false,
+                                                  const std::atomic<bool>* cancel = nullptr);
 
 // Traces pass `pass`: its photons in index order. threads: rank 0's tracing threads. Once
 // *cancel is set (the viewer's camera moved; wake the link too), rank 0 stops tracing within a

@@ -28,7 +28,9 @@
 
 namespace prism {
 
-// What rank 0 knows of one rank, and what it did.
+// What rank 0 knows of one rank, and what it did: facts (who it is, how it started, whether it
+// is retired) and counts (what it delivered). Counts add up over frames and subtract between two
+// readings of the roster; forEachCount lists them once for both.
 struct RankStats {
   int rank = 0;
   int threads = 0;            // render threads (a slave's from its Ready)
@@ -42,6 +44,33 @@ struct RankStats {
   size_t staleTiles = 0;  // results dropped: duplicates, or tiles of frames already ended
   size_t lostTiles = 0;   // tiles it received but lost (named by its heartbeat), re-issued
   bool retired = false;   // stopped answering, or known gone; its tiles were re-issued
+
+  // visit(mine, theirs) for each count of this record and of `other`.
+  template <class Visit>
+  void forEachCount(const RankStats& other, Visit&& visit) {
+    visit(tiles, other.tiles);
+    visit(rays, other.rays);
+    visit(busySeconds, other.busySeconds);
+    visit(staleTiles, other.staleTiles);
+    visit(lostTiles, other.lostTiles);
+  }
+  // Adds a later record of the same rank (a later frame's): its counts are added, and its facts
+  // replace these where it knows them (a rank retired in either stays retired).
+  RankStats& operator+=(const RankStats& later) {
+    forEachCount(later, [](auto& mine, const auto& theirs) { mine += theirs; });
+    if (later.threads > 0) threads = later.threads;
+    if (later.buildSeconds > 0.0) buildSeconds = later.buildSeconds;
+    if (later.startSeconds >= 0.0) startSeconds = later.startSeconds;
+    if (later.mpiInitSeconds > 0.0) mpiInitSeconds = later.mpiInitSeconds;
+    retired = retired || later.retired;
+    return *this;
+  }
+  // What was counted since `earlier`, a reading of the same rank's record; the facts are this
+  // record's, the later.
+  RankStats& operator-=(const RankStats& earlier) {
+    forEachCount(earlier, [](auto& mine, const auto& theirs) { mine -= theirs; });
+    return *this;
+  }
 };
 
 // A message from a slave that is not only status (TileResult, Progress, PhotonShare, Echo,

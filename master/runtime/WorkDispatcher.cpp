@@ -5,6 +5,7 @@
 #include <string>
 
 #include "master/runtime/ShareBatch.h"
+#include "util/ThreadCount.h"
 #include "wire/TileJobWire.h"
 
 namespace prism {
@@ -56,7 +57,7 @@ WorkDispatcher::WorkDispatcher(const Scene& scene, Transport* cluster,
     : scene_(scene),
       options_(options),
       link_(cluster, options),
-      pool_(scene, options.threads),
+      pool_(scene, ThreadCount::resolve(options.threads)),
       start_(SteadyClock::now()) {}
 
 WorkDispatcher::~WorkDispatcher() {
@@ -142,6 +143,8 @@ void WorkDispatcher::addFrame(FramePlan plan, FrameListener* listener, bool endE
     const std::lock_guard<std::mutex> lock(mutex_);
     for (int r = 1; r < link_.ranks(); ++r) slaveJobs[static_cast<size_t>(r)] = jobsForLocked(r);
   }
+  // A slave's tiles are told assigned before it can send them back.
+  deliverNews();
   for (int r = 1; r < link_.ranks(); ++r) sendJobs(r, slaveJobs[static_cast<size_t>(r)]);
   changed_.notify_all();
 }
@@ -156,6 +159,9 @@ void WorkDispatcher::endFrame(uint32_t frame) {
       break;
     }
   }
+  // Its accepted tiles still queued are told now, and a call to its listener under way on
+  // another thread ends before this returns (delivering_ is held meanwhile).
+  deliverNews();
   changed_.notify_all();
 }
 
@@ -170,38 +176,86 @@ size_t WorkDispatcher::tilesDone() {
 }
 
 std::optional<TileJob> WorkDispatcher::nextLocalJob() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    if (stopped_) return std::nullopt;
-    for (const std::unique_ptr<Frame>& frame : frames_) {  // the oldest frame's tiles first
-      if (const auto tile = frame->scheduler.next(kLocalRank, now())) {
-        const FramePlan& plan = frame->plan;
-        if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, kLocalRank);
-        TileJob job(*tile, plan.tiles[*tile], plan.frame, plan.view, plan.light);
-        job.frameEnded = frame->ended;
-        return job;
+  std::optional<TileJob> job;
+  bool told = false;
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!job) {
+      if (stopped_) return std::nullopt;
+      for (const std::unique_ptr<Frame>& frame : frames_) {  // the oldest frame's tiles first
+        if (const auto tile = frame->scheduler.next(kLocalRank, now())) {
+          const FramePlan& plan = frame->plan;
+          if (frame->listener) {
+            news_.push_back({frame->listener, plan.frame, *tile, kLocalRank, {}});
+            told = true;
+          }
+          job.emplace(*tile, plan.tiles[*tile], plan.frame, plan.view, plan.light);
+          job->frameEnded = frame->ended;
+          break;
+        }
       }
+      // Tiles can appear later (a new frame, re-issued leases): every such change notifies.
+      if (!job) changed_.wait_for(lock, std::chrono::milliseconds(50));
     }
-    // Tiles can appear later (a new frame, re-issued leases): every such change notifies.
-    changed_.wait_for(lock, std::chrono::milliseconds(50));
+  }
+  if (told) deliverNews();  // told assigned before this thread can finish it
+  return job;
+}
+
+bool WorkDispatcher::listenerWants(uint32_t frameId) {
+  const auto listenerOf = [this](uint32_t id) -> std::optional<FrameListener*> {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const Frame* frame = findLocked(id);
+    if (!frame) return std::nullopt;
+    return frame->listener;
+  };
+  const std::optional<FrameListener*> first = listenerOf(frameId);
+  if (!first || !*first) return first.has_value();
+  // delivering_ keeps the listener alive while it is asked: endFrame waits for it. Taken
+  // before mutex_, so the frame is looked up again under both.
+  const std::lock_guard<std::recursive_mutex> delivering(delivering_);
+  const std::optional<FrameListener*> listener = listenerOf(frameId);
+  if (!listener) return false;
+  return !*listener || (*listener)->wantsTiles(frameId);
+}
+
+void WorkDispatcher::deliverNews() {
+  const std::lock_guard<std::recursive_mutex> delivering(delivering_);
+  for (;;) {
+    std::optional<News> next;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (news_.empty()) return;
+      next.emplace(std::move(news_.front()));
+      news_.pop_front();
+    }
+    News& n = *next;
+    if (n.finished) {
+      n.listener->tileFinished(n.frame, std::move(*n.finished), n.rank);
+    } else {
+      n.listener->tileAssigned(n.frame, n.tile, n.rank);
+    }
   }
 }
 
 void WorkDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
+  const bool wanted = listenerWants(frameId);
   bool frameDone = false;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     Frame* frame = findLocked(frameId);
-    const bool planned = frame && tile.tileIndex < frame->plan.tiles.size() &&
-                         sameRect(tile.rect, frame->plan.tiles[tile.tileIndex]) &&
-                         (!frame->listener || frame->listener->wantsTiles(frameId));
+    const bool planned = wanted && frame && tile.tileIndex < frame->plan.tiles.size() &&
+                         sameRect(tile.rect, frame->plan.tiles[tile.tileIndex]);
     if (!planned || !frame->scheduler.complete(tile.tileIndex, rank, now())) {
       link_.countStale(rank);
       return;
     }
     link_.countDelivered(rank, tile);
     ++frame->done;
-    if (frame->listener) frame->listener->tileFinished(frameId, std::move(tile), rank);
+    if (frame->listener) {
+      const uint32_t index = tile.tileIndex;
+      news_.push_back({frame->listener, frameId, index, rank, std::move(tile)});
+    }
     frameDone = frame->complete();
     // A complete frame behind the current one has nothing left to do here.
     if (frameDone && frame != frames_.back().get()) {
@@ -210,6 +264,7 @@ void WorkDispatcher::accept(uint32_t frameId, TileResult&& tile, int rank) {
                                  [frame](const auto& f) { return f.get() == frame; }));
     }
   }
+  deliverNews();
   // The coordinator finishes the frame at once. A tile alone changes nothing it waits for (a
   // slave's load is its own tiles), so it is not woken for one: with every core rendering, each
   // wake-up would preempt a render thread. A listener wakes it for news it wants sooner.
@@ -246,7 +301,7 @@ std::vector<std::vector<uint8_t>> WorkDispatcher::jobsForLocked(int rank) {
       }
       outgoing.push_back(wire::encode(
           tileJobMessage(TileJob(*tile, plan.tiles[*tile], plan.frame, nullptr, plan.light))));
-      if (frame->listener) frame->listener->tileAssigned(plan.frame, *tile, rank);
+      if (frame->listener) news_.push_back({frame->listener, plan.frame, *tile, rank, {}});
     }
   }
   return outgoing;
@@ -268,6 +323,7 @@ void WorkDispatcher::feedSlaves() {
       const std::lock_guard<std::mutex> lock(mutex_);
       jobs = jobsForLocked(rank);
     }
+    deliverNews();  // told assigned before the slave can send them back
     sendJobs(rank, jobs);
   }
 }

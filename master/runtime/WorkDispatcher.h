@@ -19,12 +19,14 @@
 //
 // Threads: service() and runShares() are called by one coordinating thread, the only one that
 // talks to the slaves, which calls beginFrame too; rank 0's render threads take tiles
-// concurrently; endFrame, stop and stats may be called from any thread.
+// concurrently; endFrame, stop and stats may be called from any thread. Listeners hear of tiles
+// after the dispatcher's lock is released (FrameListener).
 #pragma once
 
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -60,8 +62,11 @@ struct FramePlan {
   Schedule schedule = Schedule::Dynamic;
 };
 
-// Told about the current frame's tiles. Called with the dispatcher's lock held, from the
-// coordinating thread or a render thread: keep it short, never call back into the dispatcher.
+// Told about the current frame's tiles, from the coordinating thread or a render thread, one
+// call at a time and in the order the dispatcher decided them (a tile is told assigned before it
+// is told finished), but without the dispatcher's lock: a listener may call the dispatcher
+// (endFrame, tilesDone, ...). It hears nothing of a frame once endFrame(frame) has returned, so
+// it may be destroyed then.
 class FrameListener {
  public:
   virtual ~FrameListener() = default;
@@ -84,6 +89,8 @@ class WorkDispatcher {
 
   const Scene& scene() const { return scene_; }
   SlaveLink& link() { return link_; }
+  // Rank 0's threads, resolved here once from options.threads (util/ThreadCount.h): they render
+  // its tiles, and its photon passes and caustic maps are made with as many.
   int localThreads() const { return pool_.threadCount(); }
   // Live ranks' render threads (a slave's from its Ready, else rank 0's count in its place).
   int liveThreads();
@@ -101,6 +108,7 @@ class WorkDispatcher {
   // Makes plan the current frame; every one before is ended (its tiles left are dropped, its
   // late results are stale). Called by the coordinating thread: it sends the slaves their first
   // jobs before rank 0's render threads take any tile (after them, when the opening runs here).
+  // The listener must live until endFrame(plan.frame) returns.
   void beginFrame(FramePlan plan, FrameListener* listener);
   // Pipelining (the viewer's frame stream): adds plan as the current frame behind the frames
   // still running, which are not ended. A render thread or slave takes the oldest frame's tiles
@@ -109,6 +117,8 @@ class WorkDispatcher {
   void queueFrame(FramePlan plan, FrameListener* listener);
   // Ends `frame` now if it is still running: no more of its tiles are handed out. Frames begun
   // since are left alone, so a caller on another thread cannot end a newer frame by mistake.
+  // Returns once its listener has heard every tile accepted (no call to it is left, nor under
+  // way on another thread).
   void endFrame(uint32_t frame);
   // Whether the current (newest) frame has all its tiles (false with no frame).
   bool frameComplete();
@@ -146,13 +156,27 @@ class WorkDispatcher {
  private:
   struct Frame;
   struct ShareBatch;
+  // A tile's news for a listener: assigned, or finished (with its result).
+  struct News {
+    FrameListener* listener;
+    uint32_t frame;
+    uint32_t tile;
+    int rank;
+    std::optional<TileResult> finished;
+  };
 
   Frame* findLocked(uint32_t frame);
   void addFrame(FramePlan plan, FrameListener* listener, bool endEarlier);
   std::optional<TileJob> nextLocalJob();
   void accept(uint32_t frame, TileResult&& tile, int rank);
+  // Whether the frame's listener still wants its tiles, asked without mutex_.
+  bool listenerWants(uint32_t frame);
+  // Tells the listeners the news queued, in order, one call at a time; returns once the queue is
+  // empty (another thread may have told some). Called without mutex_.
+  void deliverNews();
   void feedSlaves();
-  // Up to its prefetch, the next jobs for a slave (oldest frame first), encoded (mutex_ held).
+  // Up to its prefetch, the next jobs for a slave (oldest frame first), encoded (mutex_ held);
+  // their assignments are queued as news.
   std::vector<std::vector<uint8_t>> jobsForLocked(int rank);
   // Sends them; a refused send retires the slave.
   void sendJobs(int rank, std::vector<std::vector<uint8_t>>& jobs);
@@ -177,6 +201,10 @@ class WorkDispatcher {
   std::unique_ptr<ShareBatch> shares_;          // the photon pass's shares being done, if any
   size_t reissuedBefore_ = 0;                   // by frames already ended
   bool stopped_ = false;
+  std::deque<News> news_;  // for the listeners, in the order decided; guarded by mutex_
+  // Held while a listener is called (taken before mutex_, never while holding it), so calls come
+  // one at a time in order; recursive, since a listener may call what delivers news.
+  std::recursive_mutex delivering_;
 };
 
 }  // namespace prism

@@ -273,12 +273,12 @@ TEST(MainWindow, TheSidePanelFitsWithoutScrollingSideways) {
   s.photons.method = CausticMethod::PhotonMap;
   s.photons.photonsPerPass = 10000000;
   s.photons.passes = 1234;
-  s.photons.stored = 12345678;
-  s.photons.mapBytes = 1234u << 20;
-  s.photons.traceSeconds = 1.2345;
-  s.photons.buildSeconds = 0.2345;
-  s.photons.distributeSeconds = 0.1234;
-  s.photons.photonsPerSecond = 123.4e6;
+  s.photons.last.trace.stored = 12345678;
+  s.photons.last.trace.emitted = 152337300;  // 123.4 M photons/s
+  s.photons.last.mapBytes = 1234u << 20;
+  s.photons.last.traceSeconds = 1.2345;
+  s.photons.last.buildSeconds = 0.2345;
+  s.photons.last.distributeSeconds = 0.1234;
   s.photons.radius = 0.012345f;
   showAndCheck();
 }
@@ -420,11 +420,11 @@ TEST(MainWindow, CausticsSwitchAndPhotonBudgetStartNewViewsAndPhotonStatsShow) {
   s.photons.method = CausticMethod::PhotonMap;
   s.photons.photonsPerPass = 200000;
   s.photons.passes = 3;
-  s.photons.stored = 12345;
-  s.photons.mapBytes = 3u << 20;
-  s.photons.traceSeconds = 0.25;
-  s.photons.buildSeconds = 0.0125;
-  s.photons.photonsPerSecond = 800000.0;
+  s.photons.last.trace.stored = 12345;
+  s.photons.last.trace.emitted = 200000;  // in 0.25 s: 800 k photons/s
+  s.photons.last.mapBytes = 3u << 20;
+  s.photons.last.traceSeconds = 0.25;
+  s.photons.last.buildSeconds = 0.0125;
   s.photons.radius = 0.0625f;
   StatsPanel panel;
   panel.showStats(s);

@@ -39,7 +39,7 @@ TEST(TileWorkerPool, ATileOfAnEndedFrameGivesNoResultAndTheThreadTakesTheNext) {
   jobs.push_back(TileJob(1, {0, 0, 8, 2}, 3));  // another frame's small tile
   std::mutex mutex;
   std::vector<uint32_t> delivered;
-  TileWorkerPool pool(scene, 1);
+  TileWorkerPool pool(scene, ThreadCount::resolve(1));
   const auto start = std::chrono::steady_clock::now();
   pool.start(
       [&]() -> std::optional<TileJob> {

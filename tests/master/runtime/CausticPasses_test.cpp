@@ -114,7 +114,7 @@ TEST(CausticPasses, ClassicIndexOneSphereRendersLikeTheDirectLight) {
   EXPECT_FALSE(f.caustics.noCasters);
   EXPECT_EQ(f.caustics.photonsPerPass, 300000u);
   ASSERT_TRUE(f.lastMap);
-  EXPECT_EQ(f.lastMap->size(), f.caustics.trace.stored);
+  EXPECT_EQ(f.lastMap->size(), f.caustics.photons.trace.stored);
 }
 
 // Progressive photon mapping (Knaus & Zwicker 2011) with r²_{i+1} = r²_i (i + α)/(i + 1), so
@@ -237,13 +237,13 @@ TEST(CausticPasses, ImageIsBitIdenticalForAnyThreadCountAndTileSize) {
     SceneDescription d = mixedCausticScene(progressive);
     d.caustics.radius = fixedRadius;
     const CausticFrame reference = render(d, 1, 8);
-    EXPECT_GT(reference.caustics.trace.stored, 1000u);
+    EXPECT_GT(reference.caustics.photons.trace.stored, 1000u);
     for (const auto& [threads, tile] : {std::pair{2, 5}, std::pair{3, 16}, std::pair{4, 64}}) {
       const CausticFrame other = render(d, threads, tile);
       EXPECT_TRUE(bitIdentical(reference.image, other.image))
           << (progressive ? "progressive" : "classic") << ", " << threads << " threads, tile "
           << tile;
-      EXPECT_EQ(other.caustics.trace.stored, reference.caustics.trace.stored);
+      EXPECT_EQ(other.caustics.photons.trace.stored, reference.caustics.photons.trace.stored);
     }
   }
 }
@@ -254,7 +254,7 @@ TEST(CausticPasses, SceneWithoutACasterRendersDirectLightOnlyAndTracesNothing) {
   const CausticFrame with = render(d);
   EXPECT_TRUE(with.caustics.noCasters);
   EXPECT_EQ(with.caustics.passes, 0);
-  EXPECT_EQ(with.caustics.trace.emitted, 0u);
+  EXPECT_EQ(with.caustics.photons.trace.emitted, 0u);
   EXPECT_FALSE(with.lastMap);
   d.caustics.method = CausticMethod::None;
   const CausticFrame without = render(d);

@@ -499,9 +499,9 @@ TEST(LiveRenderer, PhotonMappedPassesAreProgressivePhotonMapping) {
   EXPECT_EQ(stats.photons.method, CausticMethod::PhotonMap);
   EXPECT_EQ(stats.photons.passes, kPasses);
   EXPECT_EQ(stats.photons.photonsPerPass, c.photons);
-  EXPECT_EQ(stats.photons.stored, gatherOf(passes.back()).map().size());
-  EXPECT_GT(stats.photons.mapBytes, stats.photons.stored * sizeof(Photon) - 1);
-  EXPECT_GT(stats.photons.photonsPerSecond, 0.0);
+  EXPECT_EQ(stats.photons.last.trace.stored, gatherOf(passes.back()).map().size());
+  EXPECT_GT(stats.photons.last.mapBytes, stats.photons.last.trace.stored * sizeof(Photon) - 1);
+  EXPECT_GT(stats.photons.last.photonsPerSecond(), 0.0);
   EXPECT_FLOAT_EQ(stats.photons.radius, settings.radius * settings.radiusScale);
 }
 

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <random>
 #include <thread>
 
@@ -260,6 +261,61 @@ TEST(PhotonPass, ARealSlaveStopsFindingTheRadiiOfADroppedPassAndSendsNothing) {
   // came in a fraction of it.
   const PhotonMap map(photons);
   EXPECT_LT(c.seconds, test::projectedRadiiSeconds(map, settings.k, settings.radius, 1) / 4);
+}
+
+// The one photon-pass sequence (trace, then map, radii and discs) gives the gather the two
+// halves give called one after the other, and counts the pass the same way.
+TEST(PhotonPass, OnePassIsTheTraceThenTheGather) {
+  const CausticPhotons c;
+  const PhotonTracer tracer(c.scene, 20000, c.scene.causticSettings().maxBounces);
+  WorkDispatcher alone(c.scene, nullptr, {});
+  PhotonPassStats inOne;
+  const auto gather = runPhotonPass(tracer, kPass, c.settings, 2, alone, inOne);
+  PhotonPassStats inTwo;
+  std::vector<Photon> photons = *tracePhotonPass(tracer, kPass, 2, alone, inTwo);
+  const auto reference = gatherFromPhotons(std::move(photons), kPass, c.settings, 2, alone, inTwo);
+  ASSERT_TRUE(gather);
+  ASSERT_EQ(gather->map().size(), reference->map().size());
+  EXPECT_EQ(std::memcmp(gather->map().photons().data(), reference->map().photons().data(),
+                        gather->map().size() * sizeof(Photon)),
+            0);
+  EXPECT_EQ(inOne.trace.stored, gather->map().size());
+  EXPECT_EQ(inOne.trace.emitted, inTwo.trace.emitted);
+  EXPECT_EQ(inOne.mapBytes, inTwo.mapBytes);
+  EXPECT_EQ(inOne.radiiByRank, inTwo.radiiByRank);
+}
+
+// A run's photon statistics are its passes added up: counts, times and bytes sent summed, the
+// largest map's bytes kept, and the per-rank counts summed rank by rank.
+TEST(PhotonPass, PassStatisticsAddUp) {
+  PhotonPassStats first;
+  first.trace.emitted = 1000;
+  first.trace.stored = 300;
+  first.traceSeconds = 0.5;
+  first.buildSeconds = 0.25;
+  first.distributeSeconds = 0.125;
+  first.radiiSeconds = 0.0625;
+  first.mapBytes = 4096;
+  first.sentBytes = 2048;
+  first.photonsByRank = {600, 400};
+  first.radiiByRank = {300};
+  PhotonPassStats second = first;
+  second.trace.stored = 200;
+  second.mapBytes = 1024;
+  second.photonsByRank = {500, 300, 200};
+  PhotonPassStats total = first;
+  total += second;
+  EXPECT_EQ(total.trace.emitted, 2000u);
+  EXPECT_EQ(total.trace.stored, 500u);
+  EXPECT_EQ(total.traceSeconds, 1.0);
+  EXPECT_EQ(total.buildSeconds, 0.5);
+  EXPECT_EQ(total.distributeSeconds, 0.25);
+  EXPECT_EQ(total.radiiSeconds, 0.125);
+  EXPECT_EQ(total.mapBytes, 4096u);
+  EXPECT_EQ(total.sentBytes, 4096u);
+  EXPECT_EQ(total.photonsByRank, (std::vector<uint64_t>{1100, 700, 200}));
+  EXPECT_EQ(total.radiiByRank, (std::vector<uint64_t>{600}));
+  EXPECT_EQ(total.photonsPerSecond(), 2000.0);
 }
 
 }  // namespace

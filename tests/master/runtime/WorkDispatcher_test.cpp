@@ -318,11 +318,11 @@ TEST(WorkDispatcher, RealSlavesOverTheLoopbackRenderTheSameCausticImage) {
   EXPECT_EQ(exitCodes[1], 0);
   EXPECT_EQ(exitCodes[2], 0);
   EXPECT_TRUE(bitIdentical(f.image, alone.image));
-  EXPECT_EQ(f.caustics.photonsByRank.size(), 3u);
-  EXPECT_GT(f.caustics.photonsByRank[1], 0u);
-  ASSERT_EQ(f.caustics.radiiByRank.size(), 3u);  // every rank found a share of the radii
-  EXPECT_GT(f.caustics.radiiByRank[1], 0u);
-  EXPECT_GT(f.caustics.radiiByRank[2], 0u);
+  EXPECT_EQ(f.caustics.photons.photonsByRank.size(), 3u);
+  EXPECT_GT(f.caustics.photons.photonsByRank[1], 0u);
+  ASSERT_EQ(f.caustics.photons.radiiByRank.size(), 3u);  // every rank found a share of the radii
+  EXPECT_GT(f.caustics.photons.radiiByRank[1], 0u);
+  EXPECT_GT(f.caustics.photons.radiiByRank[2], 0u);
   EXPECT_EQ(f.frames.workers[0].tiles, 0u);
   EXPECT_EQ(f.frames.workers[1].tiles + f.frames.workers[2].tiles, f.frames.tileCount);
 }
@@ -547,6 +547,69 @@ TEST(WorkDispatcher, BeginningAFrameEndsAQueuedOne) {
   renderUntilComplete(dispatcher);
   EXPECT_EQ(listener.finished(1), 0u);
   EXPECT_EQ(listener.finished(2), tiles.size());
+}
+
+// A listener may call the dispatcher from its calls, which come without the dispatcher's lock
+// (with it held, as they once were, the first call below deadlocked): each call asks how many
+// tiles are done, and the frame's last tile ends the frame, as the viewer ends a pass.
+class CallingBackListener : public FrameListener {
+ public:
+  CallingBackListener(WorkDispatcher& dispatcher, size_t tiles)
+      : dispatcher_(dispatcher), tiles_(tiles) {}
+  void tileAssigned(uint32_t, uint32_t, int) override {
+    assignedSeen_.push_back(dispatcher_.tilesDone());
+  }
+  void tileFinished(uint32_t frame, TileResult&&, int) override {
+    doneSeen_.push_back(dispatcher_.tilesDone());
+    if (doneSeen_.size() == tiles_) dispatcher_.endFrame(frame);
+    ++finished_;
+  }
+  size_t finished() const { return finished_; }
+  // Only after the threads stop:
+  const std::vector<size_t>& assignedSeen() const { return assignedSeen_; }
+  const std::vector<size_t>& doneSeen() const { return doneSeen_; }
+
+ private:
+  WorkDispatcher& dispatcher_;
+  size_t tiles_;
+  std::vector<size_t> assignedSeen_, doneSeen_;
+  std::atomic<size_t> finished_{0};
+};
+
+TEST(WorkDispatcher, AListenerMayCallTheDispatcherFromItsCalls) {
+  const Scene scene(smallScene());
+  DistributionOptions o;
+  o.threads = 2;
+  WorkDispatcher dispatcher(scene, nullptr, o);
+  const std::vector<TileRect> tiles = planTiles(64, 48, 16);
+  CallingBackListener listener(dispatcher, tiles.size());
+  dispatcher.beginFrame({1, tiles, nullptr, nullptr, true, -1}, &listener);
+  dispatcher.startLocalWorkers();
+  while (listener.finished() < tiles.size()) dispatcher.service(0.05);
+  EXPECT_EQ(dispatcher.tilesDone(), 0u);  // the listener ended the frame
+  dispatcher.stop();
+  dispatcher.join();
+  EXPECT_EQ(listener.assignedSeen().size(), tiles.size());
+  const std::vector<size_t>& done = listener.doneSeen();
+  ASSERT_EQ(done.size(), tiles.size());
+  // A tile is counted done before it is told, and the calls come one at a time, in order.
+  for (size_t i = 0; i < done.size(); ++i) EXPECT_GE(done[i], i + 1);
+  EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+}
+
+// Rank 0's threads are decided once, by the dispatcher (util/ThreadCount.h): the count the command
+// line names, or every available core; a frame renders with them.
+TEST(WorkDispatcher, DecidesRankZerosThreadsOnce) {
+  const Scene scene(smallScene());
+  WorkDispatcher unnamed(scene, nullptr, DistributionOptions{});
+  EXPECT_EQ(unnamed.localThreads(), availableCores());
+  DistributionOptions o;
+  o.threads = 3;
+  WorkDispatcher named(scene, nullptr, o);
+  EXPECT_EQ(named.localThreads(), 3);
+  FrameOptions frame;
+  frame.distribution = o;
+  EXPECT_EQ(renderFrame(named, frame).threads, 3);
 }
 
 }  // namespace
