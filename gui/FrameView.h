@@ -9,7 +9,7 @@
 #include <QTimer>
 #include <QWidget>
 
-#include "master/runtime/DisplayFrame.h"
+#include "master/live/DisplayFrame.h"
 
 class QPainter;
 

@@ -1,6 +1,6 @@
 // The viewer window: the live frame in the middle, a side panel with the render controls and
 // the statistics, menus for saving the image and loading a speedup table, and the keys listed
-// in gui/HelpText.h. It drives a LiveSource (master/runtime/LiveSource.h): the renderer in this
+// in gui/HelpText.h. It drives a LiveSource (master/live/LiveSource.h): the renderer in this
 // process, or a job over a connection, the same way. Every camera or setting change asks the
 // source for a new view; the source's news (display bytes of what changed, the pass on show,
 // statistics) is taken whenever the source wakes the window.
@@ -14,8 +14,8 @@
 
 #include "gui/CameraController.h"
 #include "gui/LightSpaceImage.h"
-#include "master/runtime/DisplayFrame.h"
-#include "master/runtime/LiveSource.h"
+#include "master/live/DisplayFrame.h"
+#include "master/live/LiveSource.h"
 #include "scene/CausticMethods.h"
 
 class QSpinBox;

@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "gui/FrameView.h"
-#include "master/runtime/ResourceCheck.h"
+#include "master/frame/ResourceCheck.h"
 
 using namespace QtCharts;
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "gui/SpeedupCsv.h"
-#include "master/runtime/LiveRenderer.h"
+#include "master/live/LiveRenderer.h"
 
 class QLabel;
 class QTableWidget;

@@ -21,7 +21,7 @@
 #include "gui/MainWindow.h"
 #include "gui/StatsPanel.h"
 #include "image/ImageIo.h"
-#include "master/commands/RenderOptions.h"
+#include "master/live/CameraOptionsText.h"
 #include "util/Percentile.h"
 #include "util/PhysicalMemory.h"
 #include "util/Stopwatch.h"

@@ -1,12 +1,12 @@
 // The viewer window on a live source (`prism view` on rank 0: LiveRenderer on the coordinator
 // thread, the one that calls MPI; `prism connect`: a job's over a connection): the Qt
 // application, the window and the source's run() on a thread of its own. Matches ViewerRunner
-// (master/commands/ViewCommand.h).
+// (master/live/ViewerRunner.h).
 #pragma once
 
 #include <iosfwd>
 
-#include "master/commands/ViewCommand.h"
+#include "master/live/ViewerRunner.h"
 
 namespace prism {
 

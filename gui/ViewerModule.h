@@ -9,7 +9,7 @@
 #include <string>
 
 #include "master/analysis/Chart.h"
-#include "master/commands/ViewCommand.h"
+#include "master/live/ViewerRunner.h"
 
 namespace prism {
 

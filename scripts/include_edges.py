@@ -2,7 +2,8 @@
 """Lists the include edges between Prism's source folders and the cycles among them.
 
 A folder is a directory of common/ (common/scene, common/render, ...) or of master/
-(master/runtime, master/analysis, master/commands), or one of the rank folders slave and gui. master/main.cpp, the composition root that may include every
+(master/dispatch, master/frame, master/live, master/analysis, master/commands, ...), or one of
+the rank folders slave and gui. master/main.cpp, the composition root that may include every
 folder, counts as a node of its own ("main"). An edge A -> B means some file in A includes a file in B.
 The script resolves each quoted include the way the build does: first against the repository
 root (master/..., slave/..., gui/...), then against common/ (the core's include root).

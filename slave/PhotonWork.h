@@ -85,7 +85,7 @@ class PhotonWork {
   uint32_t mapPass_ = 0;
   std::shared_ptr<const CausticEstimator> caustics_;  // the photon map of pass mapPass_
   // The last map sent with keep, as a gather, and its pass: the viewer names it again for every
-  // later view's pass 1 (master/runtime/LiveRenderer.h), where sending and finding its radii again
+  // later view's pass 1 (master/live/LiveRenderer.h), where sending and finding its radii again
   // held this rank's tiles up after every pause of the camera.
   std::shared_ptr<const CausticEstimator> kept_;
   uint32_t keptPass_ = 0;

@@ -48,7 +48,7 @@ SlaveEnd SlaveSession::run() {
 
 std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
   // First what this CPU runs: rank 0 chooses the job's instruction set from every rank's answer
-  // before it broadcasts the scene (master/runtime/JobInstructionSet.h).
+  // before it broadcasts the scene (master/dispatch/JobInstructionSet.h).
   try {
     transport_.send(0, wire::encode(wire::HelloMessage{runnableInstructionSets(), cpuModelName()}));
   } catch (const std::invalid_argument& e) {  // a bad PRISM_TEST_CPU_LIMIT: rank 0 reports it

@@ -28,7 +28,7 @@ class PhotonGather : public CausticEstimator {
   PhotonGather(std::shared_ptr<const PhotonMap> map, const PhotonGatherSettings& settings,
                int threads = 0);
   // With the per-photon radii found already (photonRadii(), by photon index, before
-  // radiusScale): by the ranks of a run together (master/runtime/PhotonPass.h). The disc tree is
+  // radiusScale): by the ranks of a run together (master/frame/PhotonPass.h). The disc tree is
   // built on up to `threads` threads.
   PhotonGather(std::shared_ptr<const PhotonMap> map, const PhotonGatherSettings& settings,
                std::vector<float> radii, int threads = 0);

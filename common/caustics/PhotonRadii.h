@@ -2,7 +2,7 @@
 // search per photon, bounded by the radii of the photons placed just before it, and a selection
 // among the distances it returns (no sorted insert of each candidate, which cost most at k = 400).
 // Photons are placed in chunks of the tree's spatial order, each chunk on its own, so the ranks of
-// a run can find the radii of a share each (master/runtime/PhotonPass.h) and get every radius as
+// a run can find the radii of a share each (master/frame/PhotonPass.h) and get every radius as
 // one rank finding them all would.
 #pragma once
 

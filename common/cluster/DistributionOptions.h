@@ -7,7 +7,7 @@
 namespace prism {
 
 // Dynamic: one pull queue in row-major order. Static: tile i belongs to worker i mod W, for
-// honest comparison with the dynamic one (master/runtime/TileScheduler.h).
+// honest comparison with the dynamic one (master/dispatch/TileScheduler.h).
 enum class Schedule { Dynamic, Static };
 
 struct DistributionOptions {

@@ -21,7 +21,7 @@ struct SettingLimit {
 namespace limits {
 
 // Image sides: 2^20 keeps pixel indices far from overflow; memory refuses large frames first
-// (master/runtime/ResourceCheck.h).
+// (master/frame/ResourceCheck.h).
 inline constexpr SettingLimit kWidth{"width", "--width", 1, 1 << 20};
 inline constexpr SettingLimit kHeight{"height", "--height", 1, 1 << 20};
 // 65536 samples per pixel take days per frame at any resolution.

@@ -280,7 +280,7 @@ struct ErrorMessage {
 // Slave to master, once it has decoded the scene and checked it against its own memory (an
 // Error says why not): rank 0 builds nothing before every slave has answered. What the slave
 // builds with, for rank 0's choice between every rank building and broadcasting its build
-// (master/runtime/GeometryShare.h).
+// (master/dispatch/GeometryShare.h).
 struct SceneAcceptedMessage {
   int32_t threads = 1;      // threads it builds and renders with
   int32_t cores = 1;        // its machine's cores

@@ -8,7 +8,7 @@
 
 #include "master/analysis/ScalingMetrics.h"
 #include "master/analysis/TileScheduleSimulator.h"
-#include "master/runtime/SlaveLink.h"
+#include "master/dispatch/SlaveLink.h"
 
 namespace prism {
 

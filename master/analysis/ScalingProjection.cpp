@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "master/analysis/TileScheduleSimulator.h"
-#include "master/runtime/TilePlan.h"
+#include "master/frame/TilePlan.h"
 #include "wire/Messages.h"
 
 namespace prism {

@@ -9,7 +9,7 @@
 
 #include "master/analysis/NumberText.h"
 #include "master/analysis/ScalingProjection.h"
-#include "master/runtime/ScheduleNames.h"
+#include "master/dispatch/ScheduleNames.h"
 
 namespace prism {
 namespace {

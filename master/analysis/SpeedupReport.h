@@ -12,7 +12,7 @@
 
 #include "master/analysis/LinkProbe.h"
 #include "master/analysis/ScalingMetrics.h"
-#include "master/runtime/TileScheduler.h"
+#include "master/dispatch/TileScheduler.h"
 
 namespace prism {
 

@@ -10,7 +10,7 @@
 
 #include "caustics/MirrorCausticEstimator.h"
 #include "image/ImageIo.h"
-#include "master/runtime/CausticPasses.h"
+#include "master/frame/CausticPasses.h"
 #include "util/AtomicFile.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "master/runtime/TilePlan.h"
+#include "master/frame/TilePlan.h"
 
 namespace prism {
 

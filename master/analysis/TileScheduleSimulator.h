@@ -1,5 +1,5 @@
-// A discrete-event simulation of the master's tile queue (master/runtime/FrameRenderer.cpp,
-// master/runtime/TileScheduler.h) for any number of workers, so `prism speedup` can project past
+// A discrete-event simulation of the master's tile queue (master/frame/FrameRenderer.cpp,
+// master/dispatch/TileScheduler.h) for any number of workers, so `prism speedup` can project past
 // the machine it measured on. It replays measured per-tile render times and a measured link:
 //   - the master keeps `prefetch` tiles in flight per worker, refilling a worker when one of
 //     its results arrives (dynamic: the next tile of one shared queue; static: the next of the
@@ -17,7 +17,7 @@
 #include <limits>
 #include <vector>
 
-#include "master/runtime/TileScheduler.h"
+#include "master/dispatch/TileScheduler.h"
 
 namespace prism {
 

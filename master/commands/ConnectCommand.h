@@ -7,7 +7,7 @@
 #include <string>
 
 #include "master/commands/ViewCommand.h"
-#include "master/commands/ViewerOptions.h"
+#include "master/live/ViewerOptions.h"
 
 namespace prism {
 

@@ -35,7 +35,7 @@ class ProgressBar {
 };
 
 // A bar per stage of a run ("trace photons", "render", "pass 2/8", ...): a stage's first
-// report ends the bar before it and starts its own. As PassProgress (master/runtime/
+// report ends the bar before it and starts its own. As PassProgress (master/frame/
 // CausticPasses.h) wants it.
 class StageProgress {
  public:

@@ -11,7 +11,7 @@
 #include "master/commands/PartialFrame.h"
 #include "master/commands/ProgressBar.h"
 #include "master/commands/RunSummary.h"
-#include "master/runtime/CausticPasses.h"
+#include "master/frame/CausticPasses.h"
 #include "util/InterruptSignal.h"
 #include "util/Stopwatch.h"
 

@@ -1,7 +1,6 @@
 #include "master/commands/RenderOptions.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -30,15 +29,6 @@ Vec3 parseVec3(const std::string& text) {
     at = end + 1;
   }
   return {v[0], v[1], v[2]};
-}
-
-std::string cameraOptionsText(const CameraDesc& camera) {
-  char text[160];
-  const Vec3& p = camera.position;
-  const Vec3& l = camera.lookAt;
-  std::snprintf(text, sizeof text, "--camera-position %.9g,%.9g,%.9g --look-at %.9g,%.9g,%.9g", p.x,
-                p.y, p.z, l.x, l.y, l.z);
-  return text;
 }
 
 void applyOverrides(const RenderOptions& o, RenderSettings& s) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "cluster/DistributionOptions.h"
-#include "master/runtime/GeometryShare.h"
+#include "master/dispatch/GeometryShare.h"
 #include "scene/SceneDescription.h"
 
 namespace prism {
@@ -55,11 +55,8 @@ void applyOverrides(const RenderOptions& options, RenderSettings& settings);
 void applyOverrides(const RenderOptions& options, CausticSettings& caustics);
 void applyOverrides(const RenderOptions& options, CameraDesc& camera);
 
-// "X,Y,Z" as three floats (each as printed with 9 significant digits comes back exactly).
-// Throws std::invalid_argument.
+// "X,Y,Z" as three floats (each as printed with 9 significant digits comes back exactly; the
+// viewer prints a view so: master/live/CameraOptionsText.h). Throws std::invalid_argument.
 Vec3 parseVec3(const std::string& text);
-// The options that render this camera's view: "--camera-position X,Y,Z --look-at X,Y,Z", each
-// number printed so that it reads back as the same float.
-std::string cameraOptionsText(const CameraDesc& camera);
 
 }  // namespace prism

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "master/runtime/ResourceCheck.h"
-#include "master/runtime/ScheduleNames.h"
+#include "master/dispatch/ScheduleNames.h"
+#include "master/frame/ResourceCheck.h"
 
 namespace prism {
 namespace {

@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "master/runtime/CausticPasses.h"
-#include "master/runtime/FrameRenderer.h"
+#include "master/frame/CausticPasses.h"
+#include "master/frame/FrameRenderer.h"
 #include "scene/Scene.h"
 
 namespace prism {

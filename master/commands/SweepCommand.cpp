@@ -11,7 +11,7 @@
 #include "master/analysis/SweepReport.h"
 #include "master/commands/MasterSession.h"
 #include "master/commands/ProgressBar.h"
-#include "master/runtime/CausticPasses.h"
+#include "master/frame/CausticPasses.h"
 #include "transport/Transport.h"
 #include "util/AtomicFile.h"
 #include "util/Parallel.h"

@@ -7,8 +7,8 @@
 #include "image/ImageIo.h"
 #include "master/commands/MasterSession.h"
 #include "master/commands/PartialFrame.h"
+#include "master/live/LocalLiveSource.h"
 #include "master/remote/ViewServer.h"
-#include "master/runtime/LocalLiveSource.h"
 #include "util/InterruptSignal.h"
 #include "util/PhysicalMemory.h"
 

@@ -4,12 +4,12 @@
 // build without Qt says so clearly.
 #pragma once
 
-#include <functional>
 #include <iosfwd>
 #include <string>
 
 #include "master/commands/RenderCommand.h"
-#include "master/commands/ViewerOptions.h"
+#include "master/live/ViewerOptions.h"
+#include "master/live/ViewerRunner.h"
 #include "master/remote/ServeOptions.h"
 #include "scene/Scene.h"
 
@@ -26,12 +26,6 @@ struct ViewOptions {
 };
 
 class Transport;
-class LiveSource;
-
-// Runs the viewer window on a live source (in this process, or a job's over a connection);
-// returns the process exit code.
-using ViewerRunner = std::function<int(LiveSource& source, const ViewerOptions& options,
-                                       std::ostream& out, std::ostream& err)>;
 
 // Rank 0 loads and broadcasts the scene and runs `viewer`; other ranks are slaves exactly as
 // in `render`. Without a viewer (Qt was not found at build time) it fails with a clear error.

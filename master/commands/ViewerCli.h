@@ -3,7 +3,7 @@
 #pragma once
 
 #include "master/commands/ConnectCommand.h"
-#include "master/commands/ViewerOptions.h"
+#include "master/live/ViewerOptions.h"
 #include "master/remote/ServeOptions.h"
 
 namespace CLI {

@@ -11,10 +11,10 @@
 #include <optional>
 #include <string>
 
+#include "master/live/LiveSource.h"
+#include "master/live/NewsBoard.h"
 #include "master/remote/ConnectionFile.h"
 #include "master/remote/Socket.h"
-#include "master/runtime/LiveSource.h"
-#include "master/runtime/NewsBoard.h"
 
 namespace prism {
 

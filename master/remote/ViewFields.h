@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "master/runtime/DisplayNews.h"
-#include "master/runtime/LiveSource.h"
+#include "master/live/DisplayNews.h"
+#include "master/live/LiveSource.h"
 #include "wire/MessageParts.h"
 #include "wire/SceneCodec.h"
 #include "wire/WireEnums.h"

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "master/runtime/DisplayNews.h"
-#include "master/runtime/LiveSource.h"
+#include "master/live/DisplayNews.h"
+#include "master/live/LiveSource.h"
 #include "wire/ByteBuffer.h"
 #include "wire/Fields.h"
 

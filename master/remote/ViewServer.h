@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "master/live/LiveSource.h"
 #include "master/remote/Endpoint.h"
 #include "master/remote/ServeOptions.h"
 #include "master/remote/Socket.h"
 #include "master/remote/ViewerConnection.h"
-#include "master/runtime/LiveSource.h"
 
 namespace prism {
 

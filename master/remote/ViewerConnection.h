@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "master/live/LiveSource.h"
 #include "master/remote/Socket.h"
-#include "master/runtime/LiveSource.h"
 
 namespace prism {
 

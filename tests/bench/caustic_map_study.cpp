@@ -17,7 +17,7 @@
 #include "caustics/CausticMapEstimator.h"
 #include "caustics/PhotonGather.h"
 #include "caustics/PhotonTracer.h"
-#include "master/runtime/CausticPasses.h"
+#include "master/frame/CausticPasses.h"
 #include "tests/common/caustics/CausticMapCases.h"
 #include "util/Stopwatch.h"
 

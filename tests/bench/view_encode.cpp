@@ -12,9 +12,9 @@
 
 #include "MedianTime.h"
 #include "image/DisplayBytes.h"
+#include "master/frame/CausticPasses.h"
+#include "master/frame/FrameRenderer.h"
 #include "master/remote/ViewProtocol.h"
-#include "master/runtime/CausticPasses.h"
-#include "master/runtime/FrameRenderer.h"
 #include "parse/SceneLoader.h"
 
 using namespace prism;

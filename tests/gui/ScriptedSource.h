@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "master/runtime/LiveSource.h"
-#include "master/runtime/LocalLiveSource.h"
-#include "master/runtime/NewsBoard.h"
+#include "master/live/LiveSource.h"
+#include "master/live/LocalLiveSource.h"
+#include "master/live/NewsBoard.h"
 
 namespace prism {
 

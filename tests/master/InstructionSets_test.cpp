@@ -1,4 +1,4 @@
-// One instruction set per job (util/InstructionSet.h, master/runtime/JobInstructionSet.h), end to
+// One instruction set per job (util/InstructionSet.h, master/dispatch/JobInstructionSet.h), end to
 // end: every rank reports what its CPU runs, rank 0 picks the best they all run (or the forced
 // one) and every rank renders with it, so a job whose rank runs less gives that set's image, the
 // same one process gives. A rank plays an older CPU through PRISM_TEST_CPU_LIMIT.

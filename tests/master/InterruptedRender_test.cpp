@@ -18,7 +18,7 @@
 #include "PrismProcess.h"
 #include "image/ImageIo.h"
 #include "master/commands/PartialFrame.h"
-#include "master/runtime/TilePlan.h"
+#include "master/frame/TilePlan.h"
 
 extern char** environ;
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "cluster/DistributionOptions.h"
-#include "master/runtime/JobInstructionSet.h"
-#include "master/runtime/SlaveRollCall.h"
+#include "master/dispatch/JobInstructionSet.h"
+#include "master/dispatch/SlaveRollCall.h"
 #include "scene/SceneDescription.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
@@ -30,7 +30,7 @@ inline std::thread startRealSlave(LoopbackNetwork& network, int rank, int* exitC
 
 // Rank 0's side of the start of a job whose slaves have started: their Hellos, the job's
 // instruction set chosen from them (the best all run), the scene broadcast with it, every
-// slave's SceneAccepted and the go-ahead to build (master/commands/MasterSession.cpp). A slave
+// slave's SceneAccepted and the go-ahead to build (master/dispatch/DispatchSession.cpp). A slave
 // that refuses the scene is told so (an Error broadcast) and std::runtime_error thrown.
 inline void sendSceneAsRankZero(LoopbackNetwork& network, SceneDescription d) {
   Transport& master = network.endpoint(0);

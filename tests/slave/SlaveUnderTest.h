@@ -71,7 +71,7 @@ class SlaveUnderTest {
   LoopbackNetwork& network() { return network_; }
 
   void broadcast(const SceneDescription& d) { broadcastBytes(wire::encodeScene(d)); }
-  // As rank 0 does: the slave's Hello first (master/runtime/JobInstructionSet.h), kept apart
+  // As rank 0 does: the slave's Hello first (master/dispatch/JobInstructionSet.h), kept apart
   // from seen(), then the broadcast; then, unless the bytes were an Error (the slave stops at
   // once), the slave's answer (kept in seen()) and the plan: `plan` when it accepted (by
   // default the go-ahead to build), else an Error.

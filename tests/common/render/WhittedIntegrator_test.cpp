@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-#include "master/runtime/FrameRenderer.h"
+#include "master/frame/FrameRenderer.h"
 #include "scene/Camera.h"
 #include "shading/Optics.h"
 

@@ -13,7 +13,7 @@
 
 #include "../geometry/TestMeshes.h"
 #include "accel/PrimitiveRef.h"
-#include "master/runtime/FrameRenderer.h"
+#include "master/frame/FrameRenderer.h"
 #include "math/Random.h"
 #include "parse/SceneLoader.h"
 

@@ -6,7 +6,7 @@
 
 #include <limits>
 
-#include "master/runtime/TilePlan.h"
+#include "master/frame/TilePlan.h"
 #include "wire/Messages.h"
 
 namespace prism {

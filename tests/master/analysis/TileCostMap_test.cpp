@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include "master/runtime/TilePlan.h"
+#include "master/frame/TilePlan.h"
 
 namespace prism {
 namespace {

@@ -15,11 +15,11 @@
 #include <thread>
 
 #include "image/ToneMap.h"
+#include "master/frame/CausticPasses.h"
+#include "master/frame/FrameRenderer.h"
+#include "master/live/DisplayFrame.h"
+#include "master/live/LocalLiveSource.h"
 #include "master/remote/ViewClient.h"
-#include "master/runtime/CausticPasses.h"
-#include "master/runtime/DisplayFrame.h"
-#include "master/runtime/FrameRenderer.h"
-#include "master/runtime/LocalLiveSource.h"
 #include "parse/SceneLoader.h"
 
 namespace prism {
