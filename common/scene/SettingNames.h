@@ -69,7 +69,7 @@ inline constexpr NamedValue<CausticMethod> kCausticMethodList[] = {
     {"none", CausticMethod::None},
     {"photon_map", CausticMethod::PhotonMap},
     {"caustic_map", CausticMethod::CausticMap}};
-// "map" is the short name the design brief uses for caustic mapping.
+// "map" is the short name users write for caustic mapping.
 inline constexpr NamedValue<CausticMethod> kCausticMethodAliases[] = {
     {"map", CausticMethod::CausticMap}};
 inline constexpr NameTable<CausticMethod> kCausticMethodNames{kCausticMethodList,
