@@ -1,4 +1,4 @@
-// The seed thesis's debug views of caustic mapping, as the viewer shows them on R, P and C: the
+// Caustic mapping's debug views (Shah et al. 2007), as the viewer shows them on R, P and C: the
 // light-space maps of every light that has one (common/caustics/CausticMapImages.h), each
 // light's views side by side and the lights one above the other, display-encoded like
 // `prism render --caustic-map-debug`.

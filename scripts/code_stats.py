@@ -5,7 +5,7 @@ Functions are found by brace matching: a '{' that opens a body after ')' (option
 const, noexcept, override, an initializer list or a trailing return type) at namespace or class
 level starts a function; its length runs to the matching '}'. Lambdas inside a body count
 towards their function. Comments and string literals are skipped. A heuristic, good enough
-for the sizes the architecture issue asks about; it never parses templates' angle brackets.
+for the file and function sizes it reports; it never parses templates' angle brackets.
 
 Usage: scripts/code_stats.py [--files N] [--functions N] [FOLDER ...]
   (default: --files 400 --functions 80, folders master slave common gui)

@@ -97,8 +97,9 @@ void bindChannels(Pipeline& pipe, const exr_chunk_info_t& chunk, int width, uint
 
 // OpenEXR 3.1's zlib encoder (ZIP, ZIPS) stores the deflated bytes when they come out exactly as
 // long as the raw chunk, and every reader then takes them for raw pixels: a row of garbage, seen
-// here on a rendered frame (openexr issue 2306, fixed upstream in 3.4). The raw bytes are what
-// the format wants in that case, so this wrapper around the library's compressor stores them.
+// here on a rendered frame (AcademySoftwareFoundation/openexr#2306, fixed in 3.4). The raw bytes
+// are what the format wants in that case, so this wrapper around the library's compressor stores
+// them.
 struct GuardedCompressor {
   exr_result_t (*compress)(exr_encode_pipeline_t*) = nullptr;
 };

@@ -69,7 +69,7 @@ inline constexpr NameTable<TriangleTest> kTriangleTestNames{kTriangleTestList};
 inline constexpr NamedValue<CausticMethod> kCausticMethodList[] = {
     PRISM_CAUSTIC_METHODS(PRISM_CAUSTIC_NAME)};
 #undef PRISM_CAUSTIC_NAME
-// "map" is the short name of caustic mapping.
+// "map" is the short name users write for caustic mapping.
 inline constexpr NamedValue<CausticMethod> kCausticMethodAliases[] = {
     {"map", CausticMethod::CausticMap}};
 inline constexpr NameTable<CausticMethod> kCausticMethodNames{kCausticMethodList,

@@ -37,18 +37,8 @@ class SceneGeometry;
 namespace prism::wire {
 
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
-// 2: TileJob carries the pass and its light terms; photon messages. 3: the View message.
-// 4: PhotonJob carries the photon budget (the viewer changes it while the slaves run).
-// 5: the caustic-map term of TileJob, the view's caustic-map blur switch, and the Echo
-// message (`prism speedup` measures the links with it). 6: View names the oldest frame still
-// running (pipelined frames) and says whether one sample per pixel is jittered. 7: PhotonCancel.
-// 8: the automatic k (gather: auto) in the scene's caustics and the photon map's gather.
-// 9: a View's display exposure, and TileResults as display bytes for frames only shown.
-// 10: PhotonMap's keep flag and PhotonMapAgain (the viewer's later passes 1 reuse a kept map).
-// 11: PhotonRadiiJob, PhotonRadiiShare and PhotonRadii (the ranks find a map's radii together).
-// 12: the render settings carry the job's instruction set; the Hello message (each slave's CPU).
-// 13: cube-map faces read from 8-bit files travel as their sRGB bytes.
-// 14: SceneAccepted, BuildGeometry and Geometry (rank 0 broadcasts the geometry it built).
+// Bumped whenever any message's bytes change, so builds that would misread each other refuse
+// each other's messages instead.
 inline constexpr uint16_t kVersion = 15;
 // magic u32, version u16, type u16, payload size u64, payloadChecksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;

@@ -1,10 +1,9 @@
 // A progressive run's time budget (`--time-budget`, the scene's time_budget), read as its user
 // reads it: from the command's start to the written image, set-up, direct light and the write
-// included. Passes used to be counted from the first caustic pass only, and a pass started just
-// before the budget ran out ran to its end: a 3.3 s budget ran 4.7 s in all (issue 53). Now a
-// pass starts only if, as long as the longest pass so far, it would end with time left to write
-// the image. Pure arithmetic on times measured elsewhere, so that the rule is tested without a
-// clock.
+// included. A pass starts only if, as long as the longest pass so far, it would end with time
+// left to write the image: a pass started just before the budget ran out and run to its end
+// would overrun it. Pure arithmetic on times measured elsewhere, so that the rule is tested without
+// a clock.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 54's targets in one run: the 5 M-triangle torus (tests/bench/make_big_mesh.py) from
+# Big-scene start-up in one run: the 5 M-triangle torus (tests/bench/make_big_mesh.py) from
 # `prism render` start to the first tile, as binary PLY and as OBJ on one process with 2
 # threads and on 3 ranks of this machine, then the 20 M torus's peak against the memory its
 # scene holds. Rounds alternate the binaries given; prints every round and the medians.

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Whole-job efficiency of 2 MPI ranks against one process, for one or more Prism builds.
 
-The issue's measure: a frame of a few seconds rendered by one process with one thread, and by
+The measure: a frame of a few seconds rendered by one process with one thread, and by
 `mpirun -np 2` with one thread per rank; efficiency = one-process wall / (2 x job wall), both
 whole processes (launch, MPI_Init, parse, broadcast, build, render, write, MPI_Finalize).
 Each round runs the one-process render and then every variant's 2-rank job, in an order that

@@ -13,7 +13,7 @@ using namespace prism::wire;
 
 // The type byte of the harness's second form is taken modulo the smallest power of two above the
 // largest type number: every known type is reached, and so are unknown ones (0 and those past the
-// largest), which must be refused. (It was 16, which left types 16 and 17 out.)
+// largest), which must be refused.
 constexpr int typeByteRange() {
   int largest = 0;
   for (int raw = 0; raw <= UINT16_MAX; ++raw) {

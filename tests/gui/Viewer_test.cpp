@@ -74,7 +74,7 @@ TEST_F(Viewer, TwoRanksRenderPhotonMappedPassesLikeOne) {
     different += glm::length(with.pixels[i] - without.pixels[i]) > 0.05f;
   }
   // 1 % of the pixels (measured 15 of 1200: each photon spreads over its own k-NN radius, narrow
-  // at the focus; the old single wide radius had smeared the caustic over more of them).
+  // at the focus; one wide radius for all would smear the caustic over more of them).
   EXPECT_GT(different, with.pixels.size() / 100);
 }
 

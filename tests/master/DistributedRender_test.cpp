@@ -484,7 +484,7 @@ TEST_F(DistributedRender, CrashedSlaveDuringAPhotonPassUnderEnableRecoveryGivesT
 }
 
 // Budgets smaller than the ranks: with 2 photons two of three ranks trace none (no job is sent,
-// and none is waited for: such a run used to wait for them forever), and 40 photons store fewer
+// and none is waited for, or the run would wait for them forever), and 40 photons store fewer
 // than one chunk of radii (24 of them, as the stratified emission and roulette keep
 // them), found by one rank. The pixels are one process's.
 TEST_F(DistributedRender, PhotonSharesAndRadiiSharesLeftEmptyAreNotWaitedFor) {

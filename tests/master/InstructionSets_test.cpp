@@ -99,8 +99,8 @@ TEST_F(InstructionSets, EachSetGivesOneImageOnOneProcessAndOnThreeRanks) {
   }
 }
 
-// The sets may round differently (issue 52's rule: pixels may change with a kernel's
-// arithmetic), but none may be less accurate: against a 256-spp render, each set's 16-spp
+// The sets may round differently (pixels may change with a kernel's arithmetic, never within
+// a job), but none may be less accurate: against a 256-spp render, each set's 16-spp
 // render has the baseline's RMSE within 1 %.
 TEST_F(InstructionSets, EverySetIsAsAccurateAsTheBaseline) {
   const std::string scene = std::string(PRISM_SOURCE_DIR) + "/scenes/default.yaml -W 64 -H 36 -q";

@@ -1,6 +1,7 @@
 // Ctrl-C during `prism render` (docs/reliability.md, "Nothing lost"): the real executable, alone
 // and under mpiexec, interrupted once some tiles are done (the hidden --status-file says how
-// many). Every rank must be gone within two seconds; --save-partial writes the finished tiles,
+// many). Every rank must end on its own, not by a fallback's timeout; --save-partial writes the
+// finished tiles,
 // bit-identical to a full render's, to <output>.partial.<ext>, marked partial, the rest striped;
 // without it nothing is written and an existing frame is left alone.
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "HangGuard.h"
 #include "PrismProcess.h"
 #include "image/ImageIo.h"
 #include "master/commands/PartialFrame.h"
@@ -214,17 +216,15 @@ TEST_F(InterruptedRender, SigintToRankZeroStopsEveryRankAndSavesTheFinishedTiles
   const Spawned run = spawn(mpiexec() + " render " + kQuick + " -o " + path("frame.exr") +
                                 " --save-partial --status-file " + path("status"),
                             path("log"));
-  const SignalledJob job = signalRankZero(run, SIGINT, 10.0);
+  const SignalledJob job = signalRankZero(run, SIGINT, test::kHangSeconds);
   ASSERT_TRUE(job.signalled);
   const double gone = job.gone;
   const int exitCode = job.exitCode;
   const std::string& log = job.log;
   std::printf("every rank gone %.3f s after SIGINT to rank 0\n", gone);
   EXPECT_GE(gone, 0.0) << log;
-  // About 0.05 s alone and 0.14-0.25 s beside builds (docs/reliability.md); once in a full
-  // `ctest -j2` run 2.01 s. What this guards against is a rank left waiting: rank 0 gives up on
-  // acknowledgements after 10 s, mpiexec kills after its own seconds.
-  EXPECT_LT(gone, 5.0) << log;
+  // A slave left waiting would be given up on by rank 0 after 10 s, with this line.
+  EXPECT_EQ(log.find("did not acknowledge the end of the job"), std::string::npos) << log;
   EXPECT_EQ(exitCode, 130) << log;
 
   EXPECT_FALSE(fs::exists(path("frame.exr"))) << "an interrupted frame is never the finished one";
@@ -253,12 +253,11 @@ TEST_F(InterruptedRender, SigintToMpiexecStopsEveryRankAndSavesAMarkedPartialPng
   processes.push_back(run.pid);
   const auto signalled = Clock::now();
   ::kill(run.pid, SIGINT);
-  const double gone = secondsUntilGone(processes, signalled, 10.0);
-  const int exitCode = reap(run.pid, 10.0);
+  const double gone = secondsUntilGone(processes, signalled, test::kHangSeconds);
+  const int exitCode = reap(run.pid, test::kHangSeconds);
   const std::string log = readFile(run.log);
   std::printf("mpiexec and every rank gone %.3f s after SIGINT to mpiexec\n", gone);
   EXPECT_GE(gone, 0.0) << log;
-  EXPECT_LT(gone, 2.5) << log;  // mpiexec's own second before SIGTERM, then ours
   EXPECT_NE(exitCode, 0) << log;
 
   if (fs::exists(path("frame.png"))) {
@@ -277,13 +276,15 @@ TEST_F(InterruptedRender, WithoutSavePartialNothingIsWrittenAndTheExistingFrameI
                           " --status-file " + path("status"),
                       path("log"));
   ASSERT_TRUE(waitForTiles(path("status"), 2, 60.0)) << readFile(run.log);
-  const auto signalled = Clock::now();
   ::kill(run.pid, SIGINT);
-  const int exitCode = reap(run.pid, 10.0);
-  const double gone = secondsSince(signalled);
+  const int exitCode = reap(run.pid, test::kHangSeconds);
   const std::string log = readFile(run.log);
   EXPECT_EQ(exitCode, 130) << log;
-  EXPECT_LT(gone, 2.0) << log;
+  // Stopped by the signal, not at the frame's end: tiles were left.
+  const std::string said = "interrupted by SIGINT: ";
+  const size_t at = log.find(said);
+  ASSERT_NE(at, std::string::npos) << log;
+  EXPECT_LT(std::stoul(log.substr(at + said.size())), 240u) << log;
   EXPECT_EQ(readFile(path("frame.png")), "an earlier, finished frame");
   EXPECT_FALSE(fs::exists(path("frame.partial.png")));
   EXPECT_NE(log.find("nothing written (--save-partial keeps the finished tiles)"),
@@ -304,11 +305,10 @@ TEST_F(InterruptedRender, SlavesEndOnTheirOwnWhenRankZeroIsKilled) {
       spawn("mpiexec -n 3 --oversubscribe --enable-recovery " + prism() + " render " + kSlow +
                 " -o " + path("frame.exr") + " --status-file " + path("status"),
             path("log"));
-  const SignalledJob job = signalRankZero(run, SIGKILL, 20.0);
+  const SignalledJob job = signalRankZero(run, SIGKILL, test::kHangSeconds);
   ASSERT_TRUE(job.signalled);
   std::printf("every rank gone %.3f s after SIGKILL to rank 0\n", job.gone);
-  EXPECT_GE(job.gone, 0.0) << job.log;
-  EXPECT_LT(job.gone, 5.0) << job.log;  // a heartbeat is 0.5 s
+  EXPECT_GE(job.gone, 0.0) << job.log;  // not after the slaves' 600 s master timeout
   // Under --enable-recovery Open MPI's mpiexec exits with 0 here (measured), whatever the
   // ranks' own exit codes: the missing frame and the slaves' lines are what tell.
   EXPECT_GE(job.exitCode, 0) << job.log;

@@ -1,6 +1,6 @@
 // Caustic mapping against closed forms and against photon mapping: an index-1 sphere passes the
 // light unchanged (the map must give the direct irradiance I·cos θ/d²), energy is never created,
-// the maps are finite, and on the glass-sphere seed scene the error against a converged photon
+// the maps are finite, and on the glass-sphere scene the error against a converged photon
 // map falls as the resolution rises.
 #include "caustics/CausticMap.h"
 

@@ -1,8 +1,8 @@
 // The photon estimate must conserve flux: integrated over the whole receiving plane it gives back
-// the power of the photons, whatever k, the filter and the shape of the lit region. The old
-// balloon estimate (the k nearest photons of the shading point) failed this: beyond the edge of a
-// lit disc its own disc reached back into the light, and the integral came out 1 % (k = 25) to
-// 5 % (k = 400, cone) too high, 10 % with the box filter — the classic-mode flux bias of issue 19.
+// the power of the photons, whatever k, the filter and the shape of the lit region. A balloon
+// estimate (the k nearest photons of the shading point) fails this: beyond the edge of a lit
+// disc its own disc reaches back into the light, and the integral comes out 1 % (k = 25) to
+// 5 % (k = 400, cone) too high, 10 % with the box filter.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -56,7 +56,7 @@ struct FluxCase {
 class PhotonGatherFlux : public testing::TestWithParam<FluxCase> {};
 
 // Tolerance 0.3 %: the midpoint rule's error over kernels a few grid steps wide (the cone's kink
-// at its centre is the worst; measured below 0.1 %), far under the 1–10 % of the old estimate.
+// at its centre is the worst; measured below 0.1 %), far under the balloon estimate's 1–10 %.
 TEST_P(PhotonGatherFlux, EstimateIntegratesToThePhotonsPower) {
   static const auto map = litDisc();
   const auto [k, filter] = GetParam();

@@ -4,10 +4,10 @@
 // is exactly rho^(2/3) of the whole. Photons drawn that way, gathered as the renderer gathers
 // them (per-photon radii shrunk pass by pass, pixel footprints, the renderer's own sample
 // pattern, the same in every pass), must give each pixel square around the focus its share.
-// Before each sample counted by its stratum's cell, a 4-spp pixel counted a focus narrower
-// than itself through a tent one pixel wider than itself, frozen with the sample pattern: after
-// 8 passes the focal pixel had 0.78 (4 spp) and 0.80 (9 spp) of its flux and the 3 × 3 pixels
-// about it 1.028 (9 spp) — the focus's surroundings biased high, as issue 53 measured.
+// A sample that counted the whole pixel's footprint about its own jittered hit would count a
+// focus narrower than the pixel through a tent one pixel wider, frozen with the sample pattern:
+// the focal pixel would keep about 0.8 of its flux at 4 and 9 spp and its surroundings read
+// high, however many passes.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -51,7 +51,7 @@ TEST_F(ExrFileTest, FloatsRoundTripBitExactlyWithEveryCompression) {
 }
 
 // A row of a rendered frame whose single-scanline deflate comes out exactly as long as the raw
-// row: OpenEXR 3.1 alone writes it as garbage (openexr issue 2306; ExrFile.cpp stores it raw).
+// row: OpenEXR 3.1 alone writes it as garbage (openexr#2306; ExrFile.cpp stores it raw).
 TEST_F(ExrFileTest, ARowThatDeflatesToItsOwnSizeSurvivesZip) {
   const std::optional<ImageRgb> row =
       readExr(std::string(PRISM_TEST_DATA_DIR) + "/images/zip-same-size-row.exr");

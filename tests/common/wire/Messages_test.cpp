@@ -152,7 +152,7 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
   bad[0] = 'Q';
   expectWireError([&] { decodeMessage(bad); }, "bad magic 0x4D535251");
 
-  // Every other version, older or newer, is refused.
+  // Every older version and a newer one are refused by name.
   for (uint16_t version = 1; version <= kVersion + 1; ++version) {
     if (version == kVersion) continue;
     bad = header(kMagic, version, 6, 0, fnv1a64(nullptr, 0));

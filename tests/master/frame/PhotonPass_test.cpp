@@ -13,6 +13,7 @@
 #include <random>
 #include <thread>
 
+#include "HangGuard.h"
 #include "caustics/GatherRadius.h"
 #include "caustics/PhotonRadii.h"
 #include "master/RealSlave.h"
@@ -57,10 +58,11 @@ void expectSameEstimates(const PhotonGather& gather, const CausticPhotons& c) {
   EXPECT_GT(compared, 100);
 }
 
+// The lease never runs out: a slave is retired by its silence or not at all.
 DistributionOptions patientLink(double heartbeatTimeoutSeconds) {
   DistributionOptions o;
   o.threads = 1;
-  o.leaseSeconds = 60.0;
+  o.leaseSeconds = test::kNeverSeconds;
   o.heartbeatTimeoutSeconds = heartbeatTimeoutSeconds;
   return o;
 }
@@ -131,14 +133,11 @@ TEST(PhotonPass, ASilentSlavesShareOfTheRadiiIsFoundByRankZero) {
   SlaveLink& link = dispatcher.link();
   link.receive(5.0);
   PhotonPassStats stats;
-  const auto start = std::chrono::steady_clock::now();
-  const auto gather = gatherFromPhotons(c.photons, kPass, c.settings, 1, dispatcher, stats);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto gather = test::unlessItHangs(
+      [&] { return gatherFromPhotons(c.photons, kPass, c.settings, 1, dispatcher, stats); });
   stop = true;
   script.join();
   EXPECT_TRUE(link.retired(1));
-  EXPECT_LT(seconds, 20.0);  // the lease is 60 s
   ASSERT_EQ(stats.radiiByRank.size(), 2u);
   EXPECT_EQ(stats.radiiByRank[0], c.photons.size());
   EXPECT_EQ(stats.radiiByRank[1], 0u);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "HangGuard.h"
 #include "caustics/CausticMapMemory.h"
 #include "caustics/PhotonGather.h"
 #include "image/DisplayBytes.h"
@@ -226,6 +227,14 @@ TEST(LiveRenderer, ANewViewEndsARefinementPassAndStopsItsTilesMidTile) {
   const Scene scene(d);
   LiveOptions options = liveOptions(2, 1, 1);
   options.distribution.tileSize = 44;  // two tiles, one a thread
+  // The slow path, timed here: pass 1's tiles rendered to their end on the same two threads,
+  // projected from the same frame at a 64th of the samples.
+  SceneDescription lighter = d;
+  lighter.render.samplesPerPixel = 16384 / 64;
+  const Scene lighterScene(lighter);
+  FrameOptions sameTiles;
+  sameTiles.distribution = options.distribution;
+  const double wholeTiles = 64 * test::secondsOf([&] { renderFrame(lighterScene, sameTiles); });
   LiveRenderer renderer(scene, options);
   Recorder recorder;
   std::thread coordinator([&] { renderer.run(recorder); });
@@ -261,7 +270,9 @@ TEST(LiveRenderer, ANewViewEndsARefinementPassAndStopsItsTilesMidTile) {
   // their row (the new frame did not wait for them) and never came back.
   EXPECT_TRUE(recorder.finished(passes[0].frame));
   EXPECT_FALSE(recorder.finished(passes[1].frame));
-  EXPECT_LT(secondsToNewFrame, 2.5);
+  // Tiles run to their end would keep the new frame waiting most of wholeTiles; stopped after
+  // their row, it waits a twentieth.
+  EXPECT_LT(secondsToNewFrame, wholeTiles / 4) << "the ended tiles take " << wholeTiles << " s";
   EXPECT_EQ(recorder.notCurrent(), 0u);
   const LiveStats stats = renderer.stats();
   EXPECT_EQ(stats.ranks[0].staleTiles, 0u);
@@ -663,8 +674,10 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
     }
   });
   LiveOptions options = liveOptions(1, 1, 1);
-  options.distribution.heartbeatTimeoutSeconds = 60.0;
-  options.distribution.leaseSeconds = 60.0;  // only the heartbeat can bring the tile back
+  // Lease and silence never run out: only the heartbeat can bring the tile back (the recorder's
+  // waits guard against the hang that would be otherwise).
+  options.distribution.heartbeatTimeoutSeconds = test::kNeverSeconds;
+  options.distribution.leaseSeconds = test::kNeverSeconds;
   LiveRenderer renderer(scene, options, &network.endpoint(0));
   Recorder recorder;
   std::exception_ptr failure;
@@ -675,11 +688,8 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
       failure = std::current_exception();
     }
   });
-  const auto start = std::chrono::steady_clock::now();
   renderer.setView({d.camera, d.render.samplesPerPixel, DebugView::Image});
   const bool finished = recorder.waitForFinished(1);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const LiveStats stats = renderer.stats();
   renderer.stop();
   coordinator.join();
@@ -688,7 +698,6 @@ TEST(LiveRenderer, OverTheLoopbackALatePhotonShareIsIgnoredAndALostTileComesBack
 
   ASSERT_TRUE(finished);
   EXPECT_FALSE(failure);
-  EXPECT_LT(seconds, 20.0);
   ASSERT_EQ(stats.ranks.size(), 2u);
   EXPECT_EQ(stats.ranks[1].lostTiles, 1u);
   EXPECT_GT(stats.ranks[1].tiles, 0u);
