@@ -15,6 +15,70 @@ namespace {
 // costs more than it saves.
 constexpr uint64_t kParallelGatherMinTriangles = 32768;
 
+// The shapes as the BVH takes them (a slanted cone in parts, geometry/ShapeKinds.h), with
+// their caustic bits, and the number of each kind's first part: the BVH numbers the kinds'
+// parts in the list's order.
+struct ShapeParts {
+  GeometryInput parts;
+  std::array<uint32_t, kShapeKindCount + 1> kindFirst{};
+};
+
+// The box of the shape part `ref` names among the gathered parts.
+Aabb partBounds(const GeometryInput& parts, uint32_t ref) {
+  const uint32_t index = PrimitiveRef::index(ref);
+  switch (PrimitiveRef::kind(ref)) {
+#define PRISM_PART_BOUNDS(Shape, plural) \
+  case PrimitiveKind::Shape:             \
+    return parts.plural[index].bounds();
+    PRISM_SHAPE_KINDS(PRISM_PART_BOUNDS)
+#undef PRISM_PART_BOUNDS
+    case PrimitiveKind::Triangle:
+    case PrimitiveKind::Plane:
+      break;
+  }
+  return Aabb();
+}
+
+// Each mesh's shading data, numbered by its first triangle over all meshes in order.
+std::vector<SceneGeometry::MeshShading> meshShading(const std::vector<MeshInput>& meshes) {
+  std::vector<SceneGeometry::MeshShading> out;
+  uint32_t triangleNumber = 0;
+  for (const MeshInput& mesh : meshes) {
+    SceneGeometry::MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber};
+    reserveOnHugePages(shading.normals, mesh.normals.size());
+    shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
+    reserveOnHugePages(shading.indices, mesh.indices.size());
+    shading.indices.assign(mesh.indices.begin(), mesh.indices.end());
+    out.push_back(std::move(shading));
+    triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
+  }
+  return out;
+}
+
+ShapeParts gatherShapeParts(const GeometryInput& in) {
+  ShapeParts out;
+  size_t kind = 0;
+  const auto gather = [&](const auto& shapes, const std::vector<uint8_t>& caustic, auto& parts,
+                          std::vector<uint8_t>& partsCaustic) {
+    for (size_t i = 0; i < shapes.size(); ++i) {
+      for (const auto& part : partsForBvh(shapes[i])) {
+        parts.push_back(part);
+        partsCaustic.push_back(caustic[i]);
+      }
+    }
+    if (parts.size() > PrimitiveRef::kMaxIndex) {
+      throw std::length_error("too many shapes of one kind for the BVH's entries");
+    }
+    out.kindFirst[kind + 1] = out.kindFirst[kind] + static_cast<uint32_t>(parts.size());
+    ++kind;
+  };
+#define PRISM_GATHER_PARTS(Shape, plural) \
+  gather(in.plural, in.plural##Caustic, out.parts.plural, out.parts.plural##Caustic);
+  PRISM_SHAPE_KINDS(PRISM_GATHER_PARTS)
+#undef PRISM_GATHER_PARTS
+  return out;
+}
+
 }  // namespace
 
 SceneGeometry::SceneGeometry(GeometryInput in)
@@ -38,38 +102,10 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   // their boxes by number, so no array of boxes is kept; after the build they are reordered by
   // leaf so a leaf's primitives sit together in memory. Packed triangles are not gathered: the
   // packs read them from the meshes.
-  GeometryInput parts;                                    // the shapes as the BVH takes them
-  std::array<uint32_t, kShapeKindCount + 1> kindFirst{};  // each kind's first number
-  size_t kind = 0;
-  const auto gatherParts = [&](const auto& shapes, const std::vector<uint8_t>& caustic,
-                               auto& partsOut, std::vector<uint8_t>& partsCaustic) {
-    kindFirst[kind + 1] = kindFirst[kind];
-    for (size_t i = 0; i < shapes.size(); ++i) {
-      for (const auto& part : partsForBvh(shapes[i])) {
-        partsOut.push_back(part);
-        partsCaustic.push_back(caustic[i]);
-      }
-    }
-    if (partsOut.size() > PrimitiveRef::kMaxIndex) {
-      throw std::length_error("too many shapes of one kind for the BVH's entries");
-    }
-    kindFirst[kind + 1] += static_cast<uint32_t>(partsOut.size());
-    ++kind;
-  };
-#define PRISM_GATHER_PARTS(Shape, plural) \
-  gatherParts(in.plural, in.plural##Caustic, parts.plural, parts.plural##Caustic);
-  PRISM_SHAPE_KINDS(PRISM_GATHER_PARTS)
-#undef PRISM_GATHER_PARTS
-  uint32_t triangleNumber = 0;  // over all meshes, in order
-  for (const MeshInput& mesh : in.meshes) {
-    MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber};
-    reserveOnHugePages(shading.normals, mesh.normals.size());
-    shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
-    reserveOnHugePages(shading.indices, mesh.indices.size());
-    shading.indices.assign(mesh.indices.begin(), mesh.indices.end());
-    meshes_.push_back(std::move(shading));
-    triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
-  }
+  const ShapeParts shapes = gatherShapeParts(in);
+  const GeometryInput& parts = shapes.parts;
+  const std::array<uint32_t, kShapeKindCount + 1>& kindFirst = shapes.kindFirst;
+  meshes_ = meshShading(in.meshes);
   const uint32_t firstTriangle = kindFirst[kShapeKindCount];
   if (triangleCount > kMaxTriangles) {
     throw std::length_error("too many triangles for the BVH's entries");
@@ -106,19 +142,7 @@ SceneGeometry::SceneGeometry(GeometryInput in)
           const uint32_t number = primitive - firstTriangle;
           return packed ? triangleNumbered(number).bounds() : triangles[number].bounds();
         }
-        const uint32_t ref = refOf(primitive);
-        const uint32_t index = PrimitiveRef::index(ref);
-        switch (PrimitiveRef::kind(ref)) {
-#define PRISM_PART_BOUNDS(Shape, plural) \
-  case PrimitiveKind::Shape:             \
-    return parts.plural[index].bounds();
-          PRISM_SHAPE_KINDS(PRISM_PART_BOUNDS)
-#undef PRISM_PART_BOUNDS
-          case PrimitiveKind::Triangle:
-          case PrimitiveKind::Plane:
-            break;
-        }
-        return Aabb();
+        return partBounds(parts, refOf(primitive));
       },
       buildOptions);
   bounds_ = bvh_.bounds();  // the root's box: every primitive's, extended in input order
