@@ -61,8 +61,13 @@ ShapeParts gatherShapeParts(const GeometryInput& in) {
   const auto gather = [&](const auto& shapes, const std::vector<uint8_t>& caustic, auto& parts,
                           std::vector<uint8_t>& partsCaustic) {
     for (size_t i = 0; i < shapes.size(); ++i) {
-      for (const auto& part : partsForBvh(shapes[i])) {
-        parts.push_back(part);
+      if constexpr (requires { bvhParts(shapes[i]); }) {
+        for (const auto& part : bvhParts(shapes[i])) {
+          parts.push_back(part);
+          partsCaustic.push_back(caustic[i]);
+        }
+      } else {  // a kind the BVH takes whole: no vector of one per shape
+        parts.push_back(shapes[i]);
         partsCaustic.push_back(caustic[i]);
       }
     }

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "geometry/Cone.h"
 #include "geometry/ConeSegments.h"
@@ -40,15 +41,7 @@ namespace prism {
 inline constexpr size_t kShapeKindCount = 0 PRISM_SHAPE_KINDS(PRISM_SHAPE_ONE);
 #undef PRISM_SHAPE_ONE
 
-// The parts the BVH takes a shape in: the shape itself unless its header says otherwise.
-template <class Shape>
-std::vector<Shape> partsForBvh(const Shape& shape) {
-  if constexpr (requires { bvhParts(shape); }) {
-    return bvhParts(shape);
-  } else {
-    return {shape};
-  }
-}
+// How many parts the BVH takes a shape in: one unless its header says otherwise.
 template <class Shape>
 size_t partCountForBvh(const Shape& shape) {
   if constexpr (requires { bvhPartCount(shape); }) {
