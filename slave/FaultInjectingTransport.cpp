@@ -24,13 +24,13 @@ std::optional<wire::Message> decoded(const std::vector<uint8_t>& bytes) {
   }
 }
 
+// The roles the message list gives (wire/Messages.h).
 bool isWork(Type type) {
-  return type == Type::TileJob || type == Type::PhotonJob || type == Type::PhotonRadiiJob;
+  return wire::kindOf(type).role == wire::Role::Work;
 }
 
 bool isAnswer(Type type) {
-  return type == Type::TileResult || type == Type::Progress || type == Type::PhotonShare ||
-         type == Type::PhotonRadiiShare;
+  return wire::kindOf(type).role == wire::Role::Answer;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 #include <utility>
+#include <variant>
 
 #include "caustics/CausticMapMemory.h"
 #include "scene/GeometryMemory.h"
@@ -47,48 +48,86 @@ SlaveEnd SlaveSession::run() {
 }
 
 std::optional<SlaveEnd> SlaveSession::buildScene(double startSeconds) {
-  // First what this CPU runs: rank 0 chooses the job's instruction set from every rank's answer
-  // before it broadcasts the scene (master/dispatch/JobInstructionSet.h).
+  std::variant<SetUpStep, SlaveEnd> next = SetUpStep::Hello;
+  while (const SetUpStep* step = std::get_if<SetUpStep>(&next)) {
+    switch (*step) {
+      case SetUpStep::Hello:
+        next = sayHello();
+        break;
+      case SetUpStep::Scene:
+        next = takeScene();
+        break;
+      case SetUpStep::Build:
+        next = takePlanAndBuild(startSeconds);
+        break;
+      case SetUpStep::Done:
+        return std::nullopt;
+    }
+  }
+  return std::get<SlaveEnd>(next);
+}
+
+SlaveSession::SetUpStep SlaveSession::sayHello() {
+  // Rank 0 chooses the job's instruction set from every rank's answer before it broadcasts the
+  // scene (master/dispatch/JobInstructionSet.h).
   try {
     transport_.send(0, wire::encode(wire::HelloMessage{runnableInstructionSets(), cpuModelName()}));
   } catch (const std::invalid_argument& e) {  // a bad PRISM_TEST_CPU_LIMIT: rank 0 reports it
     transport_.send(0, wire::encode(wire::ErrorMessage{e.what()}));
   }
+  return SetUpStep::Scene;
+}
+
+std::variant<SlaveSession::SetUpStep, SlaveEnd> SlaveSession::takeScene() {
   std::vector<uint8_t> bytes;
   if (!receiveBroadcast(bytes)) return SlaveEnd{1, true};
   // The description, checked against this rank's memory before any rank builds: rank 0 waits
   // for every slave's answer.
-  std::optional<SceneDescription> description;
   try {
-    const wire::Message message = wire::decodeMessage(bytes);
+    const wire::Message message = setUpMessage(wire::decodeMessage(bytes));
     // Rank 0 broadcasts an error instead of a scene when it cannot read the file; it reports it.
     if (message.type == wire::MessageType::Error) return SlaveEnd{1};
-    description = wire::decodeScene(message);
+    description_ = wire::decodeScene(message);
     // Rank 0 checked the scene against its own limit; this rank may be a smaller machine.
-    checkGeometryFits(*description, memoryLimit_);
+    checkGeometryFits(*description_, memoryLimit_);
     transport_.send(0, wire::encode(wire::SceneAcceptedMessage{availableCores(), machineCores(),
                                                                transport_.ranksOnThisNode()}));
   } catch (const std::exception& e) {
     transport_.send(
         0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
-    description.reset();
+    description_.reset();
   }
-  std::vector<uint8_t>().swap(bytes);
-  // Then whether to build: rank 0's own build (Geometry), a go-ahead (BuildGeometry), or an
-  // Error (a slave refused the scene, or rank 0 could not build it): the job ends.
+  return SetUpStep::Build;
+}
+
+std::variant<SlaveSession::SetUpStep, SlaveEnd> SlaveSession::takePlanAndBuild(
+    double startSeconds) {
+  // Whether to build: rank 0's own build (Geometry), a go-ahead (BuildGeometry), or an Error (a
+  // slave refused the scene, or rank 0 could not build it): the job ends.
+  std::vector<uint8_t> bytes;
   if (!receiveBroadcast(bytes)) return SlaveEnd{1, true};
   try {
-    wire::Message plan = wire::decodeMessage(std::move(bytes));
-    if (!description || plan.type == wire::MessageType::Error) return SlaveEnd{1};
-    work_ = std::make_unique<SlaveWork>(transport_, build(*description, plan, startSeconds),
+    const wire::Message plan = setUpMessage(wire::decodeMessage(std::move(bytes)));
+    if (!description_ || plan.type == wire::MessageType::Error) return SlaveEnd{1};
+    work_ = std::make_unique<SlaveWork>(transport_, build(*description_, plan, startSeconds),
                                         threads_, memoryLimit_);
-    return std::nullopt;
+    description_.reset();
+    return SetUpStep::Done;
   } catch (const std::exception& e) {
     transport_.send(
         0, wire::encode(wire::ErrorMessage{std::string("cannot build the scene: ") + e.what()}));
     awaitShutdown(transport_, options_.masterTimeoutSeconds);
     return SlaveEnd{1};
   }
+}
+
+wire::Message SlaveSession::setUpMessage(wire::Message message) {
+  if (!wire::goesTo(message.type, wire::Direction::ToSlave) ||
+      !wire::belongsTo(message.type, wire::Phase::SetUp)) {
+    throw wire::WireError(std::string("rank 0 sent ") + wire::messageTypeName(message.type) +
+                          " while the job was being set up");
+  }
+  return message;
 }
 
 bool SlaveSession::receiveBroadcast(std::vector<uint8_t>& bytes) {

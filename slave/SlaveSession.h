@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "cluster/DistributionOptions.h"
@@ -33,9 +34,22 @@ class SlaveSession {
   SlaveEnd run();
 
  private:
-  // The scene built and Ready sent; else how the session ends (rank 0 silent or failed, the
-  // scene refused: reported to rank 0).
+  // The set-up, a step at a time (the message list's set-up phase): each step sends rank 0 what
+  // it waits for and takes its next broadcast. Hello: what this CPU runs (rank 0 chooses the
+  // job's instruction set). Scene: the description (or rank 0's Error), checked against this
+  // rank's memory and answered with SceneAccepted (or an Error saying why not). Build: rank 0's
+  // built geometry (Geometry), the go-ahead (BuildGeometry) or an Error (the job ends); the
+  // scene built and Ready sent. Rank 0's side: master/dispatch/DispatchSession.cpp.
+  enum class SetUpStep { Hello, Scene, Build, Done };
+  // Every step; the scene built and Ready sent, else how the session ends (rank 0 silent or
+  // failed, the scene refused: reported to rank 0).
   std::optional<SlaveEnd> buildScene(double startSeconds);
+  SetUpStep sayHello();
+  std::variant<SetUpStep, SlaveEnd> takeScene();
+  std::variant<SetUpStep, SlaveEnd> takePlanAndBuild(double startSeconds);
+  // message, if the list says rank 0 sends it in set-up (an Error too); else throws
+  // wire::WireError.
+  static wire::Message setUpMessage(wire::Message message);
   // Rank 0's next broadcast into bytes; false (reported) when it does not come.
   bool receiveBroadcast(std::vector<uint8_t>& bytes);
   // The Scene as the plan says (rank 0's geometry, or built here), and Ready sent.
@@ -55,6 +69,7 @@ class SlaveSession {
   DistributionOptions options_;
   ThreadCount threads_;  // the rank's render and photon threads, which its Ready announces
   MemoryLimit memoryLimit_;
+  std::optional<SceneDescription> description_;  // between the Scene and Build steps
   std::unique_ptr<SlaveWork> work_;
   bool interrupted_ = false;
   SlaveEnd end_;

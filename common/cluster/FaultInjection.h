@@ -9,10 +9,11 @@
 namespace prism {
 
 struct FaultInjection {
-  // Hang: takes jobs, never answers. Incoming TileJob, PhotonJob and PhotonRadiiJob are
-  //   swallowed; outgoing TileResult, Progress, PhotonShare and PhotonRadiiShare too. Everything
-  //   else passes both ways (the scene, View, the photon maps, PhotonCancel, Echo, Shutdown in;
-  //   Ready, Error, Echo and the Shutdown acknowledgement out), so the job still ends cleanly.
+  // Hang: takes jobs, never answers. Incoming work (the messages whose role is Work in
+  //   wire/Messages.h's list: TileJob, PhotonJob, PhotonRadiiJob) is swallowed; outgoing answers
+  //   (role Answer: TileResult, Progress, PhotonShare, PhotonRadiiShare) too. Everything else
+  //   (role Control: the scene, View, the photon maps, PhotonCancel, Echo, Shutdown in; Ready,
+  //   Error, Echo and the Shutdown acknowledgement out) passes, so the job still ends cleanly.
   // DropTiles: every second TileJob of each frame (the 2nd, 4th, ...) is swallowed, yet counted
   //   as received in the rank's Progress of that frame, as a slave that lost it would count it:
   //   the master sees tiles received and no longer held.

@@ -179,7 +179,7 @@ T decode(const Message& message) {
   }
 }
 
-#define PRISM_WIRE_INSTANTIATE(name, number, Type)               \
+#define PRISM_WIRE_INSTANTIATE(name, number, Type, ...)          \
   template std::vector<uint8_t> encode<Type>(const Type& value); \
   template Type decode<Type>(const Message& message);
 PRISM_WIRE_MESSAGES(PRISM_WIRE_INSTANTIATE)

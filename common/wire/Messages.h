@@ -5,12 +5,14 @@
 //
 // Each message is a struct that lists its fields once (wire/Fields.h); encode, decode and
 // sameFields follow from the list. PRISM_WIRE_MESSAGES below is the one list of message types:
-// the MessageType enumeration, its names, isKnownType and the per-type dispatch come from it.
+// the MessageType enumeration, its names, isKnownType, each type's direction, phase and role
+// (kindOf) and the per-type dispatch come from it.
 // Adding a message takes its struct (fields, list, any check) here and a line in that list.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -43,32 +45,43 @@ inline constexpr uint16_t kVersion = 15;
 // magic u32, version u16, type u16, payload size u64, payloadChecksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 
-// Every message type: its name, its number on the wire (never reused) and the struct it carries.
-#define PRISM_WIRE_MESSAGES(X)                     \
-  X(Scene, 1, SceneDescription)                    \
-  X(Ready, 2, ReadyMessage)                        \
-  X(TileJob, 3, TileJobMessage)                    \
-  X(TileResult, 4, TileResultMessage)              \
-  X(Shutdown, 5, ShutdownMessage)                  \
-  X(Error, 6, ErrorMessage)                        \
-  X(Progress, 7, ProgressMessage)                  \
-  X(PhotonJob, 8, PhotonJobMessage)                \
-  X(PhotonShare, 9, PhotonShareMessage)            \
-  X(PhotonMap, 10, PhotonMapMessage)               \
-  X(View, 11, ViewMessage)                         \
-  X(Echo, 12, EchoMessage)                         \
-  X(PhotonCancel, 13, PhotonCancelMessage)         \
-  X(PhotonMapAgain, 14, PhotonMapAgainMessage)     \
-  X(PhotonRadiiJob, 15, PhotonRadiiJobMessage)     \
-  X(PhotonRadiiShare, 16, PhotonRadiiShareMessage) \
-  X(PhotonRadii, 17, PhotonRadiiMessage)           \
-  X(Hello, 18, HelloMessage)                       \
-  X(SceneAccepted, 19, SceneAcceptedMessage)       \
-  X(BuildGeometry, 20, BuildGeometryMessage)       \
-  X(Geometry, 21, SceneGeometry)
+// Every message type: its name, its number on the wire (never reused), the struct it carries,
+// and what it is to a run (the enumerations below): which way it goes, in which phase, and its
+// role.
+#define PRISM_WIRE_MESSAGES(X)                                            \
+  X(Scene, 1, SceneDescription, ToSlave, SetUp, Control)                  \
+  X(Ready, 2, ReadyMessage, ToMaster, SetUp, Control)                     \
+  X(TileJob, 3, TileJobMessage, ToSlave, Run, Work)                       \
+  X(TileResult, 4, TileResultMessage, ToMaster, Run, Answer)              \
+  X(Shutdown, 5, ShutdownMessage, BothWays, ShutDown, Control)            \
+  X(Error, 6, ErrorMessage, BothWays, AnyPhase, Control)                  \
+  X(Progress, 7, ProgressMessage, ToMaster, Run, Answer)                  \
+  X(PhotonJob, 8, PhotonJobMessage, ToSlave, Run, Work)                   \
+  X(PhotonShare, 9, PhotonShareMessage, ToMaster, Run, Answer)            \
+  X(PhotonMap, 10, PhotonMapMessage, ToSlave, Run, Control)               \
+  X(View, 11, ViewMessage, ToSlave, Run, Control)                         \
+  X(Echo, 12, EchoMessage, BothWays, Run, Control)                        \
+  X(PhotonCancel, 13, PhotonCancelMessage, ToSlave, Run, Control)         \
+  X(PhotonMapAgain, 14, PhotonMapAgainMessage, ToSlave, Run, Control)     \
+  X(PhotonRadiiJob, 15, PhotonRadiiJobMessage, ToSlave, Run, Work)        \
+  X(PhotonRadiiShare, 16, PhotonRadiiShareMessage, ToMaster, Run, Answer) \
+  X(PhotonRadii, 17, PhotonRadiiMessage, ToSlave, Run, Control)           \
+  X(Hello, 18, HelloMessage, ToMaster, SetUp, Control)                    \
+  X(SceneAccepted, 19, SceneAcceptedMessage, ToMaster, SetUp, Control)    \
+  X(BuildGeometry, 20, BuildGeometryMessage, ToSlave, SetUp, Control)     \
+  X(Geometry, 21, SceneGeometry, ToSlave, SetUp, Control)
+
+// Which way a message goes: rank 0 to a slave, a slave to rank 0, or either.
+enum class Direction : uint8_t { ToSlave, ToMaster, BothWays };
+// When in a run: while the job is set up (Hello to Ready), while it runs (frames, photon passes,
+// probes), at its end, or whenever something goes wrong.
+enum class Phase : uint8_t { SetUp, Run, ShutDown, AnyPhase };
+// Work: a piece a slave is leased and answers for; Answer: what a slave sends back for its work
+// (results, shares, the heartbeat); Control: everything else (the scene, settings, the end).
+enum class Role : uint8_t { Work, Answer, Control };
 
 enum class MessageType : uint16_t {
-#define PRISM_WIRE_ENUMERATOR(name, number, Type) name = number,
+#define PRISM_WIRE_ENUMERATOR(name, number, Type, ...) name = number,
   PRISM_WIRE_MESSAGES(PRISM_WIRE_ENUMERATOR)
 #undef PRISM_WIRE_ENUMERATOR
 };
@@ -76,8 +89,8 @@ enum class MessageType : uint16_t {
 // "Scene", "TileResult", ...; "unknown" for values outside the enumeration.
 constexpr const char* messageTypeName(MessageType type) {
   switch (type) {
-#define PRISM_WIRE_NAME(name, number, Type) \
-  case MessageType::name:                   \
+#define PRISM_WIRE_NAME(name, number, Type, ...) \
+  case MessageType::name:                        \
     return #name;
     PRISM_WIRE_MESSAGES(PRISM_WIRE_NAME)
 #undef PRISM_WIRE_NAME
@@ -85,9 +98,47 @@ constexpr const char* messageTypeName(MessageType type) {
   return "unknown";
 }
 
+struct MessageKind {
+  Direction direction;
+  Phase phase;
+  Role role;
+};
+
+// The list's direction, phase and role of a type; throws std::out_of_range for one outside it.
+constexpr MessageKind kindOf(MessageType type) {
+  switch (type) {
+#define PRISM_WIRE_KIND(name, number, Type, direction, phase, role) \
+  case MessageType::name:                                           \
+    return {Direction::direction, Phase::phase, Role::role};
+    PRISM_WIRE_MESSAGES(PRISM_WIRE_KIND)
+#undef PRISM_WIRE_KIND
+  }
+  throw std::out_of_range("unknown message type");
+}
+
+// Whether a message of the type may travel `way` (ToSlave or ToMaster).
+constexpr bool goesTo(MessageType type, Direction way) {
+  const Direction direction = kindOf(type).direction;
+  return direction == Direction::BothWays || direction == way;
+}
+// Whether it may arrive while the run is in `phase` (Error may at any time).
+constexpr bool belongsTo(MessageType type, Phase phase) {
+  const Phase own = kindOf(type).phase;
+  return own == Phase::AnyPhase || own == phase;
+}
+
+// Past the highest number in the list: the first a new message can take.
+constexpr uint16_t firstUnusedTypeNumber() {
+  uint16_t highest = 0;
+#define PRISM_WIRE_HIGHEST(name, number, Type, ...) highest = number > highest ? number : highest;
+  PRISM_WIRE_MESSAGES(PRISM_WIRE_HIGHEST)
+#undef PRISM_WIRE_HIGHEST
+  return static_cast<uint16_t>(highest + 1);
+}
+
 constexpr bool isKnownType(uint16_t raw) {
   switch (raw) {
-#define PRISM_WIRE_NUMBER(name, number, Type) case number:
+#define PRISM_WIRE_NUMBER(name, number, Type, ...) case number:
     PRISM_WIRE_MESSAGES(PRISM_WIRE_NUMBER)
 #undef PRISM_WIRE_NUMBER
     return true;
@@ -323,7 +374,7 @@ struct ShutdownMessage {
 // The message type of each struct in the list.
 template <class T>
 struct MessageTraits {};
-#define PRISM_WIRE_TRAITS(name, number, Type)               \
+#define PRISM_WIRE_TRAITS(name, number, Type, ...)          \
   template <>                                               \
   struct MessageTraits<Type> {                              \
     static constexpr MessageType kType = MessageType::name; \
@@ -360,7 +411,7 @@ std::vector<uint8_t> encodePhotonMap(uint32_t pass, const PhotonGatherSettings& 
 // Calls f(std::type_identity<T>{}) for the struct T of every message type, in the list's order.
 template <class F>
 void forEachMessageType(F&& f) {
-#define PRISM_WIRE_EACH(name, number, Type) f(std::type_identity<Type>{});
+#define PRISM_WIRE_EACH(name, number, Type, ...) f(std::type_identity<Type>{});
   PRISM_WIRE_MESSAGES(PRISM_WIRE_EACH)
 #undef PRISM_WIRE_EACH
 }
@@ -377,8 +428,8 @@ struct AsDependent {
 template <class F>
 decltype(auto) visitMessage(const Message& message, F&& f) {
   switch (message.type) {
-#define PRISM_WIRE_VISIT(name, number, Type) \
-  case MessageType::name:                    \
+#define PRISM_WIRE_VISIT(name, number, Type, ...) \
+  case MessageType::name:                         \
     return f(decode<typename AsDependent<F, Type>::type>(message));
     PRISM_WIRE_MESSAGES(PRISM_WIRE_VISIT)
 #undef PRISM_WIRE_VISIT

@@ -13,17 +13,7 @@ constexpr double kEchoTimeoutSeconds = 30.0;
 
 // Waits for the Echo of `sequence` from `rank`, handling what else arrives meanwhile.
 void awaitEcho(SlaveLink& link, int rank, uint32_t sequence) {
-  const auto start = SteadyClock::now();
-  while (secondsSince(start) < kEchoTimeoutSeconds) {
-    const auto incoming = link.receive(0.1);
-    if (!incoming) continue;
-    const wire::Message& message = incoming->message;
-    // Other than our echo: a late echo of an earlier probe, or a heartbeat.
-    if (message.type == wire::MessageType::Echo && incoming->source == rank &&
-        wire::decode<wire::EchoMessage>(message).sequence == sequence) {
-      return;
-    }
-  }
+  if (link.awaitEcho(rank, sequence, kEchoTimeoutSeconds)) return;
   throw std::runtime_error("rank " + std::to_string(rank) + " did not echo a link probe within " +
                            std::to_string(static_cast<int>(kEchoTimeoutSeconds)) + " s");
 }

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "caustics/CausticMapMemory.h"
-#include "master/dispatch/SlaveRollCall.h"
 #include "master/dispatch/SlaveShutdown.h"
 #include "transport/Transport.h"
 #include "util/InterruptSignal.h"
@@ -78,19 +77,17 @@ void DispatchSession::start(SceneDescription& description, bool keepEnvironment,
 
 void DispatchSession::planGeometry(const SceneDescription& description, size_t descriptionBytes,
                                    double descriptionSeconds) {
-  std::vector<wire::Message> answers;
+  std::vector<wire::SceneAcceptedMessage> answers;
   try {
-    answers = firstMessageOfEachSlave(*transport_, wire::MessageType::SceneAccepted,
-                                      kSceneBroadcastTimeoutSeconds,
-                                      "did not say whether the scene fits");
+    answers = firstOfEachSlave<wire::SceneAcceptedMessage>(
+        *transport_, kSceneBroadcastTimeoutSeconds, "did not say whether the scene fits");
   } catch (const std::exception& e) {
     cancelGeometry(e.what());
     throw std::runtime_error(std::string(e.what()) + " (before any rank built the scene)");
   }
   std::vector<BuildPlace> slaves;
   for (size_t r = 1; r < answers.size(); ++r) {
-    const auto accepted = wire::decode<wire::SceneAcceptedMessage>(answers[r]);
-    slaves.push_back({accepted.threads, accepted.cores, accepted.ranksOnNode});
+    slaves.push_back({answers[r].threads, answers[r].cores, answers[r].ranksOnNode});
   }
   size_t triangles = 0;
   for (const MeshDesc& mesh : description.meshes) triangles += mesh.indices.size() / 3;

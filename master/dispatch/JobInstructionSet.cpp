@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "master/dispatch/SlaveRollCall.h"
+#include "master/dispatch/SlaveLink.h"
 #include "transport/Transport.h"
 #include "wire/Messages.h"
 
@@ -33,12 +33,8 @@ JobInstructionSet chooseJobInstructionSet(Transport* cluster, InstructionSet req
   if (cluster == nullptr || cluster->size() <= 1) return job;
   job.ranks = cluster->size();
 
-  const std::vector<wire::Message> first = firstMessageOfEachSlave(
-      *cluster, wire::MessageType::Hello, timeoutSeconds, "did not say which CPU it has");
-  std::vector<wire::HelloMessage> hellos(first.size());
-  for (size_t r = 1; r < first.size(); ++r) {
-    hellos[r] = wire::decode<wire::HelloMessage>(first[r]);
-  }
+  const std::vector<wire::HelloMessage> hellos = firstOfEachSlave<wire::HelloMessage>(
+      *cluster, timeoutSeconds, "did not say which CPU it has");
 
   InstructionSetMask common = runnableInstructionSets();
   for (size_t r = 1; r < hellos.size(); ++r) {

@@ -4,7 +4,88 @@
 #include <stdexcept>
 #include <string>
 
+#include "wire/GeometryCodec.h"
+
 namespace prism {
+namespace {
+
+std::string rankName(int rank) {
+  return "rank " + std::to_string(rank);
+}
+
+// A slave's message decoded to its envelope; one that only rank 0 sends ends the run.
+wire::Message fromSlave(int source, const std::vector<uint8_t>& bytes) {
+  wire::Message message = wire::decodeMessage(bytes);
+  if (!wire::goesTo(message.type, wire::Direction::ToMaster)) {
+    throw std::runtime_error(rankName(source) + " sent " + wire::messageTypeName(message.type) +
+                             ", which only rank 0 sends");
+  }
+  return message;
+}
+
+[[noreturn]] void throwSlaveError(int source, const wire::Message& error) {
+  throw std::runtime_error(rankName(source) + ": " + wire::decode<wire::ErrorMessage>(error).text);
+}
+
+}  // namespace
+
+template <class T>
+std::vector<T> firstOfEachSlave(Transport& cluster, double timeoutSeconds,
+                                const std::string& silence) {
+  const wire::MessageType expected = wire::MessageTraits<T>::kType;
+  if (!wire::goesTo(expected, wire::Direction::ToMaster) ||
+      !wire::belongsTo(expected, wire::Phase::SetUp)) {
+    throw std::logic_error(std::string("no set-up step waits for ") +
+                           wire::messageTypeName(expected));
+  }
+  std::vector<T> first(static_cast<size_t>(cluster.size()));
+  std::vector<bool> heard(first.size(), false);
+  int waiting = cluster.size() - 1;
+  const auto start = SteadyClock::now();
+  while (waiting > 0) {
+    const double left = timeoutSeconds - secondsSince(start);
+    std::optional<IncomingMessage> incoming =
+        left > 0.0 ? cluster.waitForMessage(left) : std::nullopt;
+    if (!incoming) {
+      for (size_t r = 1; r < heard.size(); ++r) {
+        if (!heard[r]) throw std::runtime_error(rankName(static_cast<int>(r)) + " " + silence);
+      }
+    }
+    const int source = incoming->source;
+    if (source <= 0 || source >= cluster.size() || heard[static_cast<size_t>(source)]) continue;
+    const wire::Message message = fromSlave(source, incoming->bytes);
+    if (message.type == wire::MessageType::Error) throwSlaveError(source, message);
+    if (message.type != expected) {
+      throw std::runtime_error(rankName(source) + " sent " + wire::messageTypeName(message.type) +
+                               " before " + wire::messageTypeName(expected));
+    }
+    first[static_cast<size_t>(source)] = wire::decode<T>(message);
+    heard[static_cast<size_t>(source)] = true;
+    --waiting;
+  }
+  return first;
+}
+
+// Every message of the list, so that a new set-up message needs nothing here. The list names
+// its structs as wire/Messages.h sees them, inside namespace wire.
+using namespace wire;  // NOLINT(google-build-using-namespace)
+#define PRISM_ROLL_CALL(name, number, Type, ...) \
+  template std::vector<Type> firstOfEachSlave<Type>(Transport&, double, const std::string&);
+PRISM_WIRE_MESSAGES(PRISM_ROLL_CALL)
+#undef PRISM_ROLL_CALL
+
+std::optional<int> nextShutdownAcknowledgement(Transport& cluster, double waitSeconds) {
+  const std::optional<IncomingMessage> incoming = cluster.waitForMessage(waitSeconds);
+  if (!incoming || incoming->source <= 0 || incoming->source >= cluster.size()) return std::nullopt;
+  try {
+    if (wire::decodeMessage(incoming->bytes).type != wire::MessageType::Shutdown) {
+      return std::nullopt;
+    }
+  } catch (const wire::WireError&) {
+    return std::nullopt;
+  }
+  return incoming->source;
+}
 
 SlaveLink::SlaveLink(Transport* cluster, const DistributionOptions& options)
     : cluster_(cluster && cluster->size() > 1 ? cluster : nullptr),
@@ -100,7 +181,7 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
   const int source = incoming->source;
   if (source <= 0 || source >= ranks()) return std::nullopt;  // not one of the slaves
   lastHeard_[static_cast<size_t>(source)] = SteadyClock::now();
-  wire::Message message = wire::decodeMessage(incoming->bytes);
+  wire::Message message = fromSlave(source, incoming->bytes);
   switch (message.type) {
     case wire::MessageType::Ready: {
       const wire::ReadyMessage ready = wire::decode<wire::ReadyMessage>(message);
@@ -114,11 +195,23 @@ std::optional<SlaveMessage> SlaveLink::receive(double timeoutSeconds) {
       return std::nullopt;
     }
     case wire::MessageType::Error:
-      throw std::runtime_error("rank " + std::to_string(source) + ": " +
-                               wire::decode<wire::ErrorMessage>(message).text);
+      throwSlaveError(source, message);
     default:
       return SlaveMessage{source, std::move(message)};
   }
+}
+
+bool SlaveLink::awaitEcho(int r, uint32_t sequence, double timeoutSeconds) {
+  const auto start = SteadyClock::now();
+  while (secondsSince(start) < timeoutSeconds) {
+    const std::optional<SlaveMessage> incoming = receive(0.1);
+    // Other than this echo: a late echo of an earlier probe, or a heartbeat.
+    if (incoming && incoming->source == r && incoming->message.type == wire::MessageType::Echo &&
+        wire::decode<wire::EchoMessage>(incoming->message).sequence == sequence) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::vector<int> SlaveLink::retireSilent() {

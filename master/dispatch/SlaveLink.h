@@ -1,9 +1,15 @@
-// Rank 0's line to its slaves, for the whole run: what it knows of every rank (the roster, the
-// run's one record of each rank: its facts from Ready, whether it is retired, and what it
-// delivered) and the one place that reads their messages. Every phase that listens to the slaves
-// (tile frames, photon passes, the link probe, the wait for Ready) receives through it, so status
-// messages mean the same everywhere: a Ready goes into the roster, an Error ends the run as
-// std::runtime_error("rank k: text"), and any message at all shows its rank is alive.
+// Rank 0's line to its slaves, for the whole run, and the one place that reads their messages:
+// at the start, each set-up step's roll call (firstOfEachSlave: their Hellos before the scene is
+// broadcast, their SceneAccepted before any rank builds); while the job runs, receive(), which
+// every phase that listens to the slaves (tile frames, photon passes, the link probe, the wait
+// for Ready) goes through; at the end, the slaves' Shutdown acknowledgements
+// (nextShutdownAcknowledgement). Each message is checked against the message list
+// (wire/Messages.h): one that only rank 0 sends, or one of another phase during a roll call, ends
+// the run naming its rank. While the job runs, it also keeps what rank 0 knows of every rank
+// (the roster, the run's one record of each rank: its facts from Ready, whether it is retired,
+// and what it delivered), so status messages mean the same everywhere: a Ready goes into the
+// roster, an Error ends the run as std::runtime_error("rank k: text"), and any message at all
+// shows its rank is alive.
 //
 // Liveness: a slave heartbeats every kHeartbeatSeconds once it has built its scene and said
 // Ready. One silent for heartbeatTimeoutSeconds after that is retired (retireSilent), so a dead
@@ -17,6 +23,7 @@
 
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cluster/DistributionOptions.h"
@@ -27,6 +34,19 @@
 #include "wire/Messages.h"
 
 namespace prism {
+
+// A set-up step's roll call: the first message of each slave (index: rank; rank 0's entry is left
+// default), each of T's type, decoded. Waits up to timeoutSeconds in all. Throws
+// std::runtime_error "rank k: text" for a slave's Error, "rank k sent Ready before Hello" for
+// another type, and "rank k " + silence for a slave not heard in time. Instantiated for every
+// message of the list; T must be one a slave sends in set-up.
+template <class T>
+std::vector<T> firstOfEachSlave(Transport& cluster, double timeoutSeconds,
+                                const std::string& silence);
+
+// The end of the run: the rank of the next slave to acknowledge it (its Shutdown), waiting up to
+// waitSeconds; anything else a slave sends meanwhile is dropped.
+std::optional<int> nextShutdownAcknowledgement(Transport& cluster, double waitSeconds);
 
 // What rank 0 knows of one rank, and what it did: facts (who it is, how it started, whether it
 // is retired) and counts (what it delivered). Counts add up over frames and subtract between two
@@ -113,6 +133,9 @@ class SlaveLink {
   // std::runtime_error for a slave's Error, wire::WireError for a malformed message. Ends early,
   // with none, after wake().
   std::optional<SlaveMessage> receive(double timeoutSeconds);
+  // Receives until the Echo of `sequence` comes back from rank `r` (a link probe's round trip),
+  // handling what else arrives meanwhile as receive() does; false after timeoutSeconds.
+  bool awaitEcho(int r, uint32_t sequence, double timeoutSeconds);
   // Ends a receive() in progress, or the next one; safe from any thread.
   void wake() {
     if (cluster_) cluster_->wake();

@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <ostream>
 #include <thread>
 
+#include "master/dispatch/SlaveLink.h"
 #include "transport/Transport.h"
 #include "util/Stopwatch.h"
 #include "wire/Messages.h"
@@ -35,14 +37,9 @@ int shutDownSlaves(Transport* session, int exitCode, const std::vector<bool>& si
   };
   while (waiting > 0 && secondsSince(start) < kAcknowledgeSeconds &&
          !(onlySilentLeft() && secondsSince(start) > kSilentAcknowledgeSeconds)) {
-    const auto incoming = session->waitForMessage(0.05);
-    if (!incoming || gone[incoming->source]) continue;
-    try {
-      if (wire::decodeMessage(incoming->bytes).type != wire::MessageType::Shutdown) continue;
-    } catch (const wire::WireError&) {
-      continue;
-    }
-    gone[incoming->source] = true;
+    const std::optional<int> acknowledged = nextShutdownAcknowledgement(*session, 0.05);
+    if (!acknowledged || gone[*acknowledged]) continue;
+    gone[*acknowledged] = true;
     --waiting;
   }
   // MPI_Finalize waits for every rank, a dead one too (seen hanging under --enable-recovery):

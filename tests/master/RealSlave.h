@@ -8,7 +8,7 @@
 
 #include "cluster/DistributionOptions.h"
 #include "master/dispatch/JobInstructionSet.h"
-#include "master/dispatch/SlaveRollCall.h"
+#include "master/dispatch/SlaveLink.h"
 #include "scene/SceneDescription.h"
 #include "slave/SlaveLoop.h"
 #include "transport/LoopbackTransport.h"
@@ -38,7 +38,7 @@ inline void sendSceneAsRankZero(LoopbackNetwork& network, SceneDescription d) {
   std::vector<uint8_t> bytes = wire::encodeScene(d);
   master.broadcast(bytes, 10.0);
   try {
-    firstMessageOfEachSlave(master, wire::MessageType::SceneAccepted, 10.0, "is silent");
+    firstOfEachSlave<wire::SceneAcceptedMessage>(master, 10.0, "is silent");
   } catch (const std::runtime_error&) {
     bytes = wire::encode(wire::ErrorMessage{"a slave refused the scene"});
     master.broadcast(bytes, 10.0);

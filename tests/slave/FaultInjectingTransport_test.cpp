@@ -8,8 +8,10 @@
 #include <chrono>
 #include <thread>
 
+#include "fuzz/WireExamples.h"
 #include "slave/SlaveUnderTest.h"
 #include "transport/LoopbackTransport.h"
+#include "wire/GeometryCodec.h"
 
 namespace prism {
 namespace {
@@ -86,6 +88,34 @@ TEST(FaultInjectingTransport, HangSwallowsTheWorkAndTheAnswersAndLetsTheRestThro
   }
   EXPECT_EQ(typesOf(link.delivered()),
             (std::vector<Type>{Type::Ready, Type::Echo, Type::Error, Type::Shutdown}));
+}
+
+// The same for every message of the list, each way it may travel: a hanging rank takes in and
+// sends out exactly the messages whose role is Control.
+TEST(FaultInjectingTransport, HangLetsThroughEveryControlMessageOfTheListAndNothingElse) {
+  FaultyLink link(FaultInjection::Kind::Hang);
+  std::vector<Type> toSlave, toMaster, controlToSlave, controlToMaster;
+  wire::forEachMessageType([&](auto type) {
+    using T = typename decltype(type)::type;
+    const Type t = wire::MessageTraits<T>::kType;
+    const std::vector<uint8_t> bytes = fuzz::acceptedExamples<T>().at(0).bytes;
+    const bool control = wire::kindOf(t).role == wire::Role::Control;
+    if (wire::goesTo(t, wire::Direction::ToSlave)) {
+      link.master().send(1, bytes);
+      toSlave.push_back(t);
+      if (control) controlToSlave.push_back(t);
+    }
+    if (wire::goesTo(t, wire::Direction::ToMaster)) {
+      EXPECT_TRUE(link.faulty.send(0, bytes));  // as if sent
+      toMaster.push_back(t);
+      if (control) controlToMaster.push_back(t);
+    }
+  });
+  EXPECT_EQ(link.received(), controlToSlave);
+  EXPECT_EQ(typesOf(link.delivered()), controlToMaster);
+  // Each way carries work or answers as well as control, or the test would prove little.
+  EXPECT_LT(controlToSlave.size(), toSlave.size());
+  EXPECT_LT(controlToMaster.size(), toMaster.size());
 }
 
 // Every second TileJob of each frame is swallowed, yet counted in the Progress of its frame as

@@ -91,6 +91,22 @@ TEST(SlaveSession, ASceneItCannotReadIsReportedBeforeAnyRankBuilds) {
   EXPECT_EQ(slave.count(Type::Ready), 0u);
 }
 
+// In set-up a slave takes only what the message list says rank 0 sends then: a message of the
+// run in the scene's place is refused like a scene it cannot read.
+TEST(SlaveSession, AMessageOfTheRunInsteadOfTheSceneIsRefusedBeforeAnyRankBuilds) {
+  SlaveUnderTest slave;
+  slave.broadcastAlone(wire::encode(wire::PhotonCancelMessage{1}));
+  const std::optional<wire::Message> answer = slave.nextAnswer();
+  ASSERT_TRUE(answer);
+  ASSERT_EQ(answer->type, Type::Error);
+  EXPECT_EQ(wire::decode<wire::ErrorMessage>(*answer).text,
+            "cannot build the scene: rank 0 sent PhotonCancel while the job was being set up");
+  std::vector<uint8_t> plan = wire::encode(wire::ErrorMessage{"rank 1 refused the scene"});
+  slave.master().broadcast(plan, 10.0);
+  EXPECT_EQ(slave.join().exitCode, 1);
+  EXPECT_EQ(slave.count(Type::Ready), 0u);
+}
+
 // Rank 0's own build in place of the go-ahead: the slave takes it as it is and says Ready.
 TEST(SlaveSession, TheGeometryRankZeroBuiltIsTakenInsteadOfABuild) {
   SlaveUnderTest slave;

@@ -84,6 +84,40 @@ TEST(Messages, TypeNames) {
   EXPECT_STREQ(messageTypeName(static_cast<MessageType>(99)), "unknown");
 }
 
+// The list's columns agree with each other: work goes to a slave and its answers come back;
+// the start of a run is Hello, the scene and the go-ahead, and Ready ends it; every number
+// of the list is below firstUnusedTypeNumber, and that one is unknown.
+TEST(Messages, EachTypeSaysWhichWayWhenAndWhatFor) {
+  using enum MessageType;
+  int types = 0;
+  forEachMessageType([&](auto type) {
+    const MessageType t = MessageTraits<typename decltype(type)::type>::kType;
+    const MessageKind kind = kindOf(t);
+    SCOPED_TRACE(messageTypeName(t));
+    if (kind.role == Role::Work) EXPECT_EQ(kind.direction, Direction::ToSlave);
+    if (kind.role == Role::Answer) EXPECT_EQ(kind.direction, Direction::ToMaster);
+    if (kind.role != Role::Control) EXPECT_EQ(kind.phase, Phase::Run);
+    EXPECT_TRUE(isKnownType(static_cast<uint16_t>(t)));
+    EXPECT_LT(static_cast<uint16_t>(t), firstUnusedTypeNumber());
+    ++types;
+  });
+  EXPECT_GT(types, 0);
+  EXPECT_FALSE(isKnownType(firstUnusedTypeNumber()));
+  for (MessageType t : {Hello, SceneAccepted, Ready}) {
+    EXPECT_TRUE(goesTo(t, Direction::ToMaster) && !goesTo(t, Direction::ToSlave));
+    EXPECT_TRUE(belongsTo(t, Phase::SetUp) && !belongsTo(t, Phase::Run));
+  }
+  for (MessageType t : {Scene, BuildGeometry, Geometry}) {
+    EXPECT_TRUE(goesTo(t, Direction::ToSlave) && !goesTo(t, Direction::ToMaster));
+    EXPECT_TRUE(belongsTo(t, Phase::SetUp));
+  }
+  EXPECT_EQ(kindOf(TileJob).role, Role::Work);
+  EXPECT_EQ(kindOf(TileResult).role, Role::Answer);
+  EXPECT_TRUE(belongsTo(Error, Phase::SetUp) && belongsTo(Error, Phase::Run) &&
+              belongsTo(Error, Phase::ShutDown));
+  EXPECT_TRUE(goesTo(Shutdown, Direction::ToSlave) && goesTo(Shutdown, Direction::ToMaster));
+}
+
 TEST(Messages, TileJobRoundTrips) {
   const TileJobMessage job{3, 17, {128, 64, 32, 16}};
   const Message m = decodeMessage(encode(job));
@@ -161,10 +195,8 @@ TEST(Messages, EnvelopeErrorsSayWhatIsWrong) {
                                                      std::to_string(kVersion));
   }
 
-  // 8, 9 and 10 are the photon messages, 11 the View, 12 the Echo, 13 PhotonCancel, 14
-  // PhotonMapAgain, 15-17 the radii messages, 18 Hello, 19-21 SceneAccepted, BuildGeometry and
-  // Geometry; 22 is the first unused type.
-  for (uint16_t type : {0, 22, 0xFFFF}) {
+  // Below the list's first number, past its highest, and the largest.
+  for (uint16_t type : {uint16_t{0}, firstUnusedTypeNumber(), uint16_t{0xFFFF}}) {
     bad = header(kMagic, kVersion, type, 0, fnv1a64(nullptr, 0));
     expectWireError([&] { decodeMessage(bad); }, "unknown message type " + std::to_string(type));
   }

@@ -1,9 +1,20 @@
-// The roster's records: a rank's counts add up over frames and subtract between two readings of
-// the roster as one operation each (RankStats += and -=), so a frame's share and a run's total
-// are computed the same way everywhere.
+// Rank 0's side of its slaves (master/dispatch/SlaveLink.h). The roster's records: a rank's counts
+// add up over frames and subtract between two readings as one operation each (RankStats += and
+// -=). The one reader of the slaves' messages over the loopback transport, slaves played by the
+// test: the set-up's roll calls, the run's receive, the link probe's echo and the shut-down's
+// acknowledgements, each checked against the message list.
 #include "master/dispatch/SlaveLink.h"
 
 #include <gtest/gtest.h>
+
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "transport/LoopbackTransport.h"
+#include "wire/Messages.h"
 
 namespace prism {
 namespace {
@@ -111,6 +122,95 @@ TEST(RankStats, AddingTakesTheLaterFactsWhereKnown) {
   EXPECT_EQ(total.startSeconds, 0.125);  // the later record does not know it (-1)
   EXPECT_EQ(total.mpiInitSeconds, 0.0625);
   EXPECT_TRUE(total.retired);
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SlaveLink, ARollCallReturnsEachSlavesMessageDecodedByRank) {
+  LoopbackNetwork network(3);
+  network.endpoint(2).send(0, wire::encode(wire::SceneAcceptedMessage{2, 8, 1}));
+  network.endpoint(1).send(0, wire::encode(wire::SceneAcceptedMessage{4, 16, 2}));
+  const std::vector<wire::SceneAcceptedMessage> answers =
+      firstOfEachSlave<wire::SceneAcceptedMessage>(network.endpoint(0), 5.0, "is silent");
+  ASSERT_EQ(answers.size(), 3u);
+  EXPECT_EQ(answers[1].threads, 4);
+  EXPECT_EQ(answers[1].ranksOnNode, 2);
+  EXPECT_EQ(answers[2].threads, 2);
+  EXPECT_EQ(answers[2].cores, 8);
+}
+
+TEST(SlaveLink, ARollCallEndsOnAnErrorAnotherSetUpMessageOrSilenceNamingTheRank) {
+  {
+    LoopbackNetwork network(2);
+    network.endpoint(1).send(0, wire::encode(wire::ErrorMessage{"no memory"}));
+    EXPECT_EQ(errorOf([&] {
+                firstOfEachSlave<wire::HelloMessage>(network.endpoint(0), 5.0, "is silent");
+              }),
+              "rank 1: no memory");
+  }
+  {
+    LoopbackNetwork network(2);
+    network.endpoint(1).send(0, wire::encode(wire::SceneAcceptedMessage{}));
+    EXPECT_EQ(errorOf([&] {
+                firstOfEachSlave<wire::HelloMessage>(network.endpoint(0), 5.0, "is silent");
+              }),
+              "rank 1 sent SceneAccepted before Hello");
+  }
+  {
+    LoopbackNetwork network(2);
+    EXPECT_EQ(errorOf([&] {
+                firstOfEachSlave<wire::HelloMessage>(network.endpoint(0), 0.05, "is silent");
+              }),
+              "rank 1 is silent");
+  }
+}
+
+// Only what the list says a slave sends in set-up has a roll call, and a slave that sends what
+// only rank 0 sends ends the run, at any step.
+TEST(SlaveLink, TheMessageListDecidesWhatRankZeroTakesFromASlave) {
+  LoopbackNetwork network(2);
+  EXPECT_THROW(firstOfEachSlave<wire::TileResultMessage>(network.endpoint(0), 0.05, "is silent"),
+               std::logic_error);
+  EXPECT_THROW(firstOfEachSlave<wire::BuildGeometryMessage>(network.endpoint(0), 0.05, "is silent"),
+               std::logic_error);
+  network.endpoint(1).send(0, wire::encode(wire::PhotonCancelMessage{3}));
+  EXPECT_EQ(
+      errorOf([&] { firstOfEachSlave<wire::HelloMessage>(network.endpoint(0), 5.0, "is silent"); }),
+      "rank 1 sent PhotonCancel, which only rank 0 sends");
+
+  SlaveLink link(&network.endpoint(0), DistributionOptions{});
+  network.endpoint(1).send(0, wire::encode(wire::TileJobMessage{1, 0, {0, 0, 8, 8}, 0, 1}));
+  EXPECT_EQ(errorOf([&] { link.receive(5.0); }), "rank 1 sent TileJob, which only rank 0 sends");
+  network.endpoint(1).send(0, wire::encode(wire::EchoMessage{7, ""}));
+  const std::optional<SlaveMessage> echo = link.receive(5.0);
+  ASSERT_TRUE(echo);  // Echo goes both ways
+  EXPECT_EQ(echo->message.type, wire::MessageType::Echo);
+}
+
+TEST(SlaveLink, AnEchoIsAwaitedPastOtherMessagesAndGivenUpOn) {
+  LoopbackNetwork network(2);
+  SlaveLink link(&network.endpoint(0), DistributionOptions{});
+  network.endpoint(1).send(0, wire::encode(wire::EchoMessage{1, ""}));  // a late one
+  network.endpoint(1).send(0, wire::encode(wire::ProgressMessage{}));
+  network.endpoint(1).send(0, wire::encode(wire::EchoMessage{2, ""}));
+  EXPECT_TRUE(link.awaitEcho(1, 2, 5.0));
+  EXPECT_FALSE(link.awaitEcho(1, 3, 0.2));
+}
+
+TEST(SlaveLink, ShutdownAcknowledgementsNameTheirRankAndNothingElseCounts) {
+  LoopbackNetwork network(3);
+  network.endpoint(2).send(0, wire::encode(wire::ProgressMessage{}));
+  network.endpoint(2).send(0, wire::encode(wire::ShutdownMessage{}));
+  EXPECT_EQ(nextShutdownAcknowledgement(network.endpoint(0), 1.0), std::nullopt);
+  EXPECT_EQ(nextShutdownAcknowledgement(network.endpoint(0), 1.0), std::optional<int>(2));
+  EXPECT_EQ(nextShutdownAcknowledgement(network.endpoint(0), 0.05), std::nullopt);
 }
 
 }  // namespace
