@@ -96,8 +96,8 @@ class WhittedIntegrator {
   // Whether a caustic estimate is added at p.
   bool receivesCaustics(const ShadingPoint& p) const;
 
-  // radiancePacket's parts, in the order it calls them: inline, defined beside it (its only
-  // caller) so that the packet loop compiles as one function.
+  // radiancePacket's parts, in the order it calls them: defined beside it and always inlined
+  // (WhittedIntegrator.cpp says why).
   //
   // Direct light at the points of litLanes (bit i: lanes' point i), one light at a time with its
   // shadow rays as one packet: direct[i] is what directLighting() gives point i.
