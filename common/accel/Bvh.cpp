@@ -225,6 +225,73 @@ struct Builder {
     }
   }
 
+  // Bins [begin, end) on every axis. The root's range is binned in two halves at once (the
+  // halves below build in parallel anyway); merged in a fixed order, the bins are the same as one
+  // thread's.
+  void binAll(uint32_t begin, uint32_t end, size_t depth, Float4 lower, Float4 scale,
+              Bins& bins) const {
+    const uint32_t count = end - begin;
+    const unsigned binThreads = depth == 0 ? std::min(threads, 2u) : 1u;
+    if (binThreads > 1 && count >= kParallelBinningMinPrimitives) {
+      Bins upper;
+      const uint32_t half = begin + count / 2;
+      parallelFor(2, 2, [&](uint64_t part) {
+        if (part == 0) {
+          binRange(begin, half, lower, scale, bins);
+        } else {
+          binRange(half, end, lower, scale, upper);
+        }
+      });
+      bins.merge(upper);
+    } else {
+      binRange(begin, end, lower, scale, bins);
+    }
+  }
+
+  // The SAH's cheapest split of axis a's bins, taken over (bestCost, bestAxis, bestBin) where
+  // it costs less: the first of equal costs stays, as in a sweep over all axes in order.
+  void bestSplitOnAxis(const Bins& bins, int a, float& bestCost, int& bestAxis,
+                       int& bestBin) const {
+    const auto& binBoxes = bins.boxes;
+    const auto& binCounts = bins.counts;
+    const auto& binSingles = bins.singles;
+    // Only splits just above an occupied bin are candidates: a split above an empty bin
+    // divides the primitives as the one below it does, costs the same, and the first of
+    // equal costs is the one taken, so skipping those changes nothing.
+    int occupied[kBinCount];
+    int used = 0;
+    for (uint32_t mask = bins.occupied(a); mask != 0; mask &= mask - 1) {
+      occupied[used++] = __builtin_ctz(mask);
+    }
+    // Sweep from the right for the area and count of every right-hand side: rightArea[j]
+    // for the primitives in occupied[j..].
+    float rightArea[kBinCount];
+    float rightTests[kBinCount];
+    Box4 accumulated;
+    uint32_t accumulatedCount = 0, accumulatedSingles = 0;
+    for (int j = used - 1; j > 0; --j) {
+      accumulated.extend(binBoxes[a][occupied[j]]);
+      accumulatedCount += binCounts[a][occupied[j]];
+      accumulatedSingles += binSingles[a][occupied[j]];
+      rightArea[j] = accumulated.surfaceArea();
+      rightTests[j] = tests(accumulatedCount, accumulatedSingles);
+    }
+    Box4 left;
+    uint32_t leftCount = 0, leftSingles = 0;
+    for (int j = 0; j + 1 < used; ++j) {
+      left.extend(binBoxes[a][occupied[j]]);
+      leftCount += binCounts[a][occupied[j]];
+      leftSingles += binSingles[a][occupied[j]];
+      const float cost =
+          left.surfaceArea() * tests(leftCount, leftSingles) + rightArea[j + 1] * rightTests[j + 1];
+      if (cost < bestCost) {
+        bestCost = cost;
+        bestAxis = a;
+        bestBin = occupied[j] + 1;
+      }
+    }
+  }
+
   // Picks the binned-SAH split and partitions [begin, end) by it, gathering what each side
   // spans on the way; axis = -1 when a leaf is cheaper (and allowed). One pass bins all three
   // axes; the costs, the chosen bin and the partition's order are those of the per-axis
@@ -255,64 +322,10 @@ struct Builder {
     int bestBin = 0;
     if (anyAxis) {
       Bins bins;
-      // The root's range is binned in two halves at once (the halves below build in parallel
-      // anyway); merged in a fixed order, the bins are the same as one thread's.
-      const unsigned binThreads = depth == 0 ? std::min(threads, 2u) : 1u;
-      if (binThreads > 1 && count >= kParallelBinningMinPrimitives) {
-        Bins upper;
-        const uint32_t half = begin + count / 2;
-        parallelFor(2, 2, [&](uint64_t part) {
-          if (part == 0) {
-            binRange(begin, half, lower, scale, bins);
-          } else {
-            binRange(half, end, lower, scale, upper);
-          }
-        });
-        bins.merge(upper);
-      } else {
-        binRange(begin, end, lower, scale, bins);
-      }
-      const auto& binBoxes = bins.boxes;
-      const auto& binCounts = bins.counts;
-      const auto& binSingles = bins.singles;
-      for (int b = 0; b < kBinCount; ++b) singles += binSingles[0][b];  // each axis bins them all
+      binAll(begin, end, depth, lower, scale, bins);
+      for (int b = 0; b < kBinCount; ++b) singles += bins.singles[0][b];  // each axis bins them all
       for (int a = 0; a < 3; ++a) {
-        if (!(extent[a] > 0.0f)) continue;
-        // Only splits just above an occupied bin are candidates: a split above an empty bin
-        // divides the primitives as the one below it does, costs the same, and the first of
-        // equal costs is the one taken, so skipping those changes nothing.
-        int occupied[kBinCount];
-        int used = 0;
-        for (uint32_t mask = bins.occupied(a); mask != 0; mask &= mask - 1) {
-          occupied[used++] = __builtin_ctz(mask);
-        }
-        // Sweep from the right for the area and count of every right-hand side: rightArea[j]
-        // for the primitives in occupied[j..].
-        float rightArea[kBinCount];
-        float rightTests[kBinCount];
-        Box4 accumulated;
-        uint32_t accumulatedCount = 0, accumulatedSingles = 0;
-        for (int j = used - 1; j > 0; --j) {
-          accumulated.extend(binBoxes[a][occupied[j]]);
-          accumulatedCount += binCounts[a][occupied[j]];
-          accumulatedSingles += binSingles[a][occupied[j]];
-          rightArea[j] = accumulated.surfaceArea();
-          rightTests[j] = tests(accumulatedCount, accumulatedSingles);
-        }
-        Box4 left;
-        uint32_t leftCount = 0, leftSingles = 0;
-        for (int j = 0; j + 1 < used; ++j) {
-          left.extend(binBoxes[a][occupied[j]]);
-          leftCount += binCounts[a][occupied[j]];
-          leftSingles += binSingles[a][occupied[j]];
-          const float cost = left.surfaceArea() * tests(leftCount, leftSingles) +
-                             rightArea[j + 1] * rightTests[j + 1];
-          if (cost < bestCost) {
-            bestCost = cost;
-            bestAxis = a;
-            bestBin = occupied[j] + 1;
-          }
-        }
+        if (extent[a] > 0.0f) bestSplitOnAxis(bins, a, bestCost, bestAxis, bestBin);
       }
     }
     if (bestAxis < 0) {

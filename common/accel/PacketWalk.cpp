@@ -29,6 +29,80 @@ bool SceneGeometry::onlySpheres(uint32_t first, uint32_t count) const {
   return true;
 }
 
+namespace {
+
+// What a vector of rays has hit so far in one leaf: each lane's limit (its closest hit's t,
+// shrinking as the single-ray test's tMax does; -inf where its ray is outside the walk or,
+// any-hit, has hit) and that hit.
+template <bool kAnyHit, class V>
+struct LaneHits {
+  using M = simd::MaskOf<V>;
+  static constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+  uint32_t active;  // the lanes whose rays reach the leaf
+  V limit;
+  V bestU{}, bestV{};
+  M bestRef{};  // the hit primitive's PrimitiveRef, as int32 lanes
+  uint32_t hitLanes = 0;
+
+  // Records lanes `inside` hitting primitive `ref` at t; false once an any-hit walk is done.
+  bool record(uint32_t m, const M& inside, const V& t, const V& u, const V& v, uint32_t ref) {
+    hitLanes |= m;
+    if constexpr (kAnyHit) {
+      if (hitLanes == active) return false;
+      limit = simd::select<V>(inside, simd::broadcast<V>(-kInfinity), limit);
+    } else {
+      limit = simd::select<V>(inside, t, limit);
+      bestU = simd::select<V>(inside, u, bestU);
+      bestV = simd::select<V>(inside, v, bestV);
+      bestRef = simd::selectInt<M>(inside, M{} + static_cast<int32_t>(ref), bestRef);
+    }
+    return true;
+  }
+};
+
+// A leaf of spheres alone (refs: its entries) against the lanes, in leaf order.
+template <bool kAnyHit, class V>
+inline void sphereLanes(const RayLanes<V>& r, const Sphere* spheres, const uint32_t* refs,
+                        uint32_t count, LaneHits<kAnyHit, V>& hits) {
+  for (uint32_t i = 0; i < count; ++i) {
+    V t;
+    simd::MaskOf<V> inside;
+    const uint32_t m =
+        intersectSphereRays(r, spheres[PrimitiveRef::index(refs[i])], hits.limit, t, inside);
+    if (m != 0 && !hits.record(m, inside, t, V{}, V{}, refs[i])) return;
+  }
+}
+
+// A leaf's triangle packs [firstPack, firstPack + packCount) against the lanes, one triangle a
+// test, in pack and lane order; an any-hit walk stops once every ray of the lanes has hit.
+template <bool kAnyHit, class V>
+inline void trianglePackLanes(const RayLanes<V>& r, const SceneGeometry::LeafPack* packs,
+                              uint32_t firstPack, uint32_t packCount, LaneHits<kAnyHit, V>& hits) {
+  for (uint32_t p = firstPack; p < firstPack + packCount; ++p) {
+    const TrianglePack4& pack = packs[p].triangles;
+    for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
+      if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
+      float v0[3], e1[3], e2[3];
+      for (int a = 0; a < 3; ++a) {
+        v0[a] = pack.v0[a][lane];
+        e1[a] = pack.v1[a][lane] - v0[a];
+        e2[a] = pack.v2[a][lane] - v0[a];
+      }
+      V t, u, v;
+      simd::MaskOf<V> inside;
+      const uint32_t m = intersectMollerTrumboreRays(r, v0, e1, e2, hits.limit, t, u, v, inside);
+      if (m == 0) continue;
+      // Packed triangles are numbered by their lane: pack · 4 + lane.
+      const uint32_t ref = PrimitiveRef::make(
+          PrimitiveKind::Triangle, p * TrianglePack4::kWidth + static_cast<uint32_t>(lane));
+      if (!hits.record(m, inside, t, u, v, ref)) return;
+    }
+  }
+}
+
+}  // namespace
+
 template <bool kAnyHit, class V>
 uint32_t SceneGeometry::intersectLeafRays8(const Ray* rays, const RayPacket8& packet,
                                            uint32_t firstPack, uint32_t packCount, uint32_t mask,
@@ -75,69 +149,22 @@ uint32_t SceneGeometry::intersectLeafRays8(const Ray* rays, const RayPacket8& pa
                         lanes(packet.rayDirection[1]), lanes(packet.rayDirection[2]),
                         lanes(packet.rayTMin)};
     // Lanes of rays outside the mask look no further than -inf: nothing hits there.
-    V limit =
-        simd::select<V>(simd::lanesOf<M>(active), lanes(tMax), simd::broadcast<V>(-kInfinity));
-    V bestU{}, bestV{};
-    M bestRef{};  // the hit primitive's PrimitiveRef, as int32 lanes
-    uint32_t hitLanes = 0;
-    // Records lanes `inside` hitting primitive `ref` at t; false once an any-hit walk is done.
-    const auto record = [&](uint32_t m, const M& inside, const V& t, const V& u, const V& v,
-                            uint32_t ref) {
-      hitLanes |= m;
-      if constexpr (kAnyHit) {
-        if (hitLanes == active) return false;
-        limit = simd::select<V>(inside, simd::broadcast<V>(-kInfinity), limit);
-      } else {
-        limit = simd::select<V>(inside, t, limit);
-        bestU = simd::select<V>(inside, u, bestU);
-        bestV = simd::select<V>(inside, v, bestV);
-        bestRef = simd::selectInt<M>(inside, M{} + static_cast<int32_t>(ref), bestRef);
-      }
-      return true;
-    };
+    LaneHits<kAnyHit, V> found{active, simd::select<V>(simd::lanesOf<M>(active), lanes(tMax),
+                                                       simd::broadcast<V>(-kInfinity))};
     if (sphereLeaf) {
       const uint32_t first = firstPack & ~kPacklessLeaf;
-      for (uint32_t i = first; i < first + packCount; ++i) {
-        V t;
-        M inside;
-        const uint32_t m =
-            intersectSphereRays(r, spheres_[PrimitiveRef::index(leafRefs_[i])], limit, t, inside);
-        if (m != 0 && !record(m, inside, t, V{}, V{}, leafRefs_[i])) break;
-      }
+      sphereLanes(r, spheres_.data(), leafRefs_.data() + first, packCount, found);
     } else {
-      // Any-hit: stop once every ray of these lanes has hit.
-      bool looking = true;
-      for (uint32_t p = firstPack; p < firstPack + packCount && looking; ++p) {
-        const TrianglePack4& pack = packs_[p].triangles;
-        for (int lane = 0; lane < TrianglePack4::kWidth; ++lane) {
-          if (std::isnan(pack.v0[0][lane])) continue;  // an unused lane
-          float v0[3], e1[3], e2[3];
-          for (int a = 0; a < 3; ++a) {
-            v0[a] = pack.v0[a][lane];
-            e1[a] = pack.v1[a][lane] - v0[a];
-            e2[a] = pack.v2[a][lane] - v0[a];
-          }
-          V t, u, v;
-          M inside;
-          const uint32_t m = intersectMollerTrumboreRays(r, v0, e1, e2, limit, t, u, v, inside);
-          if (m == 0) continue;
-          // Packed triangles are numbered by their lane: pack · 4 + lane.
-          const uint32_t ref = PrimitiveRef::make(
-              PrimitiveKind::Triangle, p * TrianglePack4::kWidth + static_cast<uint32_t>(lane));
-          if (!record(m, inside, t, u, v, ref)) {
-            looking = false;
-            break;
-          }
-        }
-      }
+      trianglePackLanes(r, packs_.data(), firstPack, packCount, found);
     }
+    const uint32_t hitLanes = found.hitLanes;
     if constexpr (!kAnyHit) {
       // One store for the lanes: the next box test reads them as a vector.
-      simd::store(tMax + at, simd::select<V>(simd::lanesOf<M>(hitLanes), limit, lanes(tMax)));
+      simd::store(tMax + at, simd::select<V>(simd::lanesOf<M>(hitLanes), found.limit, lanes(tMax)));
       for (uint32_t m = hitLanes; m != 0; m &= m - 1) {
         const int lane = simd::firstLane(m);
-        hits[at + lane] = {limit[lane], static_cast<uint32_t>(bestRef[lane]), bestU[lane],
-                           bestV[lane]};
+        hits[at + lane] = {found.limit[lane], static_cast<uint32_t>(found.bestRef[lane]),
+                           found.bestU[lane], found.bestV[lane]};
       }
     }
     hitRays |= hitLanes << at;

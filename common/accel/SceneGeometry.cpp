@@ -23,6 +23,19 @@ struct ShapeParts {
   std::array<uint32_t, kShapeKindCount + 1> kindFirst{};
 };
 
+// The BVH's entry for bounded primitive number `primitive`: the shape parts of each kind in the
+// list's order (kindFirst[k]: the first of kind k), then every mesh's triangles.
+uint32_t primitiveRef(const std::array<uint32_t, kShapeKindCount + 1>& kindFirst,
+                      uint32_t primitive) {
+  const uint32_t firstTriangle = kindFirst[kShapeKindCount];
+  if (primitive >= firstTriangle) {
+    return PrimitiveRef::make(PrimitiveKind::Triangle, primitive - firstTriangle);
+  }
+  size_t k = 0;
+  while (primitive >= kindFirst[k + 1]) ++k;
+  return PrimitiveRef::make(shapeKind(k), primitive - kindFirst[k]);
+}
+
 // The box of the shape part `ref` names among the gathered parts.
 Aabb partBounds(const GeometryInput& parts, uint32_t ref) {
   const uint32_t index = PrimitiveRef::index(ref);
@@ -115,14 +128,6 @@ SceneGeometry::SceneGeometry(GeometryInput in)
   if (triangleCount > kMaxTriangles) {
     throw std::length_error("too many triangles for the BVH's entries");
   }
-  const auto refOf = [&](uint32_t primitive) {
-    if (primitive >= firstTriangle) {
-      return PrimitiveRef::make(PrimitiveKind::Triangle, primitive - firstTriangle);
-    }
-    size_t k = 0;
-    while (primitive >= kindFirst[k + 1]) ++k;
-    return PrimitiveRef::make(shapeKind(k), primitive - kindFirst[k]);
-  };
   const auto triangleNumbered = [&](uint32_t number) {
     const uint32_t m = meshOfTriangle(number);
     return in.meshes[m].triangle(m, number - meshes_[m].firstTriangle);
@@ -147,16 +152,43 @@ SceneGeometry::SceneGeometry(GeometryInput in)
           const uint32_t number = primitive - firstTriangle;
           return packed ? triangleNumbered(number).bounds() : triangles[number].bounds();
         }
-        return partBounds(parts, refOf(primitive));
+        return partBounds(parts, primitiveRef(kindFirst, primitive));
       },
       buildOptions);
   bounds_ = bvh_.bounds();  // the root's box: every primitive's, extended in input order
+  placeInLeafOrder(parts, kindFirst, triangles, packed);
+  // The gathered copies are done with: free them before the wide BVH and its packs are built, so
+  // the build's peak stays within scene/MeshBudget.h's estimate.
+  std::vector<Triangle>().swap(triangles);
+
+  stats_.bvh = bvh_.stats();
+  if (traversal_ != Traversal::BinaryScalar) {
+    wideBvh_.build(bvh_);
+    bvh_ = Bvh();  // the wide walk never reads the binary tree again
+    stats_.binaryBvhReleased = true;
+  }
+  if (packed) {
+    buildTrianglePacks(in.meshes, gatherThreads);
+    packed_ = true;
+    // The packs hold every triangle's vertices and source: unless shapes share the leaves, the
+    // leaf entries are no longer read.
+    if (firstTriangle == 0) std::vector<uint32_t>().swap(leafRefs_);
+  }
+
+  testTreeBoxFirst_ = !planes_.empty() && traversal_ != Traversal::BinaryScalar;
+
+  recordStats(in);
+}
+
+void SceneGeometry::placeInLeafOrder(const GeometryInput& parts,
+                                     const std::array<uint32_t, kShapeKindCount + 1>& kindFirst,
+                                     const std::vector<Triangle>& triangles, bool packed) {
   // Packed triangles go straight from the meshes into their packs: their leaf entries keep the
   // triangle's number.
-  reserveOnHugePages(leafRefs_, bounded);
+  reserveOnHugePages(leafRefs_, bvh_.primitiveOrder().size());  // one per bounded primitive
   if (!packed) reserveOnHugePages(triangles_, triangles.size());
   for (uint32_t original : bvh_.primitiveOrder()) {
-    const uint32_t ref = refOf(original);
+    const uint32_t ref = primitiveRef(kindFirst, original);
     const uint32_t index = PrimitiveRef::index(ref);
     switch (PrimitiveRef::kind(ref)) {
       case PrimitiveKind::Triangle:
@@ -179,28 +211,11 @@ SceneGeometry::SceneGeometry(GeometryInput in)
         break;  // planes are unbounded and never enter the BVH
     }
   }
-  // The gathered copies are done with: free them before the wide BVH and its packs are built, so
-  // the build's peak stays within scene/MeshBudget.h's estimate.
-  std::vector<Triangle>().swap(triangles);
+}
 
-  stats_.bvh = bvh_.stats();
-  if (traversal_ != Traversal::BinaryScalar) {
-    wideBvh_.build(bvh_);
-    bvh_ = Bvh();  // the wide walk never reads the binary tree again
-    stats_.binaryBvhReleased = true;
-  }
-  if (packed) {
-    buildTrianglePacks(in.meshes, gatherThreads);
-    packed_ = true;
-    // The packs hold every triangle's vertices and source: unless shapes share the leaves, the
-    // leaf entries are no longer read.
-    if (firstTriangle == 0) std::vector<uint32_t>().swap(leafRefs_);
-  }
-
-  testTreeBoxFirst_ = !planes_.empty() && traversal_ != Traversal::BinaryScalar;
-
+void SceneGeometry::recordStats(const GeometryInput& in) {
   stats_.planes = planes_.size();
-  stats_.triangles = triangleCount;
+  stats_.triangles = in.triangleCount();
   stats_.wideBvh = wideBvh_.stats();
   stats_.packBytes = packs_.size() * sizeof(LeafPack);
   stats_.geometryBytes = triangles_.capacity() * sizeof(Triangle) + planes_.size() * sizeof(Plane) +

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -236,6 +237,14 @@ class SceneGeometry {
         [](uint32_t n, const MeshShading& mesh) { return n < mesh.firstTriangle; });
     return static_cast<uint32_t>(next - meshes_.begin()) - 1;
   }
+  // The build's parts (SceneGeometry.cpp). Fills the leaf entries and the primitive arrays in
+  // the BVH's leaf order from the gathered shape parts (kindFirst[k]: the number of kind k's
+  // first part) and, unless packed, the triangles in input order.
+  void placeInLeafOrder(const GeometryInput& parts,
+                        const std::array<uint32_t, kShapeKindCount + 1>& kindFirst,
+                        const std::vector<Triangle>& triangles, bool packed);
+  // Fills stats_ once everything is built (in: what the build was given).
+  void recordStats(const GeometryInput& in);
   // Fills packs_ with the triangles the leaf entries point at (on `threads` threads) and
   // relabels the wide BVH's leaves to (first pack, pack count). accel/LeafPacks.cpp.
   void buildTrianglePacks(const std::vector<MeshInput>& meshes, unsigned threads);

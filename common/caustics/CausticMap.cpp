@@ -143,6 +143,70 @@ class TexelTransport {
   float minFlux_ = 0.0f;
 };
 
+// Flux to irradiance, in place: a receiver texel covers Ω·d²/cos θ of its surface. Row by row
+// on every thread (n texels a row, view-major).
+void fluxToIrradiance(const LightFrustum& frustum, const ReceiverMap& receivers, int n,
+                      uint64_t rowCount, int threads, HugePageVector<Color>& flux) {
+  HugePageVector<Color>& irradiance = flux;
+  parallelFor(rowCount, threads, [&](uint64_t r) {
+    const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
+    for (int i = 0; i < n; ++i) {
+      const ReceiverTexel& t = receivers.at(view, i, j);
+      const size_t k = static_cast<size_t>(r) * n + i;
+      if (!t.valid) {
+        irradiance[k] = Color(0.0f);
+        continue;
+      }
+      const double area = frustum.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
+      irradiance[k] = flux[k] * static_cast<float>(1.0 / area);
+    }
+  });
+}
+
+// The settings' Gaussian blur of the irradiance: separable, over receiver texels only and not
+// across depth jumps (a receiver's edge), with the weights renormalised over the texels taken.
+// Each pass writes the other buffer; the result ends in irradiance.
+void blurIrradiance(const ReceiverMap& receivers, int n, uint64_t rowCount, float texelSize,
+                    const CausticSettings& settings, int threads,
+                    HugePageVector<Color>& irradiance) {
+  const int radius = settings.mapBlurRadius;
+  std::vector<float> kernel(static_cast<size_t>(radius) + 1);
+  for (int k = 0; k <= radius; ++k) {
+    kernel[static_cast<size_t>(k)] = std::exp(-0.5f * static_cast<float>(k * k) /
+                                              (settings.mapBlurSigma * settings.mapBlurSigma));
+  }
+  HugePageVector<Color> blurred(irradiance.size());
+  const auto pass = [&](int di, int dj) {
+    parallelFor(rowCount, threads, [&](uint64_t r) {
+      const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
+      for (int i = 0; i < n; ++i) {
+        const ReceiverTexel& c = receivers.at(view, i, j);
+        Color& out = blurred[static_cast<size_t>(r) * n + i];
+        if (!c.valid) {
+          out = Color(0.0f);
+          continue;
+        }
+        const float tol = CausticMap::depthTolerance(c, texelSize);
+        Color acc(0.0f);
+        float wsum = 0.0f;
+        for (int k = -radius; k <= radius; ++k) {
+          const int ii = i + k * di, jj = j + k * dj;
+          if (ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
+          const ReceiverTexel& t = receivers.at(view, ii, jj);
+          if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
+          const float w = kernel[static_cast<size_t>(std::abs(k))];
+          acc += w * irradiance[(static_cast<size_t>(view) * n + jj) * n + ii];
+          wsum += w;
+        }
+        out = acc / wsum;
+      }
+    });
+    irradiance.swap(blurred);
+  };
+  pass(1, 0);
+  pass(0, 1);
+}
+
 }  // namespace
 
 CausticMapStats& CausticMapStats::operator+=(const CausticMapStats& o) {
@@ -216,61 +280,11 @@ CausticMap::CausticMap(const Scene& scene, size_t lightIndex, const CausticSetti
   // Row by row on every thread from here on: each row's texels depend on the rows before only
   // through what the previous step wrote, so the results are the same for any thread count.
   const uint64_t rowCount = static_cast<uint64_t>(rows);
-  // Flux to irradiance, in place: a receiver texel covers Ω·d²/cos θ of its surface.
-  HugePageVector<Color>& irradiance = flux;
-  parallelFor(rowCount, threads, [&](uint64_t r) {
-    const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
-    for (int i = 0; i < n; ++i) {
-      const ReceiverTexel& t = receivers_->at(view, i, j);
-      const size_t k = static_cast<size_t>(r) * n + i;
-      if (!t.valid) {
-        irradiance[k] = Color(0.0f);
-        continue;
-      }
-      const double area = frustum_.texelSolidAngle(i, j) * t.distance * t.distance / t.cosine;
-      irradiance[k] = flux[k] * static_cast<float>(1.0 / area);
-    }
-  });
+  HugePageVector<Color>& irradiance = flux;  // converted in place
+  fluxToIrradiance(frustum_, *receivers_, n, rowCount, threads, irradiance);
   const float texelSize = 2.0f * frustum_.views()[0].tanHalf / static_cast<float>(n);
   if (settings.mapBlurRadius > 0 && settings.mapBlurSigma > 0.0f) {
-    const int radius = settings.mapBlurRadius;
-    std::vector<float> kernel(static_cast<size_t>(radius) + 1);
-    for (int k = 0; k <= radius; ++k) {
-      kernel[static_cast<size_t>(k)] = std::exp(-0.5f * static_cast<float>(k * k) /
-                                                (settings.mapBlurSigma * settings.mapBlurSigma));
-    }
-    // Separable, over receiver texels only and not across depth jumps (a receiver's edge), with
-    // the weights renormalised over the texels taken. Each pass writes the other buffer.
-    HugePageVector<Color> blurred(texels);
-    const auto pass = [&](int di, int dj) {
-      parallelFor(rowCount, threads, [&](uint64_t r) {
-        const int view = static_cast<int>(r) / n, j = static_cast<int>(r) % n;
-        for (int i = 0; i < n; ++i) {
-          const ReceiverTexel& c = receivers_->at(view, i, j);
-          Color& out = blurred[static_cast<size_t>(r) * n + i];
-          if (!c.valid) {
-            out = Color(0.0f);
-            continue;
-          }
-          const float tol = depthTolerance(c, texelSize);
-          Color acc(0.0f);
-          float wsum = 0.0f;
-          for (int k = -radius; k <= radius; ++k) {
-            const int ii = i + k * di, jj = j + k * dj;
-            if (ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
-            const ReceiverTexel& t = receivers_->at(view, ii, jj);
-            if (!t.valid || std::abs(t.distance - c.distance) > tol * std::abs(k)) continue;
-            const float w = kernel[static_cast<size_t>(std::abs(k))];
-            acc += w * irradiance[(static_cast<size_t>(view) * n + jj) * n + ii];
-            wsum += w;
-          }
-          out = acc / wsum;
-        }
-      });
-      irradiance.swap(blurred);
-    };
-    pass(1, 0);
-    pass(0, 1);
+    blurIrradiance(*receivers_, n, rowCount, texelSize, settings, threads, irradiance);
   }
   lookup_.resize(texels);
   // The lit box row by row, then joined: a box's bounds are minima and maxima, the same in any

@@ -1,5 +1,5 @@
 // The keys a primitive is written with in a scene file, declared beside the primitive so that
-// one reader (parse/YamlSceneParser.cpp) reads every kind in geometry/ShapeKinds.h the same way
+// one reader (parse/YamlSceneObjects.cpp) reads every kind in geometry/ShapeKinds.h the same way
 // and the reference (docs/scene-format.md) can be checked against them. Every kind also takes
 // 'material' and 'caustic', which the reader adds.
 #pragma once

@@ -1,6 +1,6 @@
 // Every kind of bounded primitive besides the triangles of meshes, listed once. From this list
 // follow the scene description's lists (scene/SceneDescription.h), their wire form, the YAML
-// object kinds and their keys (parse/YamlSceneParser.cpp), the BVH's kind tag
+// object kinds and their keys (parse/YamlSceneObjects.cpp), the BVH's kind tag
 // (accel/PrimitiveRef.h), storage, leaf tests and surfaces (accel/SceneGeometry.h), the memory
 // estimate (scene/GeometryMemory.cpp), the caustic casters (scene/Scene.cpp) and the summary's
 // geometry line. docs/README.md, "Adding a primitive", says what a new kind provides.

@@ -1,7 +1,7 @@
 // A checked reader over yaml-cpp's node tree: typed getters that report every mistake at its own
 // file:line:col with what was expected and what was found, mappings checked against a table of
 // known keys (no unknown and no duplicate keys), and a loader that insists on one document.
-// It knows nothing of scenes; YamlSceneParser.cpp writes the scene schema with it. It never uses
+// It knows nothing of scenes; YamlSceneReader.h writes the scene schema with it. It never uses
 // yaml-cpp's as<T>() conversions: their errors do not say which key was wrong.
 #pragma once
 

@@ -12,6 +12,8 @@
 
 namespace prism {
 
+struct ShadingLanes;
+
 class WhittedIntegrator {
  public:
   // The widest footprint (its reach, over the radius) a sphere passes on to the rays it
@@ -93,6 +95,35 @@ class WhittedIntegrator {
                         const Color* causticIrradiance) const;
   // Whether a caustic estimate is added at p.
   bool receivesCaustics(const ShadingPoint& p) const;
+
+  // radiancePacket's parts, in the order it calls them: defined beside it and always inlined
+  // (WhittedIntegrator.cpp says why).
+  //
+  // Direct light at the points of litLanes (bit i: lanes' point i), one light at a time with its
+  // shadow rays as one packet: direct[i] is what directLighting() gives point i.
+  inline void directLightingLanes(const ShadingLanes& lanes, uint32_t litLanes, int count,
+                                  Color* direct, RayCounters& counters) const;
+  // The caustic estimates of the points of foundLanes that receive one, asked all at once
+  // (their lookups mostly miss the cache, and asked together their reads overlap). Returns the
+  // lanes that receive one, each estimate in caustic[i].
+  inline uint32_t causticEstimates(const ShadingPoint* points, uint32_t foundLanes,
+                                   Color* caustic) const;
+  // A packet's bounce rays, gathered lane by lane and traced as packets.
+  struct BouncePackets;
+  // The reflected ray of a point that transmits nothing, as forEachBounce sends it, added to
+  // lane `lane` of the first bounce packet, whose ray mirrorRayLanes has already written.
+  inline void addMirrorBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
+                              const Color& weight, const RayDifferential& differential, int lane,
+                              BouncePackets& out, RayCounters& counters) const;
+  // The reflected and refracted rays forEachBounce sends on from the hit, added to lane `lane`
+  // of the first and second bounce packets.
+  inline void addBounces(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
+                         const Color& weight, const RayDifferential& differential, int depth,
+                         int lane, BouncePackets& out, RayCounters& counters) const;
+  // Traces the bounce packets (the first, then the second) and adds what each ray brings back,
+  // scaled, to results.
+  inline void traceBounces(BouncePackets& bounces, int count, int depth, Color* results,
+                           RayCounters& counters) const;
 
   // How the surface under the footprint turns the rays it sends on (RayDifferential::Turn):
   // false where the differentials end there (forEachBounce says which surfaces).

@@ -30,6 +30,101 @@ bool isUnusedSlot(const WideBvhNode& node, int slot) {
   return true;
 }
 
+// Meshes: numbered in order from 0, three indices a face, normals (if any) for every index;
+// their faces add up to the geometry's triangles.
+void checkMeshes(const std::vector<SceneGeometry::MeshShading>& meshes, size_t triangleCount) {
+  size_t nextTriangle = 0;
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const SceneGeometry::MeshShading& mesh = meshes[m];
+    if (mesh.firstTriangle != nextTriangle) fault(at("mesh", m) + " does not follow the last");
+    if (mesh.indices.size() % 3 != 0) fault(at("mesh", m) + " has a partial face");
+    if (!mesh.normals.empty()) {
+      for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        if (mesh.indices[i] >= mesh.normals.size()) fault(at("mesh", m) + " index past normals");
+      }
+    }
+    nextTriangle += mesh.indices.size() / 3;
+  }
+  if (nextTriangle != triangleCount) fault("the meshes' faces do not add up to the triangles");
+}
+
+// The listed triangles (the unpacked walks'): each names a face of its mesh.
+void checkTriangles(const std::vector<Triangle>& triangles,
+                    const std::vector<SceneGeometry::MeshShading>& meshes, size_t triangleCount) {
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const Triangle& tri = triangles[i];
+    if (tri.mesh >= meshes.size() ||
+        size_t{meshes[tri.mesh].firstTriangle} + tri.face >= triangleCount ||
+        3 * (size_t{tri.face} + 1) > meshes[tri.mesh].indices.size()) {
+      fault(at("triangle", i) + " names no mesh face");
+    }
+  }
+}
+
+// Packs: every lane's triangle number within the triangles, a leaf's other entries within the
+// leaf entries, flags that are bools.
+void checkPacks(const std::vector<SceneGeometry::LeafPack>& packs, size_t leafEntries,
+                size_t triangleCount) {
+  for (size_t p = 0; p < packs.size(); ++p) {
+    const SceneGeometry::LeafPack& pack = packs[p];
+    uint8_t flag = 0;
+    std::memcpy(&flag, &pack.hasOtherKinds, 1);
+    if (flag > 1) fault(at("pack", p) + " has a flag of " + std::to_string(flag));
+    if (flag == 1 && size_t{pack.leafFirst} + pack.leafCount > leafEntries) {
+      fault(at("pack", p) + " points past the leaf entries");
+    }
+    for (uint32_t number : pack.triangles.triangle) {
+      if (number >= triangleCount) fault(at("pack", p) + " names a triangle past the meshes");
+    }
+  }
+}
+
+// Binary tree: children after their parent, within the nodes; leaves within the entries.
+void checkBinaryTree(const std::vector<BvhNode>& nodes, size_t leafEntries) {
+  std::vector<uint8_t> depth(nodes.size(), 0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const BvhNode& node = nodes[i];
+    if (node.isLeaf()) {
+      if (size_t{node.offset} + node.count > leafEntries) {
+        fault(at("BVH node", i) + " points past the leaf entries");
+      }
+      continue;
+    }
+    if (i + 1 >= nodes.size() || node.offset <= i || node.offset >= nodes.size()) {
+      fault(at("BVH node", i) + " has a child outside the tree");
+    }
+    if (depth[i] + 1u > kMaxTreeDepth) fault(at("BVH node", i) + " lies too deep");
+    depth[i + 1] = depth[node.offset] = static_cast<uint8_t>(depth[i] + 1);
+  }
+}
+
+// Wide tree: the same, per slot; unused slots exactly as the build leaves them (no ray enters
+// them). A leaf slot points into the packs, or (packless, or no packed walk) the leaf entries.
+void checkWideTree(const std::vector<WideBvhNode>& nodes, bool packed, size_t packCount,
+                   size_t leafEntries) {
+  std::vector<uint8_t> depth(nodes.size(), 0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const WideBvhNode& node = nodes[i];
+    for (int s = 0; s < WideBvhNode::kWidth; ++s) {
+      const uint32_t child = node.child[s];
+      const uint32_t count = node.count[s];
+      if (count == 0) {
+        if (isUnusedSlot(node, s)) continue;
+        if (child <= i || child >= nodes.size()) {
+          fault(at("wide node", i) + " has a child outside the tree");
+        }
+        if (depth[i] + 1u > kMaxTreeDepth) fault(at("wide node", i) + " lies too deep");
+        depth[child] = static_cast<uint8_t>(depth[i] + 1);
+        continue;
+      }
+      const bool packless = packed && (child & SceneGeometry::kPacklessLeaf) != 0;
+      const size_t first = packless ? (child & ~SceneGeometry::kPacklessLeaf) : child;
+      const size_t end = packed && !packless ? packCount : leafEntries;
+      if (first + count > end) fault(at("wide node", i) + " has a leaf past its array");
+    }
+  }
+}
+
 }  // namespace
 
 // Friends of SceneGeometry (and so of its private parts) by being this specialisation's member.
@@ -49,31 +144,11 @@ void Fields<SceneGeometry>::check(const SceneGeometry& g) {
   PRISM_SHAPE_KINDS(PRISM_CHECK_SHAPE_ARRAYS)
 #undef PRISM_CHECK_SHAPE_ARRAYS
 
-  // Meshes: numbered in order from 0, three indices a face, normals (if any) for every index.
-  size_t nextTriangle = 0;
-  for (size_t m = 0; m < g.meshes_.size(); ++m) {
-    const SceneGeometry::MeshShading& mesh = g.meshes_[m];
-    if (mesh.firstTriangle != nextTriangle) fault(at("mesh", m) + " does not follow the last");
-    if (mesh.indices.size() % 3 != 0) fault(at("mesh", m) + " has a partial face");
-    if (!mesh.normals.empty()) {
-      for (size_t i = 0; i < mesh.indices.size(); ++i) {
-        if (mesh.indices[i] >= mesh.normals.size()) fault(at("mesh", m) + " index past normals");
-      }
-    }
-    nextTriangle += mesh.indices.size() / 3;
-  }
-  if (nextTriangle != triangleCount) fault("the meshes' faces do not add up to the triangles");
+  checkMeshes(g.meshes_, triangleCount);
   if (g.packed_ ? !g.triangles_.empty() : g.triangles_.size() != triangleCount) {
     fault("the listed triangles do not match the meshes");
   }
-  for (size_t i = 0; i < g.triangles_.size(); ++i) {
-    const Triangle& tri = g.triangles_[i];
-    if (tri.mesh >= g.meshes_.size() ||
-        size_t{g.meshes_[tri.mesh].firstTriangle} + tri.face >= triangleCount ||
-        3 * (size_t{tri.face} + 1) > g.meshes_[tri.mesh].indices.size()) {
-      fault(at("triangle", i) + " names no mesh face");
-    }
-  }
+  checkTriangles(g.triangles_, g.meshes_, triangleCount);
 
   // Leaf entries: a known kind, an index within its array.
   for (size_t i = 0; i < g.leafRefs_.size(); ++i) {
@@ -96,67 +171,17 @@ void Fields<SceneGeometry>::check(const SceneGeometry& g) {
     if (!inside) fault(at("leaf entry", i) + " points nowhere");
   }
 
-  // Packs: every lane's triangle number within the triangles, a leaf's other entries within the
-  // leaf entries, flags that are bools.
-  for (size_t p = 0; p < g.packs_.size(); ++p) {
-    const SceneGeometry::LeafPack& pack = g.packs_[p];
-    uint8_t flag = 0;
-    std::memcpy(&flag, &pack.hasOtherKinds, 1);
-    if (flag > 1) fault(at("pack", p) + " has a flag of " + std::to_string(flag));
-    if (flag == 1 && size_t{pack.leafFirst} + pack.leafCount > g.leafRefs_.size()) {
-      fault(at("pack", p) + " points past the leaf entries");
-    }
-    for (uint32_t number : pack.triangles.triangle) {
-      if (number >= triangleCount) fault(at("pack", p) + " names a triangle past the meshes");
-    }
-  }
+  checkPacks(g.packs_, g.leafRefs_.size(), triangleCount);
   if (!g.packed_ && !g.packs_.empty()) fault("packs without a packed walk");
 
-  // Binary tree: children after their parent, within the nodes; leaves within the entries.
   const std::vector<BvhNode>& bin = g.bvh_.nodes_;
-  std::vector<uint8_t> depth(bin.size(), 0);
-  for (size_t i = 0; i < bin.size(); ++i) {
-    const BvhNode& node = bin[i];
-    if (node.isLeaf()) {
-      if (size_t{node.offset} + node.count > g.leafRefs_.size()) {
-        fault(at("BVH node", i) + " points past the leaf entries");
-      }
-      continue;
-    }
-    if (i + 1 >= bin.size() || node.offset <= i || node.offset >= bin.size()) {
-      fault(at("BVH node", i) + " has a child outside the tree");
-    }
-    if (depth[i] + 1u > kMaxTreeDepth) fault(at("BVH node", i) + " lies too deep");
-    depth[i + 1] = depth[node.offset] = static_cast<uint8_t>(depth[i] + 1);
-  }
+  checkBinaryTree(bin, g.leafRefs_.size());
   if (g.traversal_ == Traversal::BinaryScalar && bin.empty() && !g.leafRefs_.empty()) {
     fault("entries without a tree");
   }
 
-  // Wide tree: the same, per slot; unused slots exactly as the build leaves them (no ray
-  // enters them).
   const std::vector<WideBvhNode>& wide = g.wideBvh_.nodes_;
-  depth.assign(wide.size(), 0);
-  for (size_t i = 0; i < wide.size(); ++i) {
-    const WideBvhNode& node = wide[i];
-    for (int s = 0; s < WideBvhNode::kWidth; ++s) {
-      const uint32_t child = node.child[s];
-      const uint32_t count = node.count[s];
-      if (count == 0) {
-        if (isUnusedSlot(node, s)) continue;
-        if (child <= i || child >= wide.size()) {
-          fault(at("wide node", i) + " has a child outside the tree");
-        }
-        if (depth[i] + 1u > kMaxTreeDepth) fault(at("wide node", i) + " lies too deep");
-        depth[child] = static_cast<uint8_t>(depth[i] + 1);
-        continue;
-      }
-      const bool packless = g.packed_ && (child & SceneGeometry::kPacklessLeaf) != 0;
-      const size_t first = packless ? (child & ~SceneGeometry::kPacklessLeaf) : child;
-      const size_t end = g.packed_ && !packless ? g.packs_.size() : g.leafRefs_.size();
-      if (first + count > end) fault(at("wide node", i) + " has a leaf past its array");
-    }
-  }
+  checkWideTree(wide, g.packed_, g.packs_.size(), g.leafRefs_.size());
   if (g.traversal_ != Traversal::BinaryScalar && wide.empty() && !g.leafRefs_.empty()) {
     fault("entries without a tree");
   }

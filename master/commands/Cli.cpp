@@ -4,8 +4,10 @@
 #include <iostream>
 #include <memory>
 
+#include "master/commands/CliOptions.h"
 #include "master/commands/RenderCommand.h"
 #include "master/commands/SpeedupCommand.h"
+#include "master/commands/SweepCli.h"
 #include "master/commands/SweepCommand.h"
 #include "master/commands/ViewerCli.h"
 #include "master/dispatch/GeometryShare.h"
@@ -19,55 +21,6 @@ namespace prism {
 namespace {
 
 constexpr const char* kVersion = "0.1.0";
-
-// An option whose value is one of a setting's names (scene/SettingNames.h), spelt as in scene
-// files or with '-' for '_', in any case; help and errors list the canonical names.
-template <typename T, typename E>
-CLI::Option* addNamed(CLI::App* command, const std::string& flags, T& target,
-                      const NameTable<E>& names, const std::string& help) {
-  CLI::Validator toValue(
-      [names](std::string& text) {
-        const std::optional<E> value = names.find(text);
-        if (!value) return "unknown value '" + text + "' (expected " + names.list() + ")";
-        text = std::to_string(static_cast<int>(*value));  // CLI11 converts enums from integers
-        return std::string();
-      },
-      "");
-  return command->add_option(flags, target, help)
-      ->transform(toValue)
-      ->option_text(names.list("|", "|"));
-}
-
-// An option bounded like the scene-file key it overrides (scene/SettingLimits.h).
-template <typename T>
-CLI::Option* addLimited(CLI::App* command, const std::string& flags, T& target,
-                        const SettingLimit& limit, const std::string& help) {
-  return command->add_option(flags, target, help)->check(CLI::Range(limit.min, limit.max));
-}
-
-// -W, -H and -s: every command that renders has them.
-void addImageSizeOptions(CLI::App* command, RenderOptions& o, const std::string& sppHelp) {
-  addLimited(command, "-W,--width", o.width, limits::kWidth,
-             "Image width in pixels (overrides the scene)");
-  addLimited(command, "-H,--height", o.height, limits::kHeight,
-             "Image height in pixels (overrides the scene)");
-  addLimited(command, "-s,--spp", o.samples, limits::kSamples, sppHelp);
-}
-
-void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
-  command
-      ->add_option_function<std::string>(
-          "--memory-limit",
-          [&o](const std::string& text) { o.memoryLimit = parseMemorySize(text); },
-          "Memory a run may plan to use, e.g. 512M, 8G, 1.5T (default: physical memory); "
-          "larger requests are refused before anything is allocated, see docs/reliability.md")
-      ->option_text("SIZE");
-}
-
-// The scene file: every command's one positional argument.
-void addSceneArgument(CLI::App* command, RenderOptions& o) {
-  command->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
-}
 
 // The options `render` and `view` share: scene, overrides, threads and distribution.
 void addSceneOptions(CLI::App* render, RenderOptions& o) {
@@ -154,38 +107,6 @@ void addSceneOptions(CLI::App* render, RenderOptions& o) {
           "--inject-fault",
           [&o](const std::string& text) { o.distribution.fault = parseFaultInjection(text); }, "")
       ->group("");
-}
-
-constexpr const char* kCausticsGroup = "Caustics (override the scene's 'caustics' section)";
-
-// The caustics options `render` and `view` share: the method, the photon budget and the
-// caustic-map parameters.
-void addCausticMethodOptions(CLI::App* command, RenderOptions& o) {
-  const char* caustics = kCausticsGroup;
-  addNamed(command, "--caustics", o.causticMethod, kCausticMethodNames,
-           "Caustics method: none, photon_map or caustic_map (or map; default: the scene's)")
-      ->group(caustics);
-  addLimited(command, "--photons", o.photons, limits::kPhotons,
-             "Photons emitted per pass towards the caustic casters (implies photon_map)")
-      ->group(caustics);
-  addLimited(command, "--map-resolution", o.mapResolution, limits::kMapResolution,
-             "Caustic map: texels per side of each light-space view (default 512)")
-      ->group(caustics);
-  addLimited(command, "--map-steps", o.mapSteps, limits::kMapSteps,
-             "Caustic map: iterations of the receiver-distance estimate (default 10)")
-      ->group(caustics);
-  command
-      ->add_option("--map-blur-sigma", o.mapBlurSigma,
-                   "Caustic map: Gaussian blur sigma in texels (default 1)")
-      ->check(CLI::NonNegativeNumber)
-      ->group(caustics);
-  addLimited(command, "--map-blur-radius", o.mapBlurRadius, limits::kMapBlurRadius,
-             "Caustic map: Gaussian blur half-width in texels, 0: off (default 2)")
-      ->group(caustics);
-  addNamed(command, "--map-paths", o.mapPaths, kCausticMapPathsNames,
-           "Caustic map: traced (through every caster surface, default) or front_face (one "
-           "interface, as in the thesis)")
-      ->group(caustics);
 }
 
 // The caustics options of `render` only: the viewer always refines progressively, with the
@@ -331,90 +252,6 @@ void addSpeedupCommand(CLI::App& app, SpeedupOptions& o) {
   addCausticMethodOptions(speedup, o.render);
   addMemoryLimitOption(speedup, o.render);
   speedup->add_flag("-q,--quiet", o.quiet, "No progress bar");
-}
-
-void addSweepCommand(CLI::App& app, SweepOptions& o) {
-  CLI::App* sweep = app.add_subcommand(
-      "sweep",
-      "Chart speed against accuracy of the caustic methods (CSV, chart).\n"
-      "Renders the scene with each caustic method over a range of budgets, times every point\n"
-      "(median of --repeats runs, taken in rounds) and scores it\n"
-      "against a reference: RMSE, relative RMSE, MRSE, max error and caustic flux ratio, over\n"
-      "the whole frame and the caustic region. Families (--families):\n"
-      "  photons     photon map: photons per pass     k           photon map: photons gathered\n"
-      "  autok       photon map, automatic k: its largest k (the target noise 1/sqrt(k))\n"
-      "  passes      progressive photon map: passes   resolution  caustic map: texels per side\n"
-      "  steps       caustic map: distance iterations blur        caustic map: blur half-width\n"
-      "  spp         samples per pixel, with the scene's own method\n"
-      "Reference (--reference): analytic for scenes whose casters are flat mirrors in one plane\n"
-      "(scenes/caustic-mirror.yaml), else progressive photon mapping at a high budget, cached\n"
-      "as PREFIX-reference.exr/.csv, or an image file. Writes PREFIX.csv and the chart\n"
-      "PREFIX.png (error against time, log-log, Pareto front, thumbnails; needs Qt).\n"
-      "One process; see docs/accuracy.md.");
-  addSceneArgument(sweep, o.render);
-  sweep->add_option("-o,--output", o.outputPrefix,
-                    "Prefix of the files written (default: sweep-<scene name>)");
-  addNamed(sweep, "--families", o.families, kSweepFamilyNames,
-           "Families to sweep, comma-separated (default: photons,k,passes,resolution,steps,blur)")
-      ->delimiter(',')
-      ->option_text(kSweepFamilyNames.list(",", ","));
-  const char* values = "Values swept (comma-separated; each overrides its family's defaults)";
-  const auto list = [&](const char* name, std::vector<uint64_t>& target, const char* help) {
-    sweep->add_option(name, target, help)->delimiter(',')->group(values);
-  };
-  list("--photons-list", o.values.photons,
-       "photons (default 25000,50000,100000,200000,400000,800000,1600000)");
-  list("--k-list", o.values.gather, "k (default 10,25,50,100,200,400)");
-  list("--autok-list", o.values.autoGather,
-       "largest k of the automatic k (default 25,100,400,1600)");
-  list("--passes-list", o.values.passes, "passes (default 1,2,4,8,16,32)");
-  list("--resolution-list", o.values.resolution, "resolution (default 64,128,256,512,1024)");
-  list("--steps-list", o.values.steps, "steps (default 1,2,3,5,10,20)");
-  list("--blur-list", o.values.blur, "blur half-width, sigma = half (default 0,1,2,4,8)");
-  list("--spp-list", o.values.samples, "spp (default 1,2,4,8,16)");
-  sweep->add_option("-r,--repeats", o.repeats, "Timed runs of every point; medians (default 3)")
-      ->check(CLI::Range(1, 1000));
-  addMemoryLimitOption(sweep, o.render);
-  sweep
-      ->add_option("--reference", o.reference.spec,
-                   "auto (default: analytic when the scene allows it, else progressive), "
-                   "analytic, progressive, or an image file (.exr) of the same size")
-      ->option_text("auto|analytic|progressive|FILE");
-  sweep
-      ->add_option("--reference-passes", o.reference.passes,
-                   "Progressive reference: passes (default 64)")
-      ->check(CLI::Range(int64_t{2}, limits::kPasses.max));
-  sweep
-      ->add_option("--reference-photons", o.reference.photons,
-                   "Progressive reference: photons per pass (default 1000000)")
-      ->check(CLI::Range(limits::kPhotons.min, limits::kPhotons.max));
-  sweep
-      ->add_option("--reference-k", o.reference.k,
-                   "Progressive reference: the k of its per-photon k-NN radii (default 5)")
-      ->check(CLI::Range(limits::kGather.min, limits::kGather.max));
-  sweep->add_flag("--refresh-reference", o.reference.refresh,
-                  "Render the progressive reference again even when the cached one matches");
-  sweep
-      ->add_option("--budget-seconds", o.budgetSeconds,
-                   "Start no timed run after this many seconds of sweeping (the reference not "
-                   "counted); the chart says how many points were measured")
-      ->check(CLI::PositiveNumber);
-  sweep
-      ->add_option_function<std::string>(
-          "--time-axis", [&o](const std::string& axis) { o.cpuAxis = axis == "cpu"; },
-          "Time charted: wall (default) or cpu seconds of the process")
-      ->check(CLI::IsMember({"wall", "cpu"}));
-  sweep
-      ->add_option("--thumbnail-height", o.thumbnailHeight,
-                   "Height of the chart's thumbnails in pixels (default 96)")
-      ->check(CLI::Range(16, 1024));
-  sweep
-      ->add_option("-t,--threads", o.render.distribution.threads,
-                   "Render threads (default 0: all available cores)")
-      ->check(CLI::Range(0, 4096));
-  addImageSizeOptions(sweep, o.render, "Samples per pixel (overrides the scene)");
-  addCausticMethodOptions(sweep, o.render);
-  sweep->add_flag("-q,--quiet", o.quiet, "No progress bar and no table");
 }
 
 // `prism` alone: the commands, one line each (the first line of each one's help), and where
