@@ -19,6 +19,7 @@ packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
   libglm-dev libyaml-cpp-dev                      # renderer core: math, scenes
   libpng-dev libopenexr-dev                       # PNG and EXR, written on every render
+  libjpeg62-turbo-dev                             # JPEG textures (models bring them)
   libopenimageio-dev                              # other image formats (loaded on first use)
   libcli11-dev                                    # command line
   libnanoflann-dev                                # k-nearest photons (caustics)

@@ -57,11 +57,14 @@ std::vector<SceneGeometry::MeshShading> meshShading(const std::vector<MeshInput>
   std::vector<SceneGeometry::MeshShading> out;
   uint32_t triangleNumber = 0;
   for (const MeshInput& mesh : meshes) {
-    SceneGeometry::MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber};
+    SceneGeometry::MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber, {}, {}, {}};
     reserveOnHugePages(shading.normals, mesh.normals.size());
     shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
     reserveOnHugePages(shading.indices, mesh.indices.size());
     shading.indices.assign(mesh.indices.begin(), mesh.indices.end());
+    shading.uvs.assign(mesh.uvs.begin(), mesh.uvs.end());
+    shading.colors.assign(mesh.colors.begin(), mesh.colors.end());
+    shading.faceMaterials.assign(mesh.faceMaterials.begin(), mesh.faceMaterials.end());
     out.push_back(std::move(shading));
     triangleNumber += static_cast<uint32_t>(mesh.indices.size() / 3);
   }
@@ -226,7 +229,9 @@ void SceneGeometry::recordStats(const GeometryInput& in) {
   PRISM_SHAPE_KINDS(PRISM_SHAPE_STATS)
 #undef PRISM_SHAPE_STATS
   for (const MeshShading& m : meshes_) {
-    stats_.geometryBytes += m.normals.size() * sizeof(Vec3) + m.indices.size() * sizeof(uint32_t);
+    stats_.geometryBytes += m.normals.size() * sizeof(Vec3) + m.indices.size() * sizeof(uint32_t) +
+                            m.uvs.size() * sizeof(Vec2) + m.colors.size() * sizeof(Color) +
+                            m.faceMaterials.size() * sizeof(MaterialId);
   }
 }
 

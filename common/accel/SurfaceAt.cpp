@@ -1,6 +1,8 @@
 // A hit's surface: the point put back on its primitive with a bound on its rounding, the
 // oriented geometric and shading normals, the material (compiled once per instruction set;
 // accel/IsaVariant.h).
+#include <cmath>
+
 #include "accel/PrimitiveRef.h"
 #include "accel/SceneGeometry.h"
 #include "math/RayOffset.h"
@@ -53,8 +55,30 @@ namespace {
   if (glm::dot(shading, geometric) < 0.0f) shading = geometric;
   s.geometricNormal = geometric;
   s.shadingNormal = shading;
+  s.uvPerWorld = -1.0f;
+  s.vertexColor = Color(1.0f);
   positionError += hitDistanceError(t, ray.direction);
   s.leavingDistance = leavingDistance(position, positionError, geometric);
+}
+
+// A textured or coloured mesh's texture coordinates and vertex colour at the hit, interpolated
+// barycentrically. Apart from finishSurface: plain meshes do not pay for it.
+[[gnu::noinline]] void vertexAttributes(const SceneGeometry::MeshShading& mesh,
+                                        const Triangle& tri, const HitRecord& hit, SurfaceHit& s) {
+  const uint32_t* corner = &mesh.indices[3 * size_t{tri.face}];
+  const float w = 1.0f - hit.u - hit.v;
+  if (!mesh.uvs.empty()) {
+    const Vec2 a = mesh.uvs[corner[0]], b = mesh.uvs[corner[1]], c = mesh.uvs[corner[2]];
+    s.uv = w * a + hit.u * b + hit.v * c;
+    const Vec2 du = b - a, dv = c - a;
+    const float uvArea = std::fabs(du.x * dv.y - du.y * dv.x);
+    const float worldArea = glm::length(glm::cross(tri.edge1(), tri.edge2()));
+    s.uvPerWorld = worldArea > 0.0f ? std::sqrt(uvArea / worldArea) : 0.0f;
+  }
+  if (!mesh.colors.empty()) {
+    s.vertexColor = w * mesh.colors[corner[0]] + hit.u * mesh.colors[corner[1]] +
+                    hit.v * mesh.colors[corner[2]];
+  }
 }
 
 }  // namespace
@@ -82,9 +106,10 @@ void SceneGeometry::Kernels::surface(const SceneGeometry& g, const Ray& ray, con
         // Authored normals define outside; the winding order may disagree with them.
         if (glm::dot(geometric, shading) < 0.0f) geometric = -geometric;
       }
-      s.material = mesh.material;
+      s.material = mesh.faceMaterials.empty() ? mesh.material : mesh.faceMaterials[tri.face];
       s.caustic = mesh.caustic;
       finishSurface(ray, hit.t, position, positionError, geometric, shading, s);
+      if (!mesh.uvs.empty() || !mesh.colors.empty()) vertexAttributes(mesh, tri, hit, s);
       return;
     }
 #define PRISM_SHAPE_SURFACE(Shape, plural)                                          \

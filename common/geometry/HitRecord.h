@@ -31,6 +31,13 @@ struct SurfaceHit {
   bool frontFace = true;       // the ray arrived from the side the surface normal points to
   MaterialId material = 0;
   uint8_t caustic = 0;  // kCastsCaustics | kReceivesCaustics, resolved per object
+  // Texture coordinates where the surface has them (a mesh with uvs), interpolated
+  // barycentrically, and how many texture-space units one world unit spans on the triangle
+  // (sqrt of their areas' ratio): what a ray cone's width turns into a mip level. Negative: the
+  // surface has no uvs (uv is then not written).
+  Vec2 uv{0.0f};
+  float uvPerWorld = -1.0f;
+  Color vertexColor{1.0f};  // the mesh's vertex colours interpolated; 1 where it has none
 
   // Where a ray leaving this point in `direction` starts: just off the surface, to its side.
   Vec3 rayOrigin(const Vec3& direction) const {

@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <cerrno>
+#include <cmath>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
@@ -138,7 +139,103 @@ class PngReader {
   png_infop info_ = nullptr;
 };
 
+// Bytes in memory as libpng's input.
+struct MemoryInput {
+  const uint8_t* data;
+  size_t size;
+  size_t at = 0;
+};
+
+void readFromMemory(png_structp png, png_bytep out, png_size_t length) {
+  auto* in = static_cast<MemoryInput*>(png_get_io_ptr(png));
+  if (length > in->size - in->at) png_error(png, "the PNG data ends early");
+  std::memcpy(out, in->data + in->at, length);
+  in->at += length;
+}
+
+// decodePng's session: every libpng call between setjmp and return, plain data only on the
+// stack (see PngError). Fills width, height and whether the rows are 16-bit and had alpha;
+// sizeRows is called once the size is known and returns the row pointers (or null to stop).
+template <class SizeRows>
+bool decodeSession(MemoryInput* input, PngError* error, int* width, int* height, bool* sixteen,
+                   bool* alpha, SizeRows&& sizeRows) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, onError, onWarning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    return false;
+  }
+  png_set_read_fn(png, input, readFromMemory);
+  png_read_info(png, info);
+  *width = static_cast<int>(png_get_image_width(png, info));
+  *height = static_cast<int>(png_get_image_height(png, info));
+  const int colorType = png_get_color_type(png, info);
+  *sixteen = png_get_bit_depth(png, info) == 16;
+  *alpha = (colorType & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(png, info, PNG_INFO_tRNS);
+  png_set_expand(png);  // palette to RGB, grey below 8 bits to 8, tRNS to alpha
+  png_set_strip_alpha(png);
+  if (colorType == PNG_COLOR_TYPE_GRAY || colorType == PNG_COLOR_TYPE_GRAY_ALPHA) {
+    png_set_gray_to_rgb(png);
+  }
+  if (*sixteen) png_set_swap(png);  // little-endian 16-bit values
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  png_bytep* rows = sizeRows();
+  if (!rows) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  png_read_image(png, rows);
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
 }  // namespace
+
+PngPixels decodePng(std::span<const uint8_t> bytes, uint64_t maxPixels) {
+  MemoryInput input{bytes.data(), bytes.size()};
+  PngError error;
+  int width = 0, height = 0;
+  bool sixteen = false, alpha = false, tooLarge = false;
+  std::vector<uint8_t> data;
+  std::vector<png_bytep> rows;
+  const bool decoded = decodeSession(&input, &error, &width, &height, &sixteen, &alpha, [&] {
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    if (pixels > maxPixels || width <= 0 || height <= 0) {
+      tooLarge = true;
+      return static_cast<png_bytep*>(nullptr);
+    }
+    const size_t stride = size_t(width) * 3 * (sixteen ? 2 : 1);
+    data.resize(stride * size_t(height));
+    rows.resize(size_t(height));
+    for (int y = 0; y < height; ++y) rows[y] = data.data() + size_t(y) * stride;
+    return rows.data();
+  });
+  if (tooLarge) {
+    throw std::runtime_error("a " + std::to_string(width) + "x" + std::to_string(height) +
+                             " image is larger than allowed");
+  }
+  if (!decoded) throw std::runtime_error(*error.message ? error.message : "not a readable PNG");
+  PngPixels result;
+  result.hadAlpha = alpha;
+  if (!sixteen) {
+    result.srgb = SrgbImage{width, height, std::move(data)};
+    return result;
+  }
+  result.linear = ImageRgb(width, height);
+  const size_t values = size_t(width) * size_t(height) * 3;
+  for (size_t i = 0; i < values; ++i) {
+    uint16_t v;
+    std::memcpy(&v, data.data() + 2 * i, 2);
+    const float encoded = static_cast<float>(v) * (1.0f / 65535.0f);
+    const float linear = encoded <= 0.04045f ? encoded / 12.92f
+                                             : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+    result.linear.pixels[i / 3][static_cast<int>(i % 3)] = linear;
+  }
+  return result;
+}
 
 void writePng(const std::string& path, int width, int height, const uint8_t* rgb,
               const ImageMetadata& metadata, const PngEncoding& encoding) {

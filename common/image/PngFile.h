@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,18 @@ void writePng(const std::string& path, int width, int height, const uint8_t* rgb
 // of another kind (OpenImageIO reads those). Throws std::runtime_error for a missing, unreadable
 // or corrupt file.
 std::optional<SrgbImage> readPng(const std::string& path);
+
+// A PNG's pixels decoded from its bytes in memory, whatever its kind: 8-bit files (grey,
+// palette, RGB, with or without alpha) as sRGB bytes, expanded to RGB (alpha dropped), 16-bit
+// files as linear radiance (the sRGB curve applied to value/65535). Exactly one of the two
+// holds pixels. maxPixels: a file of more pixels is refused from its header, before any is
+// decoded. Throws std::runtime_error with libpng's message (or the size refused).
+struct PngPixels {
+  SrgbImage srgb;
+  ImageRgb linear;
+  bool hadAlpha = false;
+};
+PngPixels decodePng(std::span<const uint8_t> bytes, uint64_t maxPixels);
 
 // The text chunk (tEXt, zTXt or iTXt before the image data) named name ("ImageDescription" looks
 // for "Description"); nullopt when there is none or the file is not a readable PNG.

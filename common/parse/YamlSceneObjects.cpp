@@ -9,7 +9,7 @@
 #include <string_view>
 #include <utility>
 
-#include "parse/MeshFile.h"
+#include "parse/ModelFile.h"
 #include "parse/YamlSceneReader.h"
 #include "scene/MeshBudget.h"
 
@@ -225,16 +225,22 @@ void YamlSceneReader::readMesh(const Entry& object) {
                              (exists ? " is not a regular file" : " not found") + " (looked for '" +
                              resolved.string() + "')");
   }
-  MeshDesc mesh = loadMeshFile(resolved.string(), loc(fileEntry), meshBudget_.remaining());
-  meshBudget_.spend(meshBuildBytes(mesh.triangleCount(), mesh.positions.size()));
-  if (mesh.triangleCount() == 0)
+  ModelDesc model = loadModelFile(resolved.string(), loc(fileEntry), meshBudget_.remaining());
+  size_t positions = 0;
+  for (const MeshDesc& mesh : model.meshes) positions += mesh.positions.size();
+  meshBudget_.spend(meshBuildBytes(model.triangleCount(), positions));
+  if (model.triangleCount() == 0)
     fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");
-  if (mesh.source.empty()) mesh.source = resolved.string();
-  if (const Entry* e = m.find("transform")) applyTransform(*e, mesh);
-  mesh.loc = m.loc;
-  mesh.material = material(m);
-  mesh.caustic = causticRole(m);
-  scene_.meshes.push_back(std::move(mesh));
+  for (MeshDesc& mesh : model.meshes) {
+    if (mesh.source.empty()) mesh.source = resolved.string();
+    if (const Entry* e = m.find("transform")) applyTransform(*e, mesh);
+  }
+  ModelPlacement placement;
+  // The model's own materials unless the scene names one for the whole mesh.
+  if (m.find("material") || model.materials.empty()) placement.material = material(m);
+  placement.caustic = causticRole(m);
+  placement.loc = m.loc;
+  placeModel(std::move(model), placement, scene_);
 }
 
 void YamlSceneReader::applyTransform(const Entry& section, MeshDesc& mesh) const {

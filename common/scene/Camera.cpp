@@ -1,5 +1,6 @@
 #include "scene/Camera.h"
 
+#include <algorithm>
 #include <new>
 
 #include "math/RayRows.h"
@@ -86,6 +87,14 @@ RayDifferential Camera::pixelDifferential(const Ray& ray) const {
   d.dDdx = (stepX - D * glm::dot(D, stepX)) * invLength;
   d.dDdy = (stepY - D * glm::dot(D, stepY)) * invLength;
   return d;
+}
+
+RayCone Camera::pixelCone(const Ray&) const {
+  // One angle for every ray, the pixel's at the image's centre (as the paper takes it): off
+  // the axis a pixel subtends a little less, which only moves a lookup towards a finer level.
+  const float pixel = std::max(2.0f * halfWidth_ * invWidth_, 2.0f * halfHeight_ * invHeight_);
+  if (projection_ != Projection::Perspective) return {pixel, 0.0f};
+  return {0.0f, pixel};
 }
 
 std::optional<Vec2> Camera::project(const Vec3& p) const {

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "math/Ray.h"
+#include "math/RayCone.h"
 #include "math/RayDifferential.h"
 #include "scene/SceneDescription.h"
 
@@ -23,6 +24,10 @@ class Camera {
   // for every sample of it, not a 1/spp share (with shares a focus narrower than a pixel could
   // fall between its samples' footprints or into a neighbour's: docs/accuracy.md).
   RayDifferential pixelDifferential(const Ray& ray) const;
+  // The ray's cone (math/RayCone.h): a pixel wide where the ray meets the image plane at unit
+  // distance ahead (perspective: spread the pixel's angle along the ray, width 0), or a pixel's
+  // width wide throughout (orthographic: spread 0).
+  RayCone pixelCone(const Ray& ray) const;
   // The image-plane point, in pixels, that world point p projects to; nothing when p lies
   // behind the camera.
   std::optional<Vec2> project(const Vec3& p) const;

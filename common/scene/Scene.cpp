@@ -17,6 +17,13 @@ CasterBounds boundingSphere(const Aabb& b) {
   return c;
 }
 
+std::vector<Texture> texturesOf(const std::vector<TextureDesc>& descs) {
+  std::vector<Texture> textures;
+  textures.reserve(descs.size());
+  for (const TextureDesc& desc : descs) textures.emplace_back(desc);
+  return textures;
+}
+
 std::vector<MaterialDesc> withDefaultMaterial(std::vector<MaterialDesc> materials) {
   if (materials.empty()) materials.emplace_back();  // primitives default to material 0
   return materials;
@@ -26,7 +33,7 @@ std::vector<MaterialDesc> withDefaultMaterial(std::vector<MaterialDesc> material
 
 uint8_t causticFlags(CausticRole role, const MaterialDesc& m) {
   const bool specular = anyPositive(m.reflectance) || anyPositive(m.transmittance);
-  const bool diffuse = m.checker.has_value() || anyPositive(m.diffuse);
+  const bool diffuse = m.checker.has_value() || anyPositive(m.diffuse);  // a texture multiplies it
   switch (role) {
     case CausticRole::Auto:
       return static_cast<uint8_t>((specular ? kCastsCaustics : 0) |
@@ -52,6 +59,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
       background_(d.background),
       ambientLight_(d.ambientLight),
       materials_(withDefaultMaterial(d.materials)),
+      textures_(texturesOf(d.textures)),
       lights_(d.lights),
       geometry_(geometryInput(d, traversal)) {
   if (environment) environment_.emplace(std::move(*environment));
@@ -65,6 +73,7 @@ Scene::Scene(const SceneDescription& d, std::optional<CubeMapDesc> environment, 
       background_(d.background),
       ambientLight_(d.ambientLight),
       materials_(withDefaultMaterial(d.materials)),
+      textures_(texturesOf(d.textures)),
       lights_(d.lights),
       geometry_(std::move(built)) {
   geometryInput(d, geometry_.traversal());  // for the casters: the build itself is done
@@ -97,9 +106,22 @@ GeometryInput Scene::geometryInput(const SceneDescription& d, Traversal traversa
 #define PRISM_ADD_SHAPES(Shape, plural) addShapes(d.plural, in.plural, in.plural##Caustic);
   PRISM_SHAPE_KINDS(PRISM_ADD_SHAPES)
 #undef PRISM_ADD_SHAPES
+  std::vector<uint8_t> used;  // by the faces of one mesh
   for (const MeshDesc& mesh : d.meshes) {
-    const uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
-    in.meshes.push_back({mesh.positions, mesh.indices, mesh.normals, mesh.material, caustic});
+    // A mesh of several materials has the caustic bits of all of them.
+    uint8_t caustic = causticFlags(mesh.caustic, materialOf(mesh.material));
+    if (!mesh.faceMaterials.empty()) {
+      used.assign(materials_.size(), 0);
+      caustic = 0;
+      for (const MaterialId id : mesh.faceMaterials) {
+        uint8_t& seen = used[id < materials_.size() ? id : 0];
+        if (seen) continue;
+        seen = 1;
+        caustic |= causticFlags(mesh.caustic, materialOf(id));
+      }
+    }
+    in.meshes.push_back({mesh.positions, mesh.indices, mesh.normals, mesh.uvs, mesh.colors,
+                         mesh.faceMaterials, mesh.material, caustic});
     if (caustic & kCastsCaustics) {
       Aabb meshBounds;
       for (const Vec3& p : mesh.positions) meshBounds.extend(p);

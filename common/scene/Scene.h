@@ -12,6 +12,7 @@
 #include "scene/Camera.h"
 #include "scene/CubeMap.h"
 #include "scene/SceneDescription.h"
+#include "shading/Texture.h"
 
 namespace prism {
 
@@ -100,6 +101,8 @@ class Scene {
   const RenderSettings& settings() const { return settings_; }
   const CausticSettings& causticSettings() const { return caustics_; }
   const std::vector<MaterialDesc>& materials() const { return materials_; }
+  // What the materials' texture maps index (TextureMap::texture).
+  const std::vector<Texture>& textures() const { return textures_; }
   // Indexed by a PrimitiveRef of kind Sphere.
   const std::vector<Sphere>& spheres() const { return geometry_.spheres(); }
   const std::vector<PointLightDesc>& lights() const { return lights_; }
@@ -127,6 +130,7 @@ class Scene {
   Color ambientLight_;
   std::optional<CubeMap> environment_;
   std::vector<MaterialDesc> materials_;
+  std::vector<Texture> textures_;
   std::vector<PointLightDesc> lights_;
   std::vector<CasterBounds> casters_;
   SceneGeometry geometry_;

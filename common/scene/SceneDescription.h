@@ -59,6 +59,30 @@ struct CheckerDesc {
   float scale = 1.0f;  // edge length of one cell, world units
 };
 
+// An image a material reads through its surface's texture coordinates (docs/scene-format.md,
+// "Textures"). 8-bit sRGB files stay bytes (srgb), as the sky's faces do; 16-bit and float files
+// are linear radiance (linear). Exactly one of the two holds pixels. Rows from the top; texture
+// coordinate v = 0 is the bottom row (OBJ's and OpenGL's convention; glTF's loader flips v).
+struct TextureDesc {
+  std::string path;  // the file it came from: one texture per file, however many materials use it
+  SrgbImage srgb;
+  ImageRgb linear;
+
+  bool keptAsBytes() const { return !srgb.empty(); }
+  int width() const { return keptAsBytes() ? srgb.width : linear.width; }
+  int height() const { return keptAsBytes() ? srgb.height : linear.height; }
+};
+
+// A texture placed on a material: coordinates (u, v) read the texture at
+// rotate(rotation) · (scale · (u, v)) + offset, wrapped by repeating (MTL's -s and -o, glTF's
+// KHR_texture_transform).
+struct TextureMap {
+  uint32_t texture = 0;  // into SceneDescription::textures
+  Vec2 scale{1.0f};
+  Vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise
+};
+
 struct MaterialDesc {
   std::string name;
   Color ambient{0.0f};      // fraction of the scene's ambient radiance reflected
@@ -70,6 +94,8 @@ struct MaterialDesc {
   float ior = 1.5f;
   bool fresnel = true;  // split transmittance into reflection and refraction by Fresnel
   std::optional<CheckerDesc> checker;
+  // Multiplies diffuse by the texture's colour where the surface has texture coordinates.
+  std::optional<TextureMap> diffuseMap;
   FileLoc loc;
 };
 
@@ -82,7 +108,9 @@ struct PlaneDesc {
 };
 
 // A triangle mesh in world space. normals is empty (flat shading) or parallel to positions
-// (smooth shading, interpolated barycentrically).
+// (smooth shading, interpolated barycentrically); so are uvs (texture coordinates) and colors
+// (vertex colours, which multiply the diffuse colour). faceMaterials is empty (every triangle
+// has `material`) or holds one material per triangle (an OBJ's usemtl).
 struct MeshDesc {
   std::string source;  // file it came from, or a description such as "triangle"
   std::vector<Vec3> positions;
@@ -91,8 +119,14 @@ struct MeshDesc {
   MaterialId material = 0;
   FileLoc loc;
   CausticRole caustic = CausticRole::Auto;
+  std::vector<Vec2> uvs;
+  std::vector<Color> colors;
+  std::vector<MaterialId> faceMaterials;
 
   size_t triangleCount() const { return indices.size() / 3; }
+  MaterialId materialOf(size_t triangle) const {
+    return faceMaterials.empty() ? material : faceMaterials[triangle];
+  }
 };
 
 // Six faces in the OpenGL cube-map order +X, -X, +Y, -Y, +Z, -Z. Faces read from 8-bit sRGB
@@ -183,12 +217,16 @@ struct SceneDescription {
   Color ambientLight{0.0f};  // ambient radiance, scaled by each material's ambient colour
   std::optional<CubeMapDesc> environment;
   std::vector<MaterialDesc> materials;
+  std::vector<TextureDesc> textures;  // read by the materials' texture maps
   std::vector<PointLightDesc> lights;
 #define PRISM_SHAPE_LIST(Shape, plural) std::vector<Shape##Desc> plural;
   PRISM_SHAPE_KINDS(PRISM_SHAPE_LIST)  // spheres, cones, ... (geometry/ShapeKinds.h)
 #undef PRISM_SHAPE_LIST
   std::vector<PlaneDesc> planes;
   std::vector<MeshDesc> meshes;
+  // What the files held that Prism does not model or could not use, each once
+  // ("file:line: what was skipped and what is used instead"); printed by the commands on rank 0.
+  std::vector<std::string> warnings;
 
   size_t triangleCount() const {
     size_t n = 0;

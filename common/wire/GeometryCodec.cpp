@@ -38,10 +38,15 @@ void checkMeshes(const std::vector<SceneGeometry::MeshShading>& meshes, size_t t
     const SceneGeometry::MeshShading& mesh = meshes[m];
     if (mesh.firstTriangle != nextTriangle) fault(at("mesh", m) + " does not follow the last");
     if (mesh.indices.size() % 3 != 0) fault(at("mesh", m) + " has a partial face");
-    if (!mesh.normals.empty()) {
+    // Every per-vertex array the surface reads by a face's indices covers them.
+    for (const size_t vertices : {mesh.normals.size(), mesh.uvs.size(), mesh.colors.size()}) {
+      if (vertices == 0) continue;
       for (size_t i = 0; i < mesh.indices.size(); ++i) {
-        if (mesh.indices[i] >= mesh.normals.size()) fault(at("mesh", m) + " index past normals");
+        if (mesh.indices[i] >= vertices) fault(at("mesh", m) + " index past its vertex data");
       }
+    }
+    if (!mesh.faceMaterials.empty() && mesh.faceMaterials.size() != mesh.indices.size() / 3) {
+      fault(at("mesh", m) + " has face materials not one per face");
     }
     nextTriangle += mesh.indices.size() / 3;
   }
@@ -222,7 +227,10 @@ void Fields<SceneGeometry>::checkFitsScene(const SceneGeometry& g, const SceneDe
   PRISM_SHAPE_KINDS(PRISM_CHECK_SHAPE_MATERIALS)
 #undef PRISM_CHECK_SHAPE_MATERIALS
   for (const Plane& p : g.planes_) check(p.material, "plane");
-  for (const SceneGeometry::MeshShading& m : g.meshes_) check(m.material, "mesh");
+  for (const SceneGeometry::MeshShading& m : g.meshes_) {
+    check(m.material, "mesh");
+    for (const MaterialId id : m.faceMaterials) check(id, "mesh face");
+  }
 }
 
 size_t Fields<SceneGeometry>::wireBytes(const SceneGeometry& g) {
@@ -231,7 +239,9 @@ size_t Fields<SceneGeometry>::wireBytes(const SceneGeometry& g) {
                  g.bvh_.order_.size() * 4 + g.wideBvh_.nodes_.size() * sizeof(WideBvhNode) +
                  g.packs_.size() * sizeof(SceneGeometry::LeafPack);
   for (const SceneGeometry::MeshShading& m : g.meshes_) {
-    bytes += 64 + m.normals.size() * sizeof(Vec3) + m.indices.size() * 4;
+    bytes += 64 + m.normals.size() * sizeof(Vec3) + m.indices.size() * 4 +
+             m.uvs.size() * sizeof(Vec2) + m.colors.size() * sizeof(Color) +
+             m.faceMaterials.size() * sizeof(MaterialId);
   }
   // Each shape with its caustic byte; a shape whose fields are sent one by one may take more
   // than its memory (a cone: 80 bytes in memory, 128 allowed).

@@ -106,7 +106,8 @@ struct Fields<SceneGeometry::LeafPack> {
 
 template <>
 struct Fields<SceneGeometry::MeshShading> {
-  PRISM_WIRE_FIELDS(normals, indices, material, caustic, firstTriangle)
+  PRISM_WIRE_FIELDS(normals, indices, material, caustic, firstTriangle, uvs, colors,
+                    faceMaterials)
 };
 
 template <>

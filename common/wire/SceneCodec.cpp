@@ -26,8 +26,20 @@ void checkMesh(const MeshDesc& m, size_t index) {
     fail(std::to_string(m.normals.size()) + " normals for " + std::to_string(m.positions.size()) +
          " positions");
   }
+  if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) {
+    fail(std::to_string(m.uvs.size()) + " texture coordinates for " +
+         std::to_string(m.positions.size()) + " positions");
+  }
+  if (!m.colors.empty() && m.colors.size() != m.positions.size()) {
+    fail(std::to_string(m.colors.size()) + " colours for " + std::to_string(m.positions.size()) +
+         " positions");
+  }
   if (m.indices.size() % 3 != 0) {
     fail(std::to_string(m.indices.size()) + " indices, not a multiple of 3");
+  }
+  if (!m.faceMaterials.empty() && m.faceMaterials.size() != m.triangleCount()) {
+    fail(std::to_string(m.faceMaterials.size()) + " face materials for " +
+         std::to_string(m.triangleCount()) + " triangles");
   }
   for (size_t i = 0; i < m.indices.size(); ++i) {
     if (m.indices[i] >= m.positions.size()) {
@@ -103,6 +115,34 @@ void Fields<CubeMapDesc>::check(const CubeMapDesc& cube) {
 void Fields<SceneDescription>::check(const SceneDescription& scene) {
   for (size_t i = 0; i < scene.meshes.size(); ++i) checkMesh(scene.meshes[i], i);
   const size_t materials = scene.materials.size();
+  const size_t materialLimit = std::max<size_t>(materials, 1);
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    for (const MaterialId id : scene.meshes[i].faceMaterials) {
+      if (id >= materialLimit) {
+        throw WireError(describe("mesh", i, scene.meshes[i].loc) + ": a face has material " +
+                        std::to_string(id) + " but the scene has " + std::to_string(materials) +
+                        " materials");
+      }
+    }
+  }
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    const TextureDesc& t = scene.textures[i];
+    const std::string what = "texture " + std::to_string(i) + " '" + t.path + "'";
+    checkImageSize(t.linear.width, t.linear.height, t.linear.pixels.size(), 1, what);
+    checkImageSize(t.srgb.width, t.srgb.height, t.srgb.rgb.size(), 3, what);
+    const bool hasLinear = !t.linear.pixels.empty(), hasBytes = !t.srgb.rgb.empty();
+    if (hasLinear == hasBytes) {
+      throw WireError(what + (hasLinear ? " carries both floats and bytes" : " is empty"));
+    }
+  }
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const std::optional<TextureMap>& map = scene.materials[i].diffuseMap;
+    if (map && map->texture >= scene.textures.size()) {
+      throw WireError(describe("material", i, scene.materials[i].loc) + ": texture " +
+                      std::to_string(map->texture) + " but the scene has " +
+                      std::to_string(scene.textures.size()) + " textures");
+    }
+  }
   forEachShapeList(scene, [&](const auto& shapes) {
     using Desc = typename std::decay_t<decltype(shapes)>::value_type;
     const std::string kind(Desc::kName);

@@ -58,9 +58,19 @@ struct Fields<CheckerDesc> {
 };
 
 template <>
+struct Fields<TextureDesc> {
+  PRISM_WIRE_FIELDS(path, srgb, linear)
+};
+
+template <>
+struct Fields<TextureMap> {
+  PRISM_WIRE_FIELDS(texture, scale, offset, rotation)
+};
+
+template <>
 struct Fields<MaterialDesc> {
   PRISM_WIRE_FIELDS(name, ambient, diffuse, specular, shininess, reflectance, transmittance, ior,
-                    fresnel, checker, loc)
+                    fresnel, checker, diffuseMap, loc)
 };
 
 template <>
@@ -85,17 +95,22 @@ struct Fields<PlaneDesc> {
 template <>
 struct Fields<MeshDesc> {
   static void fields(auto& self, auto&& visit) {
-    auto& [source, positions, normals, indices, material, loc, caustic] = self;
-    visit(source, positions, normals, indices, material, caustic, loc);
+    auto& [source, positions, normals, indices, material, loc, caustic, uvs, colors,
+           faceMaterials] = self;
+    visit(source, positions, normals, indices, material, caustic, loc, uvs, colors,
+          faceMaterials);
   }
 };
 
 template <>
 struct Fields<SceneDescription> {
   PRISM_WIRE_FIELDS(sourcePath, camera, render, caustics, background, ambientLight, environment,
-                    materials, lights, PRISM_SHAPE_KINDS(PRISM_SHAPE_PLURAL_COMMA) planes, meshes)
-  // What would crash the renderer later: mesh indices past the positions, normals not parallel
-  // to positions, index counts not a multiple of three, material ids past the material list.
+                    materials, textures, lights, PRISM_SHAPE_KINDS(PRISM_SHAPE_PLURAL_COMMA) planes,
+                    meshes, warnings)
+  // What would crash the renderer later: mesh indices past the positions, normals, uvs or
+  // colours not parallel to positions, index counts not a multiple of three, material ids past
+  // the material list (a face's too), texture maps past the texture list, textures without
+  // pixels or with both kinds.
   static void check(const SceneDescription& scene);
 };
 

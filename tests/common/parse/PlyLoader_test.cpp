@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "parse/MeshFile.h"
+#include "parse/ModelFile.h"
 
 namespace prism {
 namespace {
@@ -347,16 +347,18 @@ TEST(PlyLoader, AMeshPastTheMemoryLimitIsRefusedBeforeItsArraysExist) {
   }
 }
 
-TEST(MeshFile, PlyFilesGoToThePlyReaderWhateverTheCaseOfTheirName) {
+TEST(ModelFile, PlyFilesGoToThePlyReaderWhateverTheCaseOfTheirName) {
   const fs::path dir = fs::temp_directory_path() / ("prism_ply_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string path = (dir / "Cube.PLY").string();
   std::ofstream(path, std::ios::binary) << binaryCube(true);
-  const MeshDesc mesh = loadMeshFile(path, kReferencedFrom);
+  const ModelDesc model = loadModelFile(path, kReferencedFrom);
+  ASSERT_EQ(model.meshes.size(), 1u);
+  const MeshDesc& mesh = model.meshes[0];
   EXPECT_EQ(mesh.triangleCount(), 12u);
   EXPECT_EQ(mesh.source, path);
   try {
-    loadMeshFile((dir / "missing.ply").string(), kReferencedFrom);
+    loadModelFile((dir / "missing.ply").string(), kReferencedFrom);
     ADD_FAILURE() << "a missing file loaded";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.loc().file, "scene.yaml");
