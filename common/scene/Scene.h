@@ -89,11 +89,6 @@ class Scene {
   Color escapedRadiance(const Vec3& direction) const {
     return environment_ ? environment_->lookup(direction) : background_;
   }
-  // The same averaged over the footprint of a ray of unit direction whose direction changes by
-  // dDdx, dDdy per pixel (CubeMap's mip levels).
-  Color escapedRadiance(const Vec3& direction, const Vec3& dDdx, const Vec3& dDdy) const {
-    return environment_ ? environment_->lookup(direction, dDdx, dDdy) : background_;
-  }
   // The same averaged over a cone of directions `spread` radians wide (a ray cone's spread,
   // math/RayCone.h).
   Color escapedRadiance(const Vec3& direction, float spread) const {

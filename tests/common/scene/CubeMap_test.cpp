@@ -299,5 +299,26 @@ TEST(CubeMap, LookupsAreContinuousAcrossFaceEdges) {
   EXPECT_LT(worst, 0.05f);  // 0.032 measured; 0.40 with blends clamped to each face
 }
 
+// A ray cone of spread α reads, at a face's centre, what a differential stepping α per pixel
+// reads; towards a face's corner the gnomonic stretch (1/ma² of a unit direction) widens it.
+TEST(CubeMap, AConesSpreadReadsTheLevelOfTheSameDifferentialAtAFacesCentre) {
+  CubeMapDesc d;
+  for (int f = 0; f < 6; ++f) {
+    d.faces[f] = ImageRgb(64, 64);
+    for (int y = 0; y < 64; ++y) {
+      for (int x = 0; x < 64; ++x) d.faces[f].at(x, y) = Color(static_cast<float>((x + y) % 2));
+    }
+  }
+  const CubeMap cube(d);
+  for (const float spread : {0.01f, 0.05f, 0.2f}) {
+    const Vec3 centre(0.0f, 0.0f, -1.0f);
+    const Color cone = cube.lookup(centre, spread);
+    const Color differential = cube.lookup(centre, Vec3(spread, 0, 0), Vec3(0, spread, 0));
+    EXPECT_NEAR(cone.x, differential.x, 1e-6f) << spread;
+  }
+  const Vec3 off = glm::normalize(Vec3(0.3f, 0.2f, -1.0f));
+  EXPECT_EQ(cube.lookup(off, 0.0f), cube.lookup(off));  // no spread: the finest level
+}
+
 }  // namespace
 }  // namespace prism
