@@ -19,10 +19,10 @@ ModelDesc loadModelFile(const std::string& path, const FileLoc& referencedFrom,
     throw SceneError(referencedFrom.file.empty() ? FileLoc{path} : referencedFrom,
                      "glTF files are not read yet");
   }
+  if (extension != ".ply") return loadObjModel(path, referencedFrom, limit);
   ModelDesc model;
   model.source = path;
-  model.meshes.push_back(extension == ".ply" ? loadPlyMesh(path, referencedFrom, limit)
-                                             : loadObjMesh(path, referencedFrom, limit));
+  model.meshes.push_back(loadPlyMesh(path, referencedFrom, limit));
   return model;
 }
 
@@ -46,7 +46,8 @@ size_t placeModel(ModelDesc model, const ModelPlacement& placement, SceneDescrip
   const auto firstMaterial = static_cast<MaterialId>(scene.materials.size());
   if (ownMaterials) {
     for (MaterialDesc& material : model.materials) {
-      if (material.diffuseMap) material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
+      if (material.diffuseMap)
+        material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
       scene.materials.push_back(std::move(material));
     }
   }
