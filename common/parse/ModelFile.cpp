@@ -46,8 +46,7 @@ size_t placeModel(ModelDesc model, const ModelPlacement& placement, SceneDescrip
   const auto firstMaterial = static_cast<MaterialId>(scene.materials.size());
   if (ownMaterials) {
     for (MaterialDesc& material : model.materials) {
-      if (material.diffuseMap)
-        material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
+      if (material.diffuseMap) material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
       scene.materials.push_back(std::move(material));
     }
   }
