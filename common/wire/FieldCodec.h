@@ -26,10 +26,11 @@ namespace prism::wire {
 template <class T>
 inline constexpr bool kMemoryIsWireForm = kWireOrderIsNative &&
                                           ((std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) ||
-                                           std::is_same_v<T, Vec3> ||
+                                           std::is_same_v<T, Vec3> || std::is_same_v<T, Vec2> ||
                                            requires { requires Fields<T>::kMemoryIsWireForm; } ||
                                            requires { requires T::kMemoryIsWireForm; });
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be three packed floats");
+static_assert(sizeof(Vec2) == 2 * sizeof(float), "Vec2 must be two packed floats");
 
 // Elements of a vector read in one go are checked this many at a time (28 KiB of photons).
 inline constexpr size_t kCheckBlock = 1024;
@@ -78,6 +79,11 @@ inline void writeField(ByteWriter& w, const std::string& v) {
 
 inline void writeField(ByteWriter& w, const Vec3& v) {
   w.writeVec3(v);
+}
+
+inline void writeField(ByteWriter& w, const Vec2& v) {
+  writeField(w, v.x);
+  writeField(w, v.y);
 }
 
 template <class T, size_t N>
@@ -185,6 +191,11 @@ inline void readField(ByteReader& r, std::string& v) {
 
 inline void readField(ByteReader& r, Vec3& v) {
   v = r.readVec3();
+}
+
+inline void readField(ByteReader& r, Vec2& v) {
+  readField(r, v.x);
+  readField(r, v.y);
 }
 
 template <class T, size_t N>
@@ -305,6 +316,10 @@ inline bool sameField(const std::string& a, const std::string& b) {
 
 inline bool sameField(const Vec3& a, const Vec3& b) {
   return sameField(a.x, b.x) && sameField(a.y, b.y) && sameField(a.z, b.z);
+}
+
+inline bool sameField(const Vec2& a, const Vec2& b) {
+  return sameField(a.x, b.x) && sameField(a.y, b.y);
 }
 
 template <class T, size_t N>

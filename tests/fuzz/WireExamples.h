@@ -45,6 +45,10 @@ inline void fill(Vec3& v) {
   v = Vec3(0.5f);
 }
 
+inline void fill(Vec2& v) {
+  v = Vec2(0.5f);
+}
+
 template <class T, size_t N>
 void fill(std::array<T, N>& values);
 template <class T, size_t N>

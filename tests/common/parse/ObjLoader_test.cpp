@@ -491,7 +491,8 @@ TEST(ObjModel, APositionWithTwoTextureCoordinatesBecomesTwoVertices) {
 
 TEST(ObjModel, AFileWithoutMaterialsOrTextureCoordinatesIsItsGeometryAlone) {
   const ModelDesc model = parseObjModel(
-      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n", "mem.obj", {});
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1//1 3//1 4//1\n",
+      "mem.obj", {});
   EXPECT_TRUE(model.materials.empty());
   EXPECT_TRUE(model.textures.empty());
   EXPECT_TRUE(model.warnings.empty());
@@ -502,7 +503,7 @@ TEST(ObjModel, AFileWithoutMaterialsOrTextureCoordinatesIsItsGeometryAlone) {
   EXPECT_TRUE(mesh.colors.empty());
   EXPECT_EQ(mesh.positions, (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
   EXPECT_EQ(mesh.normals.size(), 4u);
-  EXPECT_EQ(mesh.triangleCount(), 2u);
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
 }
 
 TEST(ObjModel, OneMaterialForEveryFaceIsTheMeshsMaterial) {
@@ -521,7 +522,7 @@ TEST(ObjModel, TheModelIsTheSameHoweverTheTextIsCutForTheThreads) {
   // Materials switch between and within what the pieces hold; a usemtl names nothing defined;
   // a polygon; texture coordinates on some faces only.
   const std::string text =
-      "f 1/1 2/2 3/3\nmtllib lib.mtl\r\nv 0 0 0\nv 1 0 0\rv 1 1 0\nv 0 1 0\nv 0 2 0\n"
+      "f 1/1 2/2 3/3\nmtllib lib.mtl\r\nv 0 0 0\nv 1 0 0\rv 1 1 0\nv 0 1 0\nv -1 0.5 0\n"
       "vt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\nusemtl red\nf 1/1 3/3 4/1\n# comment\n"
       "usemtl blue\n\nf 1/-3 2/-2 4/-1\nf 4 3 5\nusemtl nothing\nf 1 2 3 4 5\n"
       "usemtl white # a comment\nf 2/2 3/3 4/1\nusemtl red\nusemtl blue\n  f 5 4 1";

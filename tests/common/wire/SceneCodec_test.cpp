@@ -73,18 +73,12 @@ SceneDescription fullScene() {
                      1.0f,
                      false,
                      CheckerDesc{{0.9f, 0.8f, 0.7f}, {0.1f, 0.2f, 0.3f}, 0.5f},
-                     {"everything.yaml", 10, 5}};
-  MaterialDesc glass{"glass",
-                     {0.01f, 0, 0},
-                     {0, 0, 0},
-                     {1, 1, 1},
-                     128.0f,
-                     {0.05f, 0.05f, 0.05f},
-                     {0.9f, 0.9f, 0.9f},
-                     1.5f,
-                     true,
                      std::nullopt,
-                     {"everything.yaml", 20, 5}};
+                     {"everything.yaml", 10, 5}};
+  MaterialDesc glass{
+      "glass", {0.01f, 0, 0},         {0, 0, 0},          {1, 1, 1},
+      128.0f,  {0.05f, 0.05f, 0.05f}, {0.9f, 0.9f, 0.9f}, 1.5f,
+      true,    std::nullopt,          std::nullopt,       {"everything.yaml", 20, 5}};
   d.materials = {floor, glass};
 
   d.lights = {{{0, 5, 0}, {100, 90, 80}, {1, 0.5f, 0.25f}, {"everything.yaml", 30, 5}},
