@@ -134,6 +134,17 @@ uint32_t resolveIndex(int64_t index, uint64_t before, uint64_t inFile, const cha
   throw ParseFailure{word, refers + " but only " + std::to_string(before) + " come before it"};
 }
 
+// The number of the material a 'usemtl' line names, or kDefaultFaceMaterial (noted in result)
+// where no library defines it. Out of line: plain files never call it, and the face loop keeps
+// its registers.
+[[gnu::noinline]] uint32_t materialNamed(std::string_view name, uint64_t line,
+                                         const ObjMaterialNames* names, ObjChunkResult& result) {
+  const uint32_t material = names ? names->find(name) : kDefaultFaceMaterial;
+  if (material == kDefaultFaceMaterial)
+    result.unknownMaterials.push_back({line, std::string(name)});
+  return material;
+}
+
 // Finds line ends with memchr where the piece has no lone \r (a \r\n's \r ends the line's last
 // word, so the line runs to its \n): most files. Otherwise character by character.
 class LineEnds {
@@ -291,11 +302,7 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
           }
           case Statement::UseMaterial: {
             const char* lineEnd = lineEnds.lineEnd(p, end);
-            const std::string_view name = restOfLine(p, lineEnd);
-            material = target.materials ? target.materials->find(name) : kDefaultFaceMaterial;
-            if (material == kDefaultFaceMaterial) {
-              result.unknownMaterials.push_back({line, std::string(name)});
-            }
+            material = materialNamed(restOfLine(p, lineEnd), line, target.materials, result);
             p = lineEnd;
             break;
           }

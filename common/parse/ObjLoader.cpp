@@ -69,18 +69,20 @@ class VertexNumbering {
     if (textured_) reserveOnHugePages(sourceUv_, positions);
   }
 
+  // Textured: whether the mesh keeps texture coordinates (as constructed), a template argument
+  // so that the loops of a mesh without them test nothing more than before they were read.
+  template <bool Textured>
   uint32_t idOf(uint32_t position, uint32_t normal, uint32_t uv) {
     if (!smooth_) normal = 0;
-    if (!textured_) uv = 0;
+    if (!Textured) uv = 0;
     uint32_t& first = firstId_[position];
     if (first == kUnseen) {
       first = add(position, normal, uv);
       if (smooth_) firstNormal_[position] = normal;
-      if (textured_) firstUv_[position] = uv;
+      if (Textured) firstUv_[position] = uv;
       return first;
     }
-    if ((!smooth_ || firstNormal_[position] == normal) &&
-        (!textured_ || firstUv_[position] == uv)) {
+    if ((!smooth_ || firstNormal_[position] == normal) && (!Textured || firstUv_[position] == uv)) {
       return first;
     }
     const auto [it, inserted] = others_.try_emplace(Corner{position, normal, uv}, 0);
@@ -270,7 +272,11 @@ MeshDesc buildMesh(ObjArrays& arrays, const std::string& path, const FileLoc& re
   const bool withMaterials = !materialIndex.empty();
   VertexNumbering numbering(arrays.positions.size(), smooth, textured);
   const auto normalAt = [&](size_t corner) { return smooth ? arrays.cornerNormal[corner] : 0; };
-  const auto uvAt = [&](size_t corner) { return textured ? arrays.cornerUv[corner] : 0; };
+  const auto idOf = [&](size_t corner) {
+    const uint32_t position = arrays.cornerVertex[corner];
+    return textured ? numbering.idOf<true>(position, normalAt(corner), arrays.cornerUv[corner])
+                    : numbering.idOf<false>(position, normalAt(corner), 0);
+  };
   const auto materialOf = [&](size_t face) {
     const uint32_t n = arrays.faceMaterial[face];
     return materialIndex[n == kDefaultFaceMaterial ? materialIndex.size() - 1 : n];
@@ -280,8 +286,15 @@ MeshDesc buildMesh(ObjArrays& arrays, const std::string& path, const FileLoc& re
                                         [](uint8_t corners) { return corners == 3; });
   if (allTriangles) {
     // Each corner becomes one index where it stands: the corner array is the index array.
-    for (size_t k = 0; k < arrays.cornerVertex.size(); ++k) {
-      arrays.cornerVertex[k] = numbering.idOf(arrays.cornerVertex[k], normalAt(k), uvAt(k));
+    if (textured) {
+      for (size_t k = 0; k < arrays.cornerVertex.size(); ++k) {
+        arrays.cornerVertex[k] =
+            numbering.idOf<true>(arrays.cornerVertex[k], normalAt(k), arrays.cornerUv[k]);
+      }
+    } else {
+      for (size_t k = 0; k < arrays.cornerVertex.size(); ++k) {
+        arrays.cornerVertex[k] = numbering.idOf<false>(arrays.cornerVertex[k], normalAt(k), 0);
+      }
     }
     result.indices = std::move(arrays.cornerVertex);
     if (withMaterials) {
@@ -297,9 +310,7 @@ MeshDesc buildMesh(ObjArrays& arrays, const std::string& path, const FileLoc& re
     size_t first = 0;
     for (size_t f = 0; f < arrays.faceCorners.size(); ++f) {
       const uint8_t corners = arrays.faceCorners[f];
-      const auto corner = [&](size_t k) {
-        return numbering.idOf(arrays.cornerVertex[first + k], normalAt(first + k), uvAt(first + k));
-      };
+      const auto corner = [&](size_t k) { return idOf(first + k); };
       if (corners == 3) {
         for (size_t k = 0; k < 3; ++k) result.indices.push_back(corner(k));
       } else {
