@@ -203,6 +203,10 @@ class PlyReader {
     }
     const char* const base = body_.cursor();
     std::atomic<bool> nonFinite{false};
+    // Positions and normals alone (most big meshes) are stored as they were before texture
+    // coordinates and colours were read.
+    const bool attributes = layout_.uvs || layout_.colors;
+    const bool normals = layout_.normals;
     parallelFor((count + kBlock - 1) / kBlock, 0, [&](uint64_t block) {
       const uint64_t end = std::min(count, (block + 1) * kBlock);
       for (uint64_t i = block * kBlock; i < end; ++i) {
@@ -217,7 +221,12 @@ class PlyReader {
           finite = finite && std::isfinite(v[value.role]);
         }
         if (!finite) nonFinite = true;
-        store(i, v);
+        if (attributes) {
+          store(i, v);
+        } else {
+          mesh_.positions[i] = Vec3(v[kX], v[kY], v[kZ]);
+          if (normals) mesh_.normals[i] = Vec3(v[kNx], v[kNy], v[kNz]);
+        }
       }
     });
     if (nonFinite || (layout_.colors && !coloursValid(count))) return false;
