@@ -1,13 +1,29 @@
 // The read of a model file alone (loadModelFile: an OBJ with its materials, a PLY), timed in one
-// process: the median of ROUNDS reads, after one read that warms the page cache. Run two
-// builds' binaries side by side to compare loaders (docs/performance.md):
+// process: the median of ROUNDS reads, after one read that warms the page cache, and a checksum
+// of the meshes' arrays (positions, normals, indices), so that two builds' binaries run side by
+// side show they read the same mesh (docs/journal/2026-12-02-obj-mtl-and-ply-attributes.md):
 //   build/tests/prism_model_read DIR/5m/big-mesh.obj 7
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include "MedianTime.h"
 #include "parse/ModelFile.h"
+
+namespace {
+
+// FNV-1a over the bytes of v.
+template <class T>
+uint64_t checksum(uint64_t hash, const std::vector<T>& v) {
+  const auto* bytes = reinterpret_cast<const unsigned char*>(v.data());
+  for (size_t i = 0; i < v.size() * sizeof(T); ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+  return hash;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
@@ -23,8 +39,12 @@ int main(int argc, char** argv) {
   try {
     read();
     const double ms = prism::bench::medianMs(rounds, read);
-    std::printf("%s: %zu triangles, median of %d reads %.1f ms\n", path.c_str(), triangles, rounds,
-                ms);
+    uint64_t hash = 14695981039346656037ull;
+    for (const prism::MeshDesc& mesh : prism::loadModelFile(path, prism::FileLoc{}).meshes) {
+      hash = checksum(checksum(checksum(hash, mesh.positions), mesh.normals), mesh.indices);
+    }
+    std::printf("%s: %zu triangles, checksum %016llx, median of %d reads %.1f ms\n", path.c_str(),
+                triangles, static_cast<unsigned long long>(hash), rounds, ms);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
