@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "parse/ModelFile.h"
+#include "parse/ModelScene.h"
 #include "parse/NffParser.h"
 #include "parse/YamlSceneParser.h"
 #include "scene/MeshBudget.h"
@@ -74,11 +76,15 @@ SceneDescription loadScene(const std::string& path, const MemoryLimit& limit) {
     checkReadFits(kNffParseBytesPerFileByte, "NFF");
     return parseNff(readTextFile(path), path);
   }
-  if (extension.empty()) {
-    throw SceneError(FileLoc{path}, "scene file has no extension (expected .yaml, .yml or .nff)");
+  if (extension == ".obj" || extension == ".ply" || extension == ".gltf" || extension == ".glb") {
+    return sceneOfModel(loadModelFile(path, FileLoc{}, limit));
   }
-  throw SceneError(FileLoc{path},
-                   "unsupported scene format '" + extension + "' (expected .yaml, .yml or .nff)");
+  constexpr const char* kExpected =
+      "(expected .yaml, .yml, .nff, or a model: .obj, .ply, .gltf, .glb)";
+  if (extension.empty()) {
+    throw SceneError(FileLoc{path}, std::string("scene file has no extension ") + kExpected);
+  }
+  throw SceneError(FileLoc{path}, "unsupported scene format '" + extension + "' " + kExpected);
 }
 
 }  // namespace prism

@@ -43,7 +43,8 @@ constexpr auto kShapeKeys = shapeKeyNames<Desc>();
 constexpr std::string_view kPlaneKeys[] = {"point", "normal", "material", "caustic"};
 constexpr std::string_view kCylinderKeys[] = {"base", "apex", "radius", "material", "caustic"};
 constexpr std::string_view kTriangleKeys[] = {"vertices", "normals", "material", "caustic"};
-constexpr std::string_view kMeshKeys[] = {"file", "material", "transform", "caustic"};
+constexpr std::string_view kMeshKeys[] = {"file",    "material", "transform",
+                                          "caustic", "camera",   "lights"};
 constexpr std::string_view kTransformKeys[] = {"scale", "rotate", "translate"};
 
 constexpr std::string_view kDefaultMaterialName = "default";
@@ -233,17 +234,30 @@ void YamlSceneReader::readMesh(const Entry& object) {
     fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");
   for (MeshDesc& mesh : model.meshes) {
     if (mesh.source.empty()) mesh.source = resolved.string();
-    if (const Entry* e = m.find("transform")) applyTransform(*e, mesh);
   }
+  if (const Entry* e = m.find("transform")) applyTransform(*e, model);
   ModelPlacement placement;
   // The model's own materials unless the scene names one for the whole mesh.
   if (m.find("material") || model.materials.empty()) placement.material = material(m);
   placement.caustic = causticRole(m);
   placement.loc = m.loc;
+  if (const Entry* e = m.find("camera")) {
+    placement.takeCamera = boolean(*e);
+    if (placement.takeCamera && !model.camera) {
+      fail(loc(*e), "mesh file " + shown(file) + " has no camera to take");
+    }
+  }
+  if (const Entry* e = m.find("lights")) {
+    placement.takeLights = boolean(*e);
+    if (placement.takeLights && model.lights.empty()) {
+      scene_.warnings.push_back(loc(*e).toString() + ": mesh file " + shown(file) +
+                                " has no lights to take");
+    }
+  }
   placeModel(std::move(model), placement, scene_);
 }
 
-void YamlSceneReader::applyTransform(const Entry& section, MeshDesc& mesh) const {
+void YamlSceneReader::applyTransform(const Entry& section, ModelDesc& model) const {
   const Mapping m = mapping(section, "transform", kTransformKeys);
   Vec3 scale(1.0f), rotate(0.0f), translate(0.0f);
   if (const Entry* e = m.find("scale")) {
@@ -264,15 +278,24 @@ void YamlSceneReader::applyTransform(const Entry& section, MeshDesc& mesh) const
   const glm::mat3 normalMatrix =
       rotation * glm::mat3(glm::scale(glm::mat4(1.0f), Vec3(1.0f) / scale));
 
-  for (Vec3& p : mesh.positions) p = linear * p + translate;
-  for (Vec3& n : mesh.normals) n = glm::normalize(normalMatrix * n);
-  // A mirroring scale turns the winding around; swap it back so that the winding still
-  // agrees with the vertex normals.
-  if (scale.x * scale.y * scale.z < 0.0f) {
-    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-      std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+  for (MeshDesc& mesh : model.meshes) {
+    for (Vec3& p : mesh.positions) p = linear * p + translate;
+    for (Vec3& n : mesh.normals) n = glm::normalize(normalMatrix * n);
+    // A mirroring scale turns the winding around; swap it back so that the winding still
+    // agrees with the vertex normals.
+    if (scale.x * scale.y * scale.z < 0.0f) {
+      for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+      }
     }
   }
+  // The model's camera and lights move with it (a scene takes them on request).
+  if (model.camera) {
+    model.camera->position = linear * model.camera->position + translate;
+    model.camera->lookAt = linear * model.camera->lookAt + translate;
+    model.camera->up = glm::normalize(linear * model.camera->up);
+  }
+  for (PointLightDesc& light : model.lights) light.position = linear * light.position + translate;
 }
 
 }  // namespace prism

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "parse/CheckedYaml.h"
+#include "scene/ModelDesc.h"
 #include "scene/SceneDescription.h"
 #include "util/MemoryBudget.h"
 #include "util/MemorySize.h"
@@ -71,8 +72,9 @@ class YamlSceneReader : private yaml::CheckedYaml {
   void readTriangle(const Entry& object);
   void readMesh(const Entry& object);
   // Bakes scale, then rotation about X, Y and Z (in that order), then translation into the
-  // mesh. Normals take the inverse transpose of the linear part, R·S⁻¹, and are renormalised.
-  void applyTransform(const Entry& section, MeshDesc& mesh) const;
+  // model's meshes, camera and lights. Normals take the inverse transpose of the linear part,
+  // R·S⁻¹, and are renormalised.
+  void applyTransform(const Entry& section, ModelDesc& model) const;
 };
 
 // Every key of the objects section, by section as yamlSceneKeys() lists them: "objects" (the

@@ -48,6 +48,8 @@ class TileRenderer {
   // The differential of sample number `sample` of a pixel, its ray through the pixel's point
   // moved by offset: Camera::pixelDifferential, over the sample's stratum where there are several.
   RayDifferential sampleDifferential(const Ray& ray, int sample, const Vec2& offset) const;
+  // The cone of a sample's camera ray: the pixel's, or its stratum's of several samples.
+  RayCone sampleCone(const Ray& ray) const;
   // The pixels of a block of at most Scene::kPacketSize (columns x..x+columns-1 of rows
   // y..y+rows-1), each sample's camera rays traced as one packet; written to out in row order
   // with the given row stride.

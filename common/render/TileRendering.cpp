@@ -39,6 +39,18 @@ RayDifferential TileRenderer::sampleDifferential(const Ray& ray, int sample,
   return differential;
 }
 
+RayCone TileRenderer::sampleCone(const Ray& ray) const {
+  RayCone cone = camera_.pixelCone(ray);
+  // Each of several samples stands for its stratum, as its differential does.
+  if (sampler_.count() > 1) {
+    const Vec2 cell = sampler_.stratumSize();
+    const float scale = std::max(cell.x, cell.y);
+    cone.width *= scale;
+    cone.spread *= scale;
+  }
+  return cone;
+}
+
 Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
   Pcg32 rng = Pcg32::forKey(seed_, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
   Color sum(0.0f);
@@ -53,7 +65,8 @@ Color TileRenderer::renderPixel(int x, int y, RayCounters& rays) const {
       ++rays.primary;
       const RayDifferential differential =
           integrator_.usesDifferentials() ? sampleDifferential(ray, i, offset) : RayDifferential{};
-      sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential);
+      sample = integrator_.radiance(ray, 0, Color(1.0f), rays, differential,
+                                    integrator_.usesCones() ? sampleCone(ray) : RayCone{});
     }
     addSample(sample, sum, rays);
   }
@@ -85,17 +98,14 @@ void TileRenderer::renderBlock(int x, int y, int columns, int rows, Color* out, 
     ScratchArray<Ray, kSize> packet;
     camera_.generateRays(pointX, pointY, count, packet.data());
     rays.primary += static_cast<uint64_t>(count);
-    // The differentials renderPixel() gives the same samples, where the integrator uses them.
-    ScratchArray<RayDifferential, kSize> differentials;
-    const bool withDifferentials = integrator_.usesDifferentials();
-    if (withDifferentials) {
-      for (int k = 0; k < count; ++k) {
-        ::new (&differentials[k]) RayDifferential(sampleDifferential(packet[k], i, offsets[k]));
-      }
+    // The cones renderPixel() gives the same samples, where the integrator uses them.
+    RayCone cones[kSize];
+    const bool withCones = integrator_.usesCones();
+    if (withCones) {
+      for (int k = 0; k < count; ++k) cones[k] = sampleCone(packet[k]);
     }
     Color samples[kSize];
-    integrator_.radiance8(packet.data(), count, samples, rays,
-                          withDifferentials ? differentials.data() : nullptr);
+    integrator_.radiance8(packet.data(), count, samples, rays, withCones ? cones : nullptr);
     for (int k = 0; k < count; ++k) addSample(samples[k], sum[k], rays);
   }
   for (int k = 0; k < count; ++k) {

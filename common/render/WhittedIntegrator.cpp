@@ -1,5 +1,6 @@
 #include "render/WhittedIntegrator.h"
 
+#include <cmath>
 #include <new>
 
 #include "accel/PrimitiveRef.h"
@@ -29,10 +30,12 @@ Color WhittedIntegrator::directLighting(const ShadingPoint& p, const Vec3& toVie
   return result;
 }
 
-void WhittedIntegrator::shadingPoint(const Ray& ray, const HitRecord& hit, ShadingPoint& p) const {
+void WhittedIntegrator::shadingPoint(const Ray& ray, const HitRecord& hit, const RayCone& cone,
+                                     ShadingPoint& p) const {
   scene_.surface(ray, hit, p.surface);
   p.material = &scene_.materials()[p.surface.material];
-  p.albedo = diffuseAlbedo(*p.material, p.surface.position);
+  p.albedo = diffuseAlbedo(*p.material, p.surface, scene_.textures(), ray.direction,
+                           cone.known() ? cone.widthAt(hit.t) : 0.0f);
 }
 
 bool WhittedIntegrator::litDirectly(const ShadingPoint& p) const {
@@ -87,17 +90,40 @@ bool WhittedIntegrator::bounceTurn(const HitRecord& hit, const SurfaceHit& s,
   return false;
 }
 
+bool WhittedIntegrator::bounceCurvature(const HitRecord& hit, const SurfaceHit& s, float width,
+                                        float& curvature) const {
+  // The surfaces bounceTurn passes a footprint on over, for the same reasons: a cone whose
+  // half-width passes a quarter of its sphere's radius ends there.
+  const PrimitiveKind kind = PrimitiveRef::kind(hit.primitive);
+  curvature = 0.0f;
+  if (kind == PrimitiveKind::Plane || isFlatShape(kind) ||
+      (kind == PrimitiveKind::Triangle && s.shadingNormal == s.geometricNormal)) {
+    return true;
+  }
+  if (kind == PrimitiveKind::Sphere) {
+    const float radius = scene_.spheres()[PrimitiveRef::index(hit.primitive)].radius;
+    if (0.5f * width <= kMaxFootprintReachOnSphere * radius) {
+      curvature = (s.frontFace ? 1.0f : -1.0f) / radius;
+      return true;
+    }
+  }
+  return false;
+}
+
 template <class Send>
 void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, const ShadingPoint& p,
                                       const PixelFootprint& footprint, int depth,
                                       const Color& weight, const RayDifferential& differential,
-                                      RayCounters& counters, Send&& send) const {
+                                      const RayCone& cone, RayCounters& counters,
+                                      Send&& send) const {
   const RenderSettings& settings = scene_.settings();
   if (depth >= settings.maxDepth) return;
   const SurfaceHit& s = p.surface;
   const MaterialDesc& m = *p.material;
   RayDifferential::Turn turn;
   const bool turnKnown = differential.valid && bounceTurn(hit, s, footprint, turn);
+  float curvature = 0.0f;
+  const bool coneGoesOn = cone.known() && bounceCurvature(hit, s, cone.widthAt(hit.t), curvature);
 
   const auto [reflectWeight, transmitWeight, refracted] = splitSpecular(m, s, ray.direction);
 
@@ -107,60 +133,64 @@ void WhittedIntegrator::forEachBounce(const Ray& ray, const HitRecord& hit, cons
     ++counters.secondary;
     send(s.rayOrigin(direction), direction, reflectWeight, reflectContribution,
          turnKnown ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
-                   : RayDifferential{});
+                   : RayDifferential{},
+         coneGoesOn ? cone.reflected(hit.t, curvature) : RayCone{});
   }
 
   const Color transmitContribution = weight * transmitWeight;
   if (refracted && maxComponent(transmitContribution) > settings.minContribution) {
     ++counters.secondary;
     const float eta = s.frontFace ? 1.0f / m.ior : m.ior;
+    const float cosI = -glm::dot(ray.direction, s.shadingNormal);
+    const float cosT = -glm::dot(*refracted, s.shadingNormal);
     send(s.rayOrigin(*refracted), *refracted, transmitWeight, transmitContribution,
          turnKnown ? differential.refracted(footprint, ray.direction, s.shadingNormal, turn,
                                             *refracted, eta)
-                   : RayDifferential{});
+                   : RayDifferential{},
+         coneGoesOn ? cone.refracted(hit.t, curvature, eta, cosI, cosT) : RayCone{});
   }
 }
 
 Color WhittedIntegrator::radiance(const Ray& ray, int depth, const Color& weight,
-                                  RayCounters& counters,
-                                  const RayDifferential& differential) const {
+                                  RayCounters& counters, const RayDifferential& differential,
+                                  const RayCone& cone) const {
   HitRecord hit;
   if (!scene_.intersect(ray, hit)) {
-    return escaped(ray, differential);
+    return escaped(ray, cone);
   }
-  return shade(ray, hit, depth, weight, counters, differential);
+  return shade(ray, hit, depth, weight, counters, differential, cone);
 }
 
-Color WhittedIntegrator::escaped(const Ray& ray, const RayDifferential& differential) const {
+Color WhittedIntegrator::escaped(const Ray& ray, const RayCone& cone) const {
   if (!terms_.direct) return Color(0.0f);
-  if (!differential.valid) return scene_.escapedRadiance(ray.direction);
-  // A sample of several a pixel stands for its stratum: its footprint is the cell's.
-  return scene_.escapedRadiance(ray.direction, differential.cell.x * differential.dDdx,
-                                differential.cell.y * differential.dDdy);
+  if (!cone.known()) return scene_.escapedRadiance(ray.direction);
+  return scene_.escapedRadiance(ray.direction, std::fabs(cone.spread));
 }
 
 Color WhittedIntegrator::shade(const Ray& ray, const HitRecord& hit, int depth, const Color& weight,
-                               RayCounters& counters, const RayDifferential& differential) const {
+                               RayCounters& counters, const RayDifferential& differential,
+                               const RayCone& cone) const {
   ShadingPoint p;
-  shadingPoint(ray, hit, p);
+  shadingPoint(ray, hit, cone, p);
   const Color direct = litDirectly(p) ? directLighting(p, -ray.direction, counters) : Color(0.0f);
   const PixelFootprint footprint =
       differential.footprint(ray.direction, hit.t, p.surface.geometricNormal);
   Color result = surfaceRadiance(p, direct, footprint);
-  forEachBounce(ray, hit, p, footprint, depth, weight, differential, counters,
-                [&](const Vec3& origin, const Vec3& direction, const Color& scale,
-                    const Color& contribution, const RayDifferential& onwardDifferential) {
-                  result += scale * radiance(Ray{origin, direction}, depth + 1, contribution,
-                                             counters, onwardDifferential);
-                });
+  forEachBounce(
+      ray, hit, p, footprint, depth, weight, differential, cone, counters,
+      [&](const Vec3& origin, const Vec3& direction, const Color& scale, const Color& contribution,
+          const RayDifferential& onwardDifferential, const RayCone& onwardCone) {
+        result += scale * radiance(Ray{origin, direction}, depth + 1, contribution, counters,
+                                   onwardDifferential, onwardCone);
+      });
   return result;
 }
 
 void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results, RayCounters& counters,
-                                  const RayDifferential* differentials) const {
+                                  const RayCone* cones) const {
   Color weights[Scene::kPacketSize];
   for (int i = 0; i < count; ++i) weights[i] = Color(1.0f);
-  radiancePacket(rays, count, (1u << count) - 1u, 0, weights, differentials, results, counters);
+  radiancePacket(rays, count, (1u << count) - 1u, 0, weights, cones, results, counters);
 }
 
 // radiancePacket's parts below are always inlined into it, so that the packet loop compiles as
@@ -172,14 +202,14 @@ void WhittedIntegrator::radiance8(const Ray* rays, int count, Color* results, Ra
 // (its reflected ray, then its refracted one: the order shade() adds them in).
 struct WhittedIntegrator::BouncePackets {
   static constexpr int kSize = Scene::kPacketSize;
-  explicit BouncePackets(bool carryDifferentials) : withDifferentials(carryDifferentials) {}
+  explicit BouncePackets(bool carryCones) : withCones(carryCones) {}
 
   ScratchArray<Ray, kSize> onward[2];  // rays below count written, or emptied before tracing
   Color scale[2][kSize], contribution[2][kSize];
-  // Their differentials, where the rays carry them: only the bouncing lanes' are written.
-  ScratchArray<RayDifferential, kSize> differentials[2];
+  // Their cones, where the rays carry them: only the bouncing lanes' are written.
+  ScratchArray<RayCone, kSize> cones[2];
   uint32_t bouncing[2] = {0, 0};  // bit i: lane i of packet k holds a ray
-  const bool withDifferentials;
+  const bool withCones;
 };
 
 [[gnu::always_inline]] inline void WhittedIntegrator::directLightingLanes(
@@ -226,8 +256,7 @@ struct WhittedIntegrator::BouncePackets {
 
 [[gnu::always_inline]] inline void WhittedIntegrator::addMirrorBounce(
     const Ray& ray, const HitRecord& hit, const ShadingPoint& p, const Color& weight,
-    const RayDifferential& differential, int lane, BouncePackets& out,
-    RayCounters& counters) const {
+    const RayCone& cone, int lane, BouncePackets& out, RayCounters& counters) const {
   // Where nothing is transmitted, splitSpecular's weights are the material's own.
   const Color& reflectance = p.material->reflectance;
   const Color reflectContribution = weight * reflectance;
@@ -236,43 +265,34 @@ struct WhittedIntegrator::BouncePackets {
   out.scale[0][lane] = reflectance;
   out.contribution[0][lane] = reflectContribution;
   out.bouncing[0] |= 1u << lane;
-  if (out.withDifferentials) {
-    // forEachBounce's differential of the reflected ray.
-    const SurfaceHit& s = p.surface;
-    const PixelFootprint footprint =
-        differential.footprint(ray.direction, hit.t, s.geometricNormal);
-    RayDifferential::Turn turn;
-    ::new (&out.differentials[0][lane]) RayDifferential(
-        differential.valid && bounceTurn(hit, s, footprint, turn)
-            ? differential.reflected(footprint, ray.direction, s.geometricNormal, turn)
-            : RayDifferential{});
+  if (out.withCones) {
+    // forEachBounce's cone of the reflected ray.
+    float curvature;
+    out.cones[0][lane] =
+        cone.known() && bounceCurvature(hit, p.surface, cone.widthAt(hit.t), curvature)
+            ? cone.reflected(hit.t, curvature)
+            : RayCone{};
   }
 }
 
 [[gnu::always_inline]] inline void WhittedIntegrator::addBounces(
     const Ray& ray, const HitRecord& hit, const ShadingPoint& p, const Color& weight,
-    const RayDifferential& differential, int depth, int lane, BouncePackets& out,
-    RayCounters& counters) const {
+    const RayCone& cone, int depth, int lane, BouncePackets& out, RayCounters& counters) const {
   int k = 0;
-  const PixelFootprint footprint =
-      out.withDifferentials
-          ? differential.footprint(ray.direction, hit.t, p.surface.geometricNormal)
-          : PixelFootprint{};
-  forEachBounce(ray, hit, p, footprint, depth, weight, differential, counters,
-                [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
-                    const Color& rayContribution, const RayDifferential& onwardDifferential) {
-                  // Built here from origin and direction: a whole Ray built by the caller and
-                  // copied in was read back before its stores had landed (a store-forwarding
-                  // stall).
-                  out.onward[k][lane] = Ray{origin, direction};
-                  out.scale[k][lane] = rayScale;
-                  out.contribution[k][lane] = rayContribution;
-                  if (out.withDifferentials) {
-                    ::new (&out.differentials[k][lane]) RayDifferential(onwardDifferential);
-                  }
-                  out.bouncing[k] |= 1u << lane;
-                  ++k;
-                });
+  forEachBounce(
+      ray, hit, p, PixelFootprint{}, depth, weight, RayDifferential{}, cone, counters,
+      [&](const Vec3& origin, const Vec3& direction, const Color& rayScale,
+          const Color& rayContribution, const RayDifferential&, const RayCone& onwardCone) {
+        // Built here from origin and direction: a whole Ray built by the caller and
+        // copied in was read back before its stores had landed (a store-forwarding
+        // stall).
+        out.onward[k][lane] = Ray{origin, direction};
+        out.scale[k][lane] = rayScale;
+        out.contribution[k][lane] = rayContribution;
+        if (out.withCones) out.cones[k][lane] = onwardCone;
+        out.bouncing[k] |= 1u << lane;
+        ++k;
+      });
 }
 
 [[gnu::always_inline]] inline void WhittedIntegrator::traceBounces(BouncePackets& bounces,
@@ -289,9 +309,9 @@ struct WhittedIntegrator::BouncePackets {
       }
     }
     Color arriving[BouncePackets::kSize];
-    radiancePacket(
-        bounces.onward[k].data(), count, bounces.bouncing[k], depth + 1, bounces.contribution[k],
-        bounces.withDifferentials ? bounces.differentials[k].data() : nullptr, arriving, counters);
+    radiancePacket(bounces.onward[k].data(), count, bounces.bouncing[k], depth + 1,
+                   bounces.contribution[k], bounces.withCones ? bounces.cones[k].data() : nullptr,
+                   arriving, counters);
     for (uint32_t m = bounces.bouncing[k]; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
       results[i] += bounces.scale[k][i] * arriving[i];
@@ -300,12 +320,10 @@ struct WhittedIntegrator::BouncePackets {
 }
 
 void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live, int depth,
-                                       const Color* weights, const RayDifferential* differentials,
-                                       Color* results, RayCounters& counters) const {
-  const RayDifferential none;
-  const auto differentialOf = [&](int i) -> const RayDifferential& {
-    return differentials ? differentials[i] : none;
-  };
+                                       const Color* weights, const RayCone* cones, Color* results,
+                                       RayCounters& counters) const {
+  const RayCone none;
+  const auto coneOf = [&](int i) -> const RayCone& { return cones ? cones[i] : none; };
   constexpr int kSize = Scene::kPacketSize;
   // Bounces that spread out (off curved mirrors) or leave few rays cost a packet more than they
   // share: those rays go on alone.
@@ -313,7 +331,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
       (simd::laneCount(live) < kMinPacketRays || !Scene::coherentDirections(rays, live))) {
     for (uint32_t m = live; m != 0; m &= m - 1) {
       const int i = __builtin_ctz(m);
-      results[i] = radiance(rays[i], depth, weights[i], counters, differentialOf(i));
+      results[i] = radiance(rays[i], depth, weights[i], counters, RayDifferential{}, coneOf(i));
     }
     return;
   }
@@ -329,7 +347,7 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   for (int i = 0; i < count; ++i) {
     direct[i] = Color(0.0f);
     if (!found[i]) continue;
-    shadingPoint(rays[i], hits[i], points[i]);
+    shadingPoint(rays[i], hits[i], coneOf(i), points[i]);
     lanes.set(i, points[i].surface, points[i].albedo, *points[i].material, -rays[i].direction);
     foundLanes |= 1u << i;
     litLanes |= litDirectly(points[i]) ? 1u << i : 0u;
@@ -346,24 +364,22 @@ void WhittedIntegrator::radiancePacket(const Ray* rays, int count, uint32_t live
   // The bounces: points that only reflect (no transmittance: floors, mirrors, metals) take
   // forEachBounce's reflected ray from the lanes, every lane's mirror ray computed at once
   // (render/MirrorLanes.h); points that refract go through forEachBounce.
-  BouncePackets bounces(differentials != nullptr);
+  BouncePackets bounces(cones != nullptr);
   const bool bouncing = depth < scene_.settings().maxDepth && foundLanes != 0;
   if (bouncing) mirrorRayLanes(lanes, bounces.onward[0].data());
   for (uint32_t m = live; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
     if (!found[i]) {
-      results[i] = escaped(rays[i], differentialOf(i));
+      results[i] = escaped(rays[i], coneOf(i));
       continue;
     }
     results[i] =
         surfaceRadiance(points[i], direct[i], (receivingLanes >> i & 1u) ? &caustic[i] : nullptr);
     if (!bouncing) continue;
     if (isBlack(points[i].material->transmittance)) {
-      addMirrorBounce(rays[i], hits[i], points[i], weights[i], differentialOf(i), i, bounces,
-                      counters);
+      addMirrorBounce(rays[i], hits[i], points[i], weights[i], coneOf(i), i, bounces, counters);
     } else {
-      addBounces(rays[i], hits[i], points[i], weights[i], differentialOf(i), depth, i, bounces,
-                 counters);
+      addBounces(rays[i], hits[i], points[i], weights[i], coneOf(i), depth, i, bounces, counters);
     }
   }
   traceBounces(bounces, count, depth, results, counters);

@@ -162,12 +162,11 @@ float squaredTexelStep(const CubePoint& p, const Vec3& dDdx, const Vec3& dDdy, i
   return std::max(squaredStep(dDdx), squaredStep(dDdy));
 }
 
-// CubeMap::lookup(d, dDdx, dDdy) on one kind of levels.
+// The lookups' footprints on one kind of levels, given the square of its width in texels of
+// the finest level.
 template <class Texels>
-Color footprintLookup(const std::vector<std::array<Texels, 6>>& levels, const CubePoint& p,
-                      const Vec3& dDdx, const Vec3& dDdy) {
-  const Texels& finest = levels[0][p.face];
-  const float squaredStep = squaredTexelStep(p, dDdx, dDdy, finest.width, finest.height);
+Color lookupBySquaredStep(const std::vector<std::array<Texels, 6>>& levels, const CubePoint& p,
+                          float squaredStep) {
   // A step of at most a texel magnifies the finest level: no logarithm needed.
   if (!(squaredStep > 1.0f)) return blend(levels, 0, p.face, p.u(), p.v());
   const int top = static_cast<int>(levels.size()) - 1;
@@ -177,6 +176,25 @@ Color footprintLookup(const std::vector<std::array<Texels, 6>>& levels, const Cu
   const Color lower = blend(levels, level, p.face, p.u(), p.v());
   if (level == top || weight == 0.0f) return lower;
   return glm::mix(lower, blend(levels, level + 1, p.face, p.u(), p.v()), weight);
+}
+
+// CubeMap::lookup(d, dDdx, dDdy) on one kind of levels.
+template <class Texels>
+Color footprintLookup(const std::vector<std::array<Texels, 6>>& levels, const CubePoint& p,
+                      const Vec3& dDdx, const Vec3& dDdy) {
+  const Texels& finest = levels[0][p.face];
+  return lookupBySquaredStep(levels, p,
+                             squaredTexelStep(p, dDdx, dDdy, finest.width, finest.height));
+}
+
+// CubeMap::lookup(d, spread) on one kind of levels; d of unit length.
+template <class Texels>
+Color coneLookup(const std::vector<std::array<Texels, 6>>& levels, const CubePoint& p,
+                 float spread) {
+  const Texels& finest = levels[0][p.face];
+  const float size = static_cast<float>(std::max(finest.width, finest.height));
+  const float step = 0.5f * size * spread / (p.ma * p.ma);
+  return lookupBySquaredStep(levels, p, step * step);
 }
 
 }  // namespace
@@ -242,6 +260,13 @@ Color CubeMap::lookup(const Vec3& d, const Vec3& dDdx, const Vec3& dDdy) const {
   if (!findCubePoint(d, p)) return Color(0.0f);
   return scale_ * (keepsBytes() ? footprintLookup(srgbLevels_, p, dDdx, dDdy)
                                 : footprintLookup(linearLevels_, p, dDdx, dDdy));
+}
+
+Color CubeMap::lookup(const Vec3& d, float spread) const {
+  CubePoint p;
+  if (!findCubePoint(d, p)) return Color(0.0f);
+  return scale_ *
+         (keepsBytes() ? coneLookup(srgbLevels_, p, spread) : coneLookup(linearLevels_, p, spread));
 }
 
 }  // namespace prism

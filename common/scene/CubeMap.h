@@ -32,6 +32,11 @@ class CubeMap {
   // by dDdx and dDdy per pixel (RayDifferential): trilinear between the two levels about
   // levelOfDetail(). Zero changes give lookup(d).
   Color lookup(const Vec3& d, const Vec3& dDdx, const Vec3& dDdy) const;
+  // Radiance averaged over a cone of directions about unit direction d, `spread` radians wide
+  // (a ray cone's, math/RayCone.h): the same trilinear lookup, the footprint's width on d's face
+  // spread/ma² (the gnomonic projection stretches a small angle by 1/cos² along the radius, the
+  // longer axis). A zero spread gives lookup(d).
+  Color lookup(const Vec3& d, float spread) const;
   // log2 of the footprint's width in finest-level texels (OpenGL's λ, the longer of the two
   // per-pixel steps projected onto d's face); below 0 where a pixel is narrower than a texel,
   // -infinity without change.

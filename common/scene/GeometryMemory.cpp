@@ -25,12 +25,36 @@ uint64_t bvhPartsOf(const Descs& descs) {
   return parts;
 }
 
+// What an image a scene reads through mip levels (a cube face, a texture) costs: the
+// description's copy, its wire copy and the scene's with its mip levels: as 3 bytes, 3 bytes and
+// packed 4-byte texels (while the levels above the finest are built, a float copy of the second
+// level) where it is kept as bytes, else as floats.
+uint64_t mippedImageBytes(int width, int height, bool keptAsBytes) {
+  const uint64_t texels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  const uint64_t pyramid = mipLevelsTexels(width, height);
+  return keptAsBytes ? saturatingAdd(saturatingAdd(saturatingMultiply(2 * texels, 3),
+                                                   saturatingMultiply(pyramid, 4)),
+                                     saturatingMultiply(texels / 4, sizeof(Color)))
+                     : saturatingMultiply(2 * texels + pyramid, sizeof(Color));
+}
+
+// A mesh's texture coordinates, vertex colours and face materials: in the description and in
+// the scene's shading data.
+uint64_t meshAttributeBytes(const MeshDesc& m) {
+  return 2 * (m.uvs.size() * sizeof(Vec2) + m.colors.size() * sizeof(Color) +
+              m.faceMaterials.size() * sizeof(MaterialId));
+}
+
 }  // namespace
 
 uint64_t geometryMemoryBytes(const SceneDescription& d) {
   uint64_t bytes = 0;
   for (const MeshDesc& m : d.meshes) {
     bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
+    bytes = saturatingAdd(bytes, meshAttributeBytes(m));
+  }
+  for (const TextureDesc& t : d.textures) {
+    bytes = saturatingAdd(bytes, mippedImageBytes(t.width(), t.height(), t.keptAsBytes()));
   }
   // Each shape's parts in the BVH (a slanted cone enters in parts) cost what a sphere does.
   uint64_t primitives = d.planes.size();
@@ -40,16 +64,7 @@ uint64_t geometryMemoryBytes(const SceneDescription& d) {
     const CubeMapDesc& cube = *d.environment;
     for (int f = 0; f < 6; ++f) {
       const int width = cube.faceWidth(f), height = cube.faceHeight(f);
-      const uint64_t texels = static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
-      // The description's copy, its wire copy and the scene's with its mip levels: as 3 bytes,
-      // 3 bytes and packed 4-byte texels (while the levels above the finest are built, a float
-      // copy of the second level) where the faces are kept as bytes, else as floats.
-      const uint64_t pyramid = mipLevelsTexels(width, height);
-      const uint64_t faceBytes =
-          cube.keptAsBytes() ? saturatingAdd(saturatingAdd(saturatingMultiply(2 * texels, 3),
-                                                           saturatingMultiply(pyramid, 4)),
-                                             saturatingMultiply(texels / 4, sizeof(Color)))
-                             : saturatingMultiply(2 * texels + pyramid, sizeof(Color));
+      const uint64_t faceBytes = mippedImageBytes(width, height, cube.keptAsBytes());
       bytes = saturatingAdd(bytes, faceBytes);
     }
   }

@@ -12,7 +12,7 @@
 #include "scene/Camera.h"
 #include "scene/CubeMap.h"
 #include "scene/SceneDescription.h"
-#include "shading/Texture.h"
+#include "scene/Texture.h"
 
 namespace prism {
 
@@ -93,6 +93,11 @@ class Scene {
   // dDdx, dDdy per pixel (CubeMap's mip levels).
   Color escapedRadiance(const Vec3& direction, const Vec3& dDdx, const Vec3& dDdy) const {
     return environment_ ? environment_->lookup(direction, dDdx, dDdy) : background_;
+  }
+  // The same averaged over a cone of directions `spread` radians wide (a ray cone's spread,
+  // math/RayCone.h).
+  Color escapedRadiance(const Vec3& direction, float spread) const {
+    return environment_ ? environment_->lookup(direction, spread) : background_;
   }
   // Whether escapedRadiance depends on the footprint: a cube map, not a plain background.
   bool escapedRadianceFiltered() const { return environment_.has_value(); }

@@ -227,6 +227,9 @@ struct SceneDescription {
   // What the files held that Prism does not model or could not use, each once
   // ("file:line: what was skipped and what is used instead"); printed by the commands on rank 0.
   std::vector<std::string> warnings;
+  // Choices made for the user that the run's summary reports (a model file rendered as a scene:
+  // the camera and lights it got).
+  std::vector<std::string> notes;
 
   size_t triangleCount() const {
     size_t n = 0;

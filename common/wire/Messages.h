@@ -41,7 +41,7 @@ namespace prism::wire {
 inline constexpr uint32_t kMagic = 0x4D535250;  // "PRSM" little-endian
 // Bumped whenever any message's bytes change, so builds that would misread each other refuse
 // each other's messages instead.
-inline constexpr uint16_t kVersion = 15;
+inline constexpr uint16_t kVersion = 16;
 // magic u32, version u16, type u16, payload size u64, payloadChecksum of the payload u64.
 inline constexpr size_t kHeaderSize = 24;
 

@@ -97,8 +97,7 @@ struct Fields<MeshDesc> {
   static void fields(auto& self, auto&& visit) {
     auto& [source, positions, normals, indices, material, loc, caustic, uvs, colors,
            faceMaterials] = self;
-    visit(source, positions, normals, indices, material, caustic, loc, uvs, colors,
-          faceMaterials);
+    visit(source, positions, normals, indices, material, caustic, loc, uvs, colors, faceMaterials);
   }
 };
 
@@ -106,7 +105,7 @@ template <>
 struct Fields<SceneDescription> {
   PRISM_WIRE_FIELDS(sourcePath, camera, render, caustics, background, ambientLight, environment,
                     materials, textures, lights, PRISM_SHAPE_KINDS(PRISM_SHAPE_PLURAL_COMMA) planes,
-                    meshes, warnings)
+                    meshes, warnings, notes)
   // What would crash the renderer later: mesh indices past the positions, normals, uvs or
   // colours not parallel to positions, index counts not a multiple of three, material ids past
   // the material list (a face's too), texture maps past the texture list, textures without

@@ -23,7 +23,11 @@ void addMemoryLimitOption(CLI::App* command, RenderOptions& o) {
 }
 
 void addSceneArgument(CLI::App* command, RenderOptions& o) {
-  command->add_option("scene", o.scenePath, "Scene file (.yaml, .yml or .nff)")->required();
+  command
+      ->add_option("scene", o.scenePath,
+                   "Scene file (.yaml, .yml or .nff), or a model file rendered as a scene (.obj, "
+                   ".ply, .gltf, .glb)")
+      ->required();
 }
 
 void addCausticMethodOptions(CLI::App* command, RenderOptions& o) {

@@ -49,6 +49,10 @@ bool MasterSession::load(const std::function<void()>& check) {
     const auto start = SteadyClock::now();
     description_ = loadSceneWithOverrides(options_);
     dispatch_.setUp().parseSeconds = secondsSince(start);
+    // What the files held that Prism does not model, said before the render starts.
+    for (const std::string& warning : description_.warnings) {
+      err_ << "prism: warning: " << warning << "\n";
+    }
     // After the parse, which the slaves' start-up overlaps: their Hellos are waiting by now.
     description_.render.instructionSet = dispatch_.chooseInstructionSet();
     return true;

@@ -134,6 +134,7 @@ int renderAndWrite(MasterSession& session, const std::string& output, SteadyCloc
     summary.settings = session.description().render;
     summary.sceneStats = session.scene().buildStats();
     summary.lightCount = session.description().lights.size();
+    summary.sceneNotes = session.description().notes;
     summary.schedule = options.distribution.schedule;
     summary.frame = &result.frames;
     summary.caustics = &result.caustics;

@@ -200,8 +200,9 @@ void printRunSummary(const RunSummary& s, std::ostream& out) {
   out << "scene     " << s.scenePath << " (parsed in " << milliseconds(s.parseSeconds) << ")\n"
       << "geometry  " << shapeCounts(g) << g.triangles << " triangles ("
       << triangleTestTitle(r.triangleTest) << "), " << g.planes << " planes, " << s.lightCount
-      << " lights\n"
-      << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
+      << " lights\n";
+  for (const std::string& note : s.sceneNotes) out << "          " << note << "\n";
+  out << "bvh       " << g.bvh.nodeCount << " nodes, depth " << g.bvh.maxDepth << ", "
       << formatBytes(static_cast<double>(g.accelerationBytes())) << " (+"
       << formatBytes(static_cast<double>(g.geometryBytes)) << " geometry), built in "
       << milliseconds(g.bvh.seconds) << " (scene build " << milliseconds(s.buildSeconds) << ")\n"

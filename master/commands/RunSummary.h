@@ -5,6 +5,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "master/frame/CausticPasses.h"
 #include "master/frame/FrameRenderer.h"
@@ -18,6 +19,7 @@ struct RunSummary {
   RenderSettings settings;
   SceneBuildStats sceneStats;
   size_t lightCount = 0;
+  std::vector<std::string> sceneNotes;  // SceneDescription::notes: choices made for the user
   const FrameResult* frame = nullptr;
   const CausticRunStats* caustics = nullptr;
   Schedule schedule = Schedule::Dynamic;

@@ -68,13 +68,15 @@ TEST(SceneLoader, NffByExtension) {
 }
 
 TEST_F(SceneLoaderFiles, UnsupportedExtensionIsNamed) {
-  const std::string path = write("scene.obj", "v 0 0 0\n");
+  const std::string path = write("scene.stl", "solid x\n");
   const SceneError e = errorFrom([&] { loadScene(path); });
   EXPECT_EQ(e.loc().file, path);
   EXPECT_EQ(e.loc().line, 0);
-  EXPECT_EQ(e.message(), "unsupported scene format '.obj' (expected .yaml, .yml or .nff)");
-  EXPECT_EQ(std::string(e.what()),
-            path + ": unsupported scene format '.obj' (expected .yaml, .yml or .nff)");
+  const std::string expected =
+      "unsupported scene format '.stl' (expected .yaml, .yml, .nff, or a model: .obj, .ply, "
+      ".gltf, .glb)";
+  EXPECT_EQ(e.message(), expected);
+  EXPECT_EQ(std::string(e.what()), path + ": " + expected);
 }
 
 TEST_F(SceneLoaderFiles, MissingExtensionIsNamed) {

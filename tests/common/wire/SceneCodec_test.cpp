@@ -73,13 +73,21 @@ SceneDescription fullScene() {
                      1.0f,
                      false,
                      CheckerDesc{{0.9f, 0.8f, 0.7f}, {0.1f, 0.2f, 0.3f}, 0.5f},
-                     std::nullopt,
+                     TextureMap{1, {2.0f, -3.0f}, {0.5f, 0.25f}, 0.75f},
                      {"everything.yaml", 10, 5}};
   MaterialDesc glass{
       "glass", {0.01f, 0, 0},         {0, 0, 0},          {1, 1, 1},
       128.0f,  {0.05f, 0.05f, 0.05f}, {0.9f, 0.9f, 0.9f}, 1.5f,
       true,    std::nullopt,          std::nullopt,       {"everything.yaml", 20, 5}};
   d.materials = {floor, glass};
+  TextureDesc bytes;
+  bytes.path = "textures/wood.jpg";
+  bytes.srgb = SrgbImage{2, 1, {1, 2, 3, 250, 251, 252}};
+  TextureDesc floats;
+  floats.path = "textures/sky.exr";
+  floats.linear = ImageRgb(1, 2);
+  floats.linear.pixels = {Color(4.5f, 0.25f, 1e-40f), Color(0.0f, -0.0f, 7.0f)};
+  d.textures = {bytes, floats};
 
   d.lights = {{{0, 5, 0}, {100, 90, 80}, {1, 0.5f, 0.25f}, {"everything.yaml", 30, 5}},
               {{-3, 4, 2}, {1, 2, 3}, {0, 0, 2}, {"everything.yaml", 31, 5}}};
@@ -99,6 +107,9 @@ SceneDescription fullScene() {
   smooth.material = 1;
   smooth.loc = {"everything.yaml", 44, 5};
   smooth.caustic = CausticRole::Both;
+  smooth.uvs = {{0, 0}, {1, 0}, {1, 1.5f}, {-0.25f, 1}};
+  smooth.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5f, 0.5f, 1e-40f}};
+  smooth.faceMaterials = {1, 0};
   MeshDesc flat;
   flat.source = "triangle";
   flat.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
@@ -107,6 +118,8 @@ SceneDescription fullScene() {
   flat.loc = {"everything.yaml", 50, 7};
   flat.caustic = CausticRole::Receive;
   d.meshes = {smooth, flat};
+  d.warnings = {"meshes/quad.mtl:3: 'map_Bump' is not modelled: skipped"};
+  d.notes = {"camera: the file's own"};
   return d;
 }
 
@@ -237,8 +250,30 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
       EXPECT_SAME_VEC3(x.checker->colorB, y.checker->colorB);
       EXPECT_SAME_FLOAT(x.checker->scale, y.checker->scale);
     }
+    ASSERT_EQ(x.diffuseMap.has_value(), y.diffuseMap.has_value());
+    if (x.diffuseMap) {
+      EXPECT_EQ(x.diffuseMap->texture, y.diffuseMap->texture);
+      EXPECT_SAME_FLOAT(x.diffuseMap->scale.x, y.diffuseMap->scale.x);
+      EXPECT_SAME_FLOAT(x.diffuseMap->scale.y, y.diffuseMap->scale.y);
+      EXPECT_SAME_FLOAT(x.diffuseMap->offset.x, y.diffuseMap->offset.x);
+      EXPECT_SAME_FLOAT(x.diffuseMap->offset.y, y.diffuseMap->offset.y);
+      EXPECT_SAME_FLOAT(x.diffuseMap->rotation, y.diffuseMap->rotation);
+    }
     expectSameLoc(x.loc, y.loc);
   }
+
+  ASSERT_EQ(a.textures.size(), b.textures.size());
+  for (size_t i = 0; i < a.textures.size(); ++i) {
+    EXPECT_EQ(a.textures[i].path, b.textures[i].path);
+    EXPECT_EQ(a.textures[i].srgb.width, b.textures[i].srgb.width);
+    EXPECT_EQ(a.textures[i].srgb.height, b.textures[i].srgb.height);
+    EXPECT_EQ(a.textures[i].srgb.rgb, b.textures[i].srgb.rgb);
+    EXPECT_EQ(a.textures[i].linear.width, b.textures[i].linear.width);
+    EXPECT_EQ(a.textures[i].linear.height, b.textures[i].linear.height);
+    expectSameVec3s(a.textures[i].linear.pixels, b.textures[i].linear.pixels);
+  }
+  EXPECT_EQ(a.warnings, b.warnings);
+  EXPECT_EQ(a.notes, b.notes);
 
   ASSERT_EQ(a.lights.size(), b.lights.size());
   for (size_t i = 0; i < a.lights.size(); ++i) {
@@ -298,6 +333,13 @@ void expectSameScene(const SceneDescription& a, const SceneDescription& b) {
     EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
     EXPECT_EQ(a.meshes[i].caustic, b.meshes[i].caustic);
     expectSameLoc(a.meshes[i].loc, b.meshes[i].loc);
+    ASSERT_EQ(a.meshes[i].uvs.size(), b.meshes[i].uvs.size());
+    for (size_t k = 0; k < a.meshes[i].uvs.size(); ++k) {
+      EXPECT_SAME_FLOAT(a.meshes[i].uvs[k].x, b.meshes[i].uvs[k].x);
+      EXPECT_SAME_FLOAT(a.meshes[i].uvs[k].y, b.meshes[i].uvs[k].y);
+    }
+    expectSameVec3s(a.meshes[i].colors, b.meshes[i].colors);
+    EXPECT_EQ(a.meshes[i].faceMaterials, b.meshes[i].faceMaterials);
   }
 }
 
@@ -328,18 +370,20 @@ TEST(SceneCodec, DescriptionStructsMatchTheCodec) {
   EXPECT_EQ(sizeof(Attenuation), 12u) << update;
   EXPECT_EQ(sizeof(PointLightDesc), 80u) << update;
   EXPECT_EQ(sizeof(CheckerDesc), 28u) << update;
-  EXPECT_EQ(sizeof(MaterialDesc), 176u) << update;
+  EXPECT_EQ(sizeof(TextureMap), 24u) << update;
+  EXPECT_EQ(sizeof(TextureDesc), 96u) << update;
+  EXPECT_EQ(sizeof(MaterialDesc), 208u) << update;
   EXPECT_EQ(sizeof(SphereDesc), 72u) << update;
   EXPECT_EQ(sizeof(PlaneDesc), 80u) << update;
   EXPECT_EQ(sizeof(ConeDesc), 88u) << update;
   EXPECT_EQ(sizeof(DiscDesc), 80u) << update;
-  EXPECT_EQ(sizeof(MeshDesc), 160u) << update;
+  EXPECT_EQ(sizeof(MeshDesc), 232u) << update;
   EXPECT_EQ(sizeof(ImageRgb), 32u) << update;
   EXPECT_EQ(sizeof(SrgbImage), 32u) << update;
   EXPECT_EQ(sizeof(CubeMapDesc), 584u) << update;
   EXPECT_EQ(sizeof(RenderSettings), 48u) << update;
   EXPECT_EQ(sizeof(CausticSettings), 88u) << update;
-  EXPECT_EQ(sizeof(SceneDescription), 1048u) << update;
+  EXPECT_EQ(sizeof(SceneDescription), 1120u) << update;
 #else
   GTEST_SKIP() << "sizes recorded for 64-bit libstdc++";
 #endif
@@ -425,6 +469,35 @@ TEST(SceneCodec, MeshesThatWouldReadOutOfBoundsAreRejected) {
   d = fullScene();
   d.meshes[0].indices.pop_back();
   expectWireError(d, "5 indices, not a multiple of 3");
+  d = fullScene();
+  d.meshes[0].uvs.pop_back();
+  expectWireError(d, "3 texture coordinates for 4 positions");
+  d = fullScene();
+  d.meshes[0].colors.push_back(Color(1.0f));
+  expectWireError(d, "5 colours for 4 positions");
+  d = fullScene();
+  d.meshes[0].faceMaterials.pop_back();
+  expectWireError(d, "1 face materials for 2 triangles");
+  d = fullScene();
+  d.meshes[0].faceMaterials[1] = 2;
+  expectWireError(d,
+                  "mesh 0 (everything.yaml:44:5): a face has material 2 but the scene has 2 "
+                  "materials");
+}
+
+TEST(SceneCodec, TexturesMustHoldPixelsOfOneKindAndBeNamedByMaps) {
+  SceneDescription d = fullScene();
+  d.materials[0].diffuseMap->texture = 2;
+  expectWireError(d, "material 0 (everything.yaml:10:5): texture 2 but the scene has 2 textures");
+  d = fullScene();
+  d.textures[0].srgb.rgb.pop_back();
+  expectWireError(d, "texture 0 'textures/wood.jpg' is 2x1 but carries 5 bytes");
+  d = fullScene();
+  d.textures[1].srgb = SrgbImage{1, 1, {1, 2, 3}};
+  expectWireError(d, "texture 1 'textures/sky.exr' carries both floats and bytes");
+  d = fullScene();
+  d.textures[0].srgb = SrgbImage{};
+  expectWireError(d, "texture 0 'textures/wood.jpg' is empty");
 }
 
 TEST(SceneCodec, MaterialIdsMustNameAMaterial) {
@@ -476,7 +549,10 @@ TEST(SceneCodec, MaterialZeroIsValidWithoutMaterials) {
     for (auto& shape : shapes) shape.material = 0;
   });
   for (auto& p : d.planes) p.material = 0;
-  for (auto& m : d.meshes) m.material = 0;
+  for (auto& m : d.meshes) {
+    m.material = 0;
+    m.faceMaterials.clear();
+  }
   EXPECT_NO_THROW(decodeBytes(payloadOf(d)));
   d.meshes[0].material = 1;
   expectWireError(d, "mesh 0 (everything.yaml:44:5): material 1 but the scene has 0 materials");
@@ -561,9 +637,10 @@ TEST(SceneCodec, HugeCorruptedCountThrowsWithoutAllocating) {
   SceneDescription d;
   d.meshes.resize(1);
   std::vector<uint8_t> bytes = payloadOf(d);
-  // The empty mesh ends the payload: source (4-byte length), positions count (8), normals count
-  // (8), indices count (8), material (4), caustic role (4), loc (4 + 4 + 4).
-  const size_t positionsCount = bytes.size() - 48 + 4;
+  // The empty mesh, then the warnings and notes counts (8 + 8), end the payload. The mesh:
+  // source (4-byte length), positions count (8), normals count (8), indices count (8), material
+  // (4), caustic role (4), loc (4 + 4 + 4), uvs, colours and face materials counts (8 + 8 + 8).
+  const size_t positionsCount = bytes.size() - 16 - 72 + 4;
   ASSERT_EQ(std::count(bytes.begin() + positionsCount, bytes.begin() + positionsCount + 8, 0), 8);
   bytes[positionsCount + 7] = 0x10;  // 2^60
   try {

@@ -1,4 +1,4 @@
-#include "shading/Texture.h"
+#include "scene/Texture.h"
 
 #include <algorithm>
 #include <cmath>
