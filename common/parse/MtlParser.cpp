@@ -27,8 +27,10 @@ struct MtlValues {
   int illum = 2;
 };
 
+// illum 7's reflection is the Fresnel share of its transmittance (MaterialDesc::fresnel), not Ks:
+// both would reflect the light twice.
 bool reflectsByKs(int illum) {
-  return illum == 3 || illum == 4 || illum == 5 || illum == 6 || illum == 7 || illum == 8;
+  return illum == 3 || illum == 4 || illum == 5 || illum == 6 || illum == 8;
 }
 bool isGlass(int illum) {
   return illum == 4 || illum == 6 || illum == 7 || illum == 9;
@@ -376,7 +378,11 @@ class MtlReader {
     m.shininess = v.ns;
     m.reflectance = reflectsByKs(v.illum) ? v.ks : Color(0.0f);
     if (isGlass(v.illum)) {
-      m.transmittance = v.tf.value_or(Color(1.0f - v.d));
+      // What the glass lets through: Tf, else what the dissolve does not stop; the mirror illums
+      // 4 and 6 keep back what they reflect, (1 − Ks), as Wavefront's illum 6 equation does.
+      const Color through = v.tf.value_or(Color(1.0f - v.d));
+      const bool mirrored = v.illum == 4 || v.illum == 6;
+      m.transmittance = mirrored ? glm::max(Color(1.0f) - v.ks, Color(0.0f)) * through : through;
       m.fresnel = v.illum == 7;
       m.ior = std::max(v.ni, 1.0f);
       if (v.ni < 1.0f && warned_.insert("ni").second) {  // at the first glass that needs it

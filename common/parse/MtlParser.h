@@ -9,19 +9,21 @@
 //   1      colour, ambient on                       ambient and diffuse, no highlight
 //   2      highlight on (also: no illum given)      + specular Ks, shininess Ns
 //   3      reflection, ray traced                   + reflectance Ks: a mirror tinted by Ks
-//   4      glass, reflection ray traced             as 3 + transmittance, ior Ni, fresnel off
+//   4      glass, reflection ray traced             as 3 + transmittance (1 − Ks)·T, ior Ni,
+//                                                     fresnel off
 //   5      Fresnel reflection, ray traced           as 3 (Prism's Fresnel splits transmission)
 //   6      refraction, no Fresnel, ray traced       as 4
-//   7      refraction and Fresnel, ray traced       as 4 with fresnel on
+//   7      refraction and Fresnel, ray traced       as 2 + transmittance T, ior Ni, fresnel on:
+//                                                     its reflection is the Fresnel share of T
 //   8      reflection, not ray traced               as 3 (Prism always traces)
-//   9      glass, reflection not ray traced         as 2 + transmittance, ior Ni, fresnel off
+//   9      glass, reflection not ray traced         as 2 + transmittance T, ior Ni, fresnel off
 //   10     shadows onto invisible surfaces          as 2, named in a warning
 //
-// The glass illums (4, 6, 7, 9) transmit Tf where the material gives it, otherwise 1 − d.
-// Elsewhere a dissolve d < 1 lets 1 − d through unbent (ior 1, no Fresnel) and scales the
-// surface's own colours by d. Statements Prism does not model (Ke, map_Bump, map_Ks, the PBR
-// extensions, ...) and options of map_Kd other than -s and -o are named in a warning, each kind
-// once; only malformed numbers are errors.
+// T, what the glass illums (4, 6, 7, 9) let through, is Tf where the material gives it,
+// otherwise 1 − d. On the other illums a dissolve d < 1 lets 1 − d through unbent (ior 1, no
+// Fresnel) and scales the surface's own colours by d. Statements Prism does not model (Ke,
+// map_Bump, map_Ks, the PBR extensions, ...) and options of map_Kd other than -s and -o are named
+// in a warning, each kind once; only malformed numbers are errors.
 #pragma once
 
 #include <optional>

@@ -51,37 +51,49 @@ TEST(MtlParser, AbsentStatementsKeepPrismsDefaultsAndOneNumberIsGrey) {
 
 TEST(MtlParser, TheIllumTableMapsEachModelOntoPrism) {
   const Color ka(0.1f, 0.2f, 0.3f), ks(0.7f, 0.8f, 0.9f), none(0.0f);
+  // Glass lets through 1 − d (no Tf here); the mirror glasses 4 and 6 keep back what they
+  // reflect.
+  const Color through(0.25f), mirroredThrough = (Color(1.0f) - ks) * through;
   struct Row {
     int illum;
     Color ambient, specular, reflectance;
     bool glass;
+    Color transmittance;
     bool fresnel;
   };
   const Row table[] = {
-      {0, none, none, none, false, false}, {1, ka, none, none, false, false},
-      {2, ka, ks, none, false, false},     {3, ka, ks, ks, false, false},
-      {4, ka, ks, ks, true, false},        {5, ka, ks, ks, false, false},
-      {6, ka, ks, ks, true, false},        {7, ka, ks, ks, true, true},
-      {8, ka, ks, ks, false, false},       {9, ka, ks, none, true, false},
+      {0, none, none, none, false, none, false},
+      {1, ka, none, none, false, none, false},
+      {2, ka, ks, none, false, none, false},
+      {3, ka, ks, ks, false, none, false},
+      {4, ka, ks, ks, true, mirroredThrough, false},
+      {5, ka, ks, ks, false, none, false},
+      {6, ka, ks, ks, true, mirroredThrough, false},
+      {7, ka, ks, none, true, through, true},  // reflects by the Fresnel share of its transmittance
+      {8, ka, ks, ks, false, none, false},
+      {9, ka, ks, none, true, through, false},
   };
   for (const Row& row : table) {
     SCOPED_TRACE("illum " + std::to_string(row.illum));
     const MaterialDesc m = withIllum(row.illum, "d 0.75\n");
-    EXPECT_EQ(m.specular, row.glass ? row.specular : row.specular * 0.75f);
-    EXPECT_EQ(m.reflectance, row.glass ? row.reflectance : row.reflectance * 0.75f);
-    EXPECT_EQ(m.ambient, row.glass ? row.ambient : row.ambient * 0.75f);
     if (row.glass) {
-      // Glass transmits 1 − d (no Tf here), bends by Ni and keeps its colours.
-      EXPECT_EQ(m.transmittance, Color(0.25f));
+      // Glass keeps its colours and bends by Ni.
+      EXPECT_EQ(m.ambient, row.ambient);
+      EXPECT_EQ(m.specular, row.specular);
+      EXPECT_EQ(m.reflectance, row.reflectance);
+      EXPECT_EQ(m.diffuse, Color(0.4f, 0.5f, 0.6f));
+      EXPECT_EQ(m.transmittance, row.transmittance);
       EXPECT_FLOAT_EQ(m.ior, 1.33f);
       EXPECT_EQ(m.fresnel, row.fresnel);
-      EXPECT_EQ(m.diffuse, Color(0.4f, 0.5f, 0.6f));
     } else {
       // Dissolve elsewhere: a quarter shows through unbent, the surface's own light fades.
+      EXPECT_EQ(m.ambient, row.ambient * 0.75f);
+      EXPECT_EQ(m.specular, row.specular * 0.75f);
+      EXPECT_EQ(m.reflectance, row.reflectance * 0.75f);
+      EXPECT_EQ(m.diffuse, Color(0.4f, 0.5f, 0.6f) * 0.75f);
       EXPECT_EQ(m.transmittance, Color(0.25f));
       EXPECT_FLOAT_EQ(m.ior, 1.0f);
       EXPECT_FALSE(m.fresnel);
-      EXPECT_EQ(m.diffuse, Color(0.4f, 0.5f, 0.6f) * 0.75f);
     }
   }
 }
@@ -92,7 +104,17 @@ TEST(MtlParser, OpaqueMaterialsTransmitNothingAndGlassTakesTf) {
   EXPECT_EQ(withIllum(7).transmittance, Color(0.0f));  // d 1 and no Tf: glass lets nothing through
   const MaterialDesc glass = withIllum(7, "Tf 0.9 1 0.8\nd 0.5\n");
   EXPECT_EQ(glass.transmittance, Color(0.9f, 1.0f, 0.8f));
+  EXPECT_EQ(glass.reflectance, Color(0.0f));
   EXPECT_TRUE(glass.fresnel);
+  // Clear Fresnel glass as exporters write it (Kd 0, Ks 1, Tf 1, illum 7) conserves energy: all
+  // of it is split between reflection and refraction, nothing reflected twice.
+  const MaterialDesc clear =
+      only(parseMtl("newmtl glass\nKd 0\nKs 1\nNs 200\nNi 1.5\nd 0\nTf 1\nillum 7\n", "g.mtl"))
+          .material;
+  EXPECT_EQ(clear.transmittance, Color(1.0f));
+  EXPECT_EQ(clear.reflectance, Color(0.0f));
+  EXPECT_EQ(clear.diffuse, Color(0.0f));
+  EXPECT_EQ(withIllum(6, "Tf 1\n").transmittance, Color(1.0f) - Color(0.7f, 0.8f, 0.9f));
   EXPECT_EQ(withIllum(2, "Tr 0.25\n").transmittance, Color(0.25f));  // Tr = 1 - d
   EXPECT_EQ(withIllum(2, "Tf 0.5\n").transmittance, Color(0.0f));    // Tf only for glass
 }
