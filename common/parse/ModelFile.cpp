@@ -19,10 +19,10 @@ ModelDesc loadModelFile(const std::string& path, const FileLoc& referencedFrom,
     throw SceneError(referencedFrom.file.empty() ? FileLoc{path} : referencedFrom,
                      "glTF files are not read yet");
   }
+  if (extension != ".ply") return loadObjModel(path, referencedFrom, limit);
   ModelDesc model;
   model.source = path;
-  model.meshes.push_back(extension == ".ply" ? loadPlyMesh(path, referencedFrom, limit)
-                                             : loadObjMesh(path, referencedFrom, limit));
+  model.meshes.push_back(loadPlyMesh(path, referencedFrom, limit));
   return model;
 }
 

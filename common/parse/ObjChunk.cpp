@@ -32,14 +32,34 @@ const char* nextWord(const char* p, const char* end) {
   return (p == end || isLineEnd(*p) || *p == '#') ? nullptr : p;
 }
 
-enum class Statement { Position, Normal, Face, Other };
+enum class Statement { Position, Normal, TexCoord, Face, UseMaterial, MaterialLibrary, Other };
 
 Statement statementOf(const char* word, const char* end) {
   const size_t n = static_cast<size_t>(end - word);
-  if (n == 1 && word[0] == 'v') return Statement::Position;
-  if (n == 2 && word[0] == 'v' && word[1] == 'n') return Statement::Normal;
-  if (n == 1 && word[0] == 'f') return Statement::Face;
+  if (n == 1) {
+    if (word[0] == 'v') return Statement::Position;
+    if (word[0] == 'f') return Statement::Face;
+  } else if (n == 2 && word[0] == 'v') {
+    if (word[1] == 'n') return Statement::Normal;
+    if (word[1] == 't') return Statement::TexCoord;
+  } else if (n == 6) {
+    if (std::memcmp(word, "usemtl", 6) == 0) return Statement::UseMaterial;
+    if (std::memcmp(word, "mtllib", 6) == 0) return Statement::MaterialLibrary;
+  }
   return Statement::Other;
+}
+
+// The rest of the line from p, blanks trimmed at both ends and a trailing comment dropped: a
+// material's name or the names of 'mtllib', which may hold blanks.
+std::string_view restOfLine(const char* p, const char* end) {
+  const char* first = nextWord(p, end);
+  if (!first) return {};
+  const char* last = first;
+  while (const char* word = nextWord(p, end)) {
+    p = wordEnd(word, end);
+    last = p;
+  }
+  return std::string_view(first, static_cast<size_t>(last - first));
 }
 
 // An error at a word of the current line; the parse stops at the first.
@@ -66,8 +86,10 @@ float coordinate(const char* word, const char* end) {
   return rounded;
 }
 
-// The numbers of a 'v' or 'vn' line (all must be numbers; the first three are kept).
-Vec3 threeCoordinates(const char* statement, const char* p, const char* end, const char* what) {
+// The numbers of a 'v', 'vn' or 'vt' line (all must be numbers; the first three are kept, and
+// at least `needed` must be there).
+Vec3 coordinates(const char* statement, const char* p, const char* end, const char* what,
+                 int needed) {
   float xyz[3] = {0, 0, 0};
   int count = 0;
   while (const char* word = nextWord(p, end)) {
@@ -76,7 +98,10 @@ Vec3 threeCoordinates(const char* statement, const char* p, const char* end, con
     if (count < 3) xyz[count] = value;
     ++count;
   }
-  if (count < 3) throw ParseFailure{statement, std::string(what) + " needs 3 coordinates"};
+  if (count < needed) {
+    throw ParseFailure{statement, std::string(what) + " needs " + std::to_string(needed) +
+                                      (needed == 1 ? " coordinate" : " coordinates")};
+  }
   return Vec3(xyz[0], xyz[1], xyz[2]);
 }
 
@@ -107,6 +132,17 @@ uint32_t resolveIndex(int64_t index, uint64_t before, uint64_t inFile, const cha
   if (index == 0) throw ParseFailure{word, refers + " (OBJ counts from 1)"};
   if (index > 0) throw ParseFailure{word, refers + " but the file has " + std::to_string(inFile)};
   throw ParseFailure{word, refers + " but only " + std::to_string(before) + " come before it"};
+}
+
+// The number of the material a 'usemtl' line names, or kDefaultFaceMaterial (noted in result)
+// where no library defines it. Out of line: plain files never call it, and the face loop keeps
+// its registers.
+[[gnu::noinline]] uint32_t materialNamed(std::string_view name, uint64_t line,
+                                         const ObjMaterialNames* names, ObjChunkResult& result) {
+  const uint32_t material = names ? names->find(name) : kDefaultFaceMaterial;
+  if (material == kDefaultFaceMaterial)
+    result.unknownMaterials.push_back({line, std::string(name)});
+  return material;
 }
 
 // Finds line ends with memchr where the piece has no lone \r (a \r\n's \r ends the line's last
@@ -176,13 +212,20 @@ uint64_t countWords(const char* p, const char* end) {
 
 }  // namespace
 
-ObjChunkCounts countObjChunk(std::string_view text) {
-  ObjChunkCounts counts;
+uint32_t ObjMaterialNames::find(std::string_view name) const {
+  const auto it = ids_.find(name);
+  return it == ids_.end() ? kDefaultFaceMaterial : it->second;
+}
+
+ObjChunkSurvey countObjChunk(std::string_view text) {
+  ObjChunkSurvey survey;
+  ObjChunkCounts& counts = survey.counts;
   const LineEnds lineEnds(text);
   const char* p = text.data();
   const char* const end = p + text.size();
   while (p < end) {
     ++counts.lines;
+    const char* lineStart = p;
     const char* lineEnd = lineEnds.lineEnd(p, end);
     if (const char* word = nextWord(p, lineEnd)) {
       p = wordEnd(word, lineEnd);
@@ -193,11 +236,24 @@ ObjChunkCounts countObjChunk(std::string_view text) {
         case Statement::Normal:
           ++counts.normals;
           break;
+        case Statement::TexCoord:
+          ++counts.uvs;
+          break;
         case Statement::Face: {
           const uint64_t corners = countWords(p, lineEnd);
           ++counts.faces;
           counts.corners += corners;
           if (corners >= 3) counts.triangles += corners - 2;
+          break;
+        }
+        case Statement::UseMaterial:
+          ++counts.materialUses;
+          survey.lastMaterial = restOfLine(p, lineEnd);
+          break;
+        case Statement::MaterialLibrary: {
+          const std::string_view names = restOfLine(p, lineEnd);
+          const char* at = names.empty() ? word : names.data();
+          survey.libraries.push_back({counts.lines, static_cast<int>(at - lineStart) + 1, names});
           break;
         }
         case Statement::Other:
@@ -206,7 +262,7 @@ ObjChunkCounts countObjChunk(std::string_view text) {
     }
     p = LineEnds::skipLineEnd(lineEnd, end);
   }
-  return counts;
+  return survey;
 }
 
 ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target) {
@@ -221,6 +277,10 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
   uint32_t* cornerVertex = target.cornerVertex;
   uint32_t* cornerNormal = target.cornerNormal;
   uint8_t* faceCorners = target.faceCorners;
+  Vec2* uv = target.uvs;
+  uint32_t* cornerUv = target.cornerUv;
+  uint32_t* faceMaterial = target.faceMaterial;
+  uint32_t material = target.materialAtStart;
   try {
     while (p < end) {
       ++line;
@@ -229,33 +289,44 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
         p = wordEnd(word, end);
         switch (statementOf(word, p)) {
           case Statement::Position:
-            *position++ = threeCoordinates(word, p, end, "vertex");
+            *position++ = coordinates(word, p, end, "vertex", 3);
             break;
           case Statement::Normal:
-            *normal++ = threeCoordinates(word, p, end, "normal");
+            *normal++ = coordinates(word, p, end, "normal", 3);
             break;
+          case Statement::TexCoord: {
+            // "vt u [v [w]]": v is 0 where it is not given; w is not used.
+            const Vec3 uvw = coordinates(word, p, end, "texture coordinate", 1);
+            *uv++ = Vec2(uvw.x, uvw.y);
+            break;
+          }
+          case Statement::UseMaterial: {
+            const char* lineEnd = lineEnds.lineEnd(p, end);
+            material = materialNamed(restOfLine(p, lineEnd), line, target.materials, result);
+            p = lineEnd;
+            break;
+          }
           case Statement::Face: {
             const uint64_t positionsBefore =
                 target.positionsBefore + static_cast<uint64_t>(position - target.positions);
             const uint64_t normalsBefore =
                 target.normalsBefore + static_cast<uint64_t>(normal - target.normals);
+            const uint64_t uvsBefore = target.uvsBefore + static_cast<uint64_t>(uv - target.uvs);
             const char* face = word;
             int corners = 0;
             while (const char* corner = nextWord(p, end)) {
               p = wordEnd(corner, end);
-              // v, v/vt, v//vn or v/vt/vn; vt is checked for form and ignored.
+              // v, v/vt, v//vn or v/vt/vn.
               const char* q = corner;
               int64_t v = 0, vt = 0, vn = 0;
+              bool hasUv = false;
               bool hasNormal = false;
               bool ok = readIndex(q, p, v);
               if (ok && q < p && *q == '/') {
                 ++q;
                 if (q < p && *q != '/') {
                   ok = readIndex(q, p, vt);
-                  if (ok && vt == 0) {
-                    throw ParseFailure{corner,
-                                       "face refers to texture coordinate 0 (OBJ counts from 1)"};
-                  }
+                  hasUv = true;
                 }
                 if (ok && q < p && *q == '/') {
                   ++q;
@@ -273,6 +344,15 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
               }
               *cornerVertex++ =
                   resolveIndex(v, positionsBefore, target.positionsInFile, corner, "vertex");
+              if (hasUv) {
+                const uint32_t t =
+                    resolveIndex(vt, uvsBefore, target.uvsInFile, corner, "texture coordinate");
+                if (cornerUv) *cornerUv++ = t;
+                result.cornerWithUv = true;
+              } else if (cornerUv) {
+                *cornerUv++ = kNoUv;
+                if (result.firstLineWithoutUv == 0) result.firstLineWithoutUv = line;
+              }
               if (hasNormal) {
                 const uint32_t n =
                     resolveIndex(vn, normalsBefore, target.normalsInFile, corner, "normal");
@@ -286,8 +366,10 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
             if (corners < 3) throw ParseFailure{face, "face needs at least 3 vertices"};
             if (corners > 255) throw ParseFailure{face, "face has more than 255 vertices"};
             *faceCorners++ = static_cast<uint8_t>(corners);
+            if (faceMaterial) *faceMaterial++ = material;
             break;
           }
+          case Statement::MaterialLibrary:  // read by the first pass
           case Statement::Other:
             break;
         }

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 
+#include "image/SrgbImage.h"
+#include "image/ToneMap.h"
 #include "parse/MeshFileBytes.h"
 #include "parse/PlyBody.h"
 #include "parse/PrintableText.h"
@@ -16,13 +18,76 @@ namespace prism {
 
 namespace {
 
+// The vertex properties Prism reads, by role.
+enum Role { kX, kY, kZ, kNx, kNy, kNz, kU, kV, kRed, kGreen, kBlue, kRoles };
+
+// The names each role may go by, the first the usual one.
+const std::vector<std::vector<const char*>>& roleNames() {
+  static const std::vector<std::vector<const char*>> names = {{"x"},
+                                                              {"y"},
+                                                              {"z"},
+                                                              {"nx"},
+                                                              {"ny"},
+                                                              {"nz"},
+                                                              {"u", "s", "texture_u", "texture_s"},
+                                                              {"v", "t", "texture_v", "texture_t"},
+                                                              {"red"},
+                                                              {"green"},
+                                                              {"blue"}};
+  return names;
+}
+
+// How a colour property's values become linear colour: floats are linear already; integers
+// are sRGB-encoded fractions of their type's largest value (uchar: bytes, through a table).
+class ColourChannel {
+ public:
+  explicit ColourChannel(PlyType type) : type_(type) {
+    switch (type) {
+      case PlyType::Int8:
+        largest_ = 127.0;
+        break;
+      case PlyType::UInt8:
+        largest_ = 255.0;
+        break;
+      case PlyType::Int16:
+        largest_ = 32767.0;
+        break;
+      case PlyType::UInt16:
+        largest_ = 65535.0;
+        break;
+      case PlyType::Int32:
+        largest_ = 2147483647.0;
+        break;
+      case PlyType::UInt32:
+        largest_ = 4294967295.0;
+        break;
+      case PlyType::Float32:
+      case PlyType::Float64:
+        break;
+    }
+  }
+  bool isLinear() const { return largest_ == 0.0; }
+  float operator()(float value) const {
+    if (isLinear()) return value;
+    if (type_ == PlyType::UInt8) return linearOfSrgbByte()[static_cast<uint8_t>(value)];
+    return srgbToLinear(static_cast<float>(std::clamp(value / largest_, 0.0, 1.0)));
+  }
+
+ private:
+  PlyType type_;
+  double largest_ = 0.0;
+};
+
 // What the mesh is made of: the vertex and face elements and where their properties are.
 struct PlyLayout {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
-  int role[6] = {-1, -1, -1, -1, -1, -1};  // property index of x, y, z, nx, ny, nz
+  int role[kRoles] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};  // property index per role
   bool normals = false;
-  int indices = -1;  // property index of the face's vertex list
+  bool uvs = false;
+  bool colors = false;
+  std::vector<ColourChannel> colour;  // red, green, blue, where the vertex has colours
+  int indices = -1;                   // property index of the face's vertex list
 };
 
 PlyLayout layoutOf(const PlyHeader& header, const std::string& path) {
@@ -34,22 +99,33 @@ PlyLayout layoutOf(const PlyHeader& header, const std::string& path) {
     throw SceneError(FileLoc{path, 0, 0}, "the file has no 'face' element (no triangles)");
   }
   const FileLoc vertexLoc{path, layout.vertex->line, 1};
-  static const char* const kRoles[6] = {"x", "y", "z", "nx", "ny", "nz"};
-  for (int r = 0; r < 6; ++r) {
-    const int k = layout.vertex->find(kRoles[r]);
-    if (k >= 0 && layout.vertex->properties[static_cast<size_t>(k)].isList) {
-      throw SceneError(vertexLoc,
-                       std::string("vertex property '") + kRoles[r] + "' is a list, not a number");
+  for (int r = 0; r < kRoles; ++r) {
+    for (const char* name : roleNames()[static_cast<size_t>(r)]) {
+      const int k = layout.vertex->find(name);
+      if (k < 0) continue;
+      if (layout.vertex->properties[static_cast<size_t>(k)].isList) {
+        throw SceneError(vertexLoc,
+                         std::string("vertex property '") + name + "' is a list, not a number");
+      }
+      layout.role[r] = k;
+      break;
     }
-    layout.role[r] = k;
   }
   for (int r = 0; r < 3; ++r) {
     if (layout.role[r] < 0) {
-      throw SceneError(vertexLoc,
-                       std::string("the vertex element has no '") + kRoles[r] + "' property");
+      throw SceneError(vertexLoc, std::string("the vertex element has no '") +
+                                      roleNames()[static_cast<size_t>(r)][0] + "' property");
     }
   }
-  layout.normals = layout.role[3] >= 0 && layout.role[4] >= 0 && layout.role[5] >= 0;
+  layout.normals = layout.role[kNx] >= 0 && layout.role[kNy] >= 0 && layout.role[kNz] >= 0;
+  layout.uvs = layout.role[kU] >= 0 && layout.role[kV] >= 0;
+  layout.colors = layout.role[kRed] >= 0 && layout.role[kGreen] >= 0 && layout.role[kBlue] >= 0;
+  if (layout.colors) {
+    for (int r = kRed; r <= kBlue; ++r) {
+      layout.colour.emplace_back(
+          layout.vertex->properties[static_cast<size_t>(layout.role[r])].type);
+    }
+  }
   layout.indices = layout.face->find("vertex_indices");
   if (layout.indices < 0) layout.indices = layout.face->find("vertex_index");
   const FileLoc faceLoc{path, layout.face->line, 1};
@@ -119,7 +195,7 @@ class PlyReader {
     };
     std::vector<Value> values;
     bool allFloats = true;
-    for (int r = 0; r < 6; ++r) {
+    for (int r = 0; r < kRoles; ++r) {
       if (layout_.role[r] < 0) continue;
       const PlyType type = element.properties[static_cast<size_t>(layout_.role[r])].type;
       values.push_back({r, offsets[static_cast<size_t>(layout_.role[r])], type});
@@ -127,11 +203,15 @@ class PlyReader {
     }
     const char* const base = body_.cursor();
     std::atomic<bool> nonFinite{false};
+    // Positions and normals alone (most big meshes) are stored as they were before texture
+    // coordinates and colours were read.
+    const bool attributes = layout_.uvs || layout_.colors;
+    const bool normals = layout_.normals;
     parallelFor((count + kBlock - 1) / kBlock, 0, [&](uint64_t block) {
       const uint64_t end = std::min(count, (block + 1) * kBlock);
       for (uint64_t i = block * kBlock; i < end; ++i) {
         const char* record = base + i * stride;
-        float v[6] = {0, 0, 0, 0, 0, 0};
+        float v[kRoles] = {};
         bool finite = true;
         for (const Value& value : values) {
           // The usual case, all floats, without a switch per number.
@@ -141,11 +221,15 @@ class PlyReader {
           finite = finite && std::isfinite(v[value.role]);
         }
         if (!finite) nonFinite = true;
-        mesh_.positions[i] = Vec3(v[0], v[1], v[2]);
-        if (layout_.normals) mesh_.normals[i] = Vec3(v[3], v[4], v[5]);
+        if (attributes) {
+          store(i, v);
+        } else {
+          mesh_.positions[i] = Vec3(v[kX], v[kY], v[kZ]);
+          if (normals) mesh_.normals[i] = Vec3(v[kNx], v[kNy], v[kNz]);
+        }
       }
     });
-    if (nonFinite) return false;
+    if (nonFinite || (layout_.colors && !coloursValid(count))) return false;
     body_.advance(count * stride);
     return true;
   }
@@ -201,8 +285,29 @@ class PlyReader {
     for (int64_t k = 0; k < n; ++k) body_.skip(property.type);
   }
 
+  // A vertex's values by role into the mesh.
+  void store(uint64_t i, const float (&v)[kRoles]) {
+    mesh_.positions[i] = Vec3(v[kX], v[kY], v[kZ]);
+    if (layout_.normals) mesh_.normals[i] = Vec3(v[kNx], v[kNy], v[kNz]);
+    if (layout_.uvs) mesh_.uvs[i] = Vec2(v[kU], v[kV]);
+    if (layout_.colors) {
+      mesh_.colors[i] = Color(layout_.colour[0](v[kRed]), layout_.colour[1](v[kGreen]),
+                              layout_.colour[2](v[kBlue]));
+    }
+  }
+
+  // Whether no colour is negative (float colours; integers are clamped): read one by one
+  // otherwise, which names the first.
+  bool coloursValid(uint64_t count) const {
+    for (uint64_t i = 0; i < count; ++i) {
+      const Color& c = mesh_.colors[i];
+      if (c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) return false;
+    }
+    return true;
+  }
+
   void readVertex(const PlyElement& element, uint64_t i) {
-    float values[6] = {0, 0, 0, 0, 0, 0};
+    float values[kRoles] = {};
     for (size_t k = 0; k < element.properties.size(); ++k) {
       const PlyProperty& property = element.properties[k];
       const int role = roleOf(static_cast<int>(k));
@@ -214,14 +319,16 @@ class PlyReader {
       if (!std::isfinite(value)) {
         throw PlyBodyFailure{"non-finite '" + property.name + "'"};
       }
+      if (role >= kRed && value < 0.0f && !isPlyIntegerType(property.type)) {
+        throw PlyBodyFailure{"negative colour '" + property.name + "'"};
+      }
       values[role] = value;
     }
-    mesh_.positions[i] = Vec3(values[0], values[1], values[2]);
-    if (layout_.normals) mesh_.normals[i] = Vec3(values[3], values[4], values[5]);
+    store(i, values);
   }
 
   int roleOf(int property) const {
-    for (int r = 0; r < 6; ++r) {
+    for (int r = 0; r < kRoles; ++r) {
       if (layout_.role[r] == property) return r;
     }
     return -1;
@@ -273,9 +380,9 @@ MeshDesc parsePlyMesh(std::string_view bytes, const std::string& path,
   const uint64_t vertices = layout.vertex->count;
   // Every face is at least one triangle; the header checked that the body can hold them all.
   const uint64_t triangles = layout.face->count;
-  const uint64_t needed =
-      saturatingAdd(plyReadBytes(bytes.size(), vertices, layout.normals, triangles),
-                    meshBuildBytes(triangles, vertices));
+  const uint64_t needed = saturatingAdd(
+      plyReadBytes(bytes.size(), vertices, layout.normals, layout.uvs, layout.colors, triangles),
+      meshBuildBytes(triangles, vertices));
   if (needed > limit.bytes) {
     throw SceneError(
         referencedFrom.file.empty() ? FileLoc{path, 0, 0} : referencedFrom,
@@ -292,6 +399,14 @@ MeshDesc parsePlyMesh(std::string_view bytes, const std::string& path,
   if (layout.normals) {
     reserveOnHugePages(mesh.normals, vertices);
     mesh.normals.resize(vertices);
+  }
+  if (layout.uvs) {
+    reserveOnHugePages(mesh.uvs, vertices);
+    mesh.uvs.resize(vertices);
+  }
+  if (layout.colors) {
+    reserveOnHugePages(mesh.colors, vertices);
+    mesh.colors.resize(vertices);
   }
   reserveOnHugePages(mesh.indices, 3 * triangles);
   switch (header.format) {
@@ -315,7 +430,8 @@ MeshDesc parsePlyMesh(std::string_view bytes, const std::string& path,
   // Polygons made more triangles than faces: the limit is checked again with the true count.
   const uint64_t made = mesh.triangleCount();
   const uint64_t neededAfter = saturatingAdd(
-      plyReadBytes(bytes.size(), vertices, layout.normals, made), meshBuildBytes(made, vertices));
+      plyReadBytes(bytes.size(), vertices, layout.normals, layout.uvs, layout.colors, made),
+      meshBuildBytes(made, vertices));
   if (neededAfter > limit.bytes) {
     throw SceneError(
         referencedFrom.file.empty() ? FileLoc{path, 0, 0} : referencedFrom,

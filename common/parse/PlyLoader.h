@@ -1,7 +1,10 @@
 // PLY triangle meshes referenced from a scene: ASCII and binary (little and big endian) bodies,
-// vertex positions (x, y, z) and normals (nx, ny, nz, when all three are there), faces as lists
-// of vertex indices ("vertex_indices" or "vertex_index"), polygons split into fans. Other
-// elements and properties (colours, texture coordinates, edges, ...) are read past.
+// vertex positions (x, y, z), normals (nx, ny, nz), texture coordinates (u, v; or s, t;
+// texture_u, texture_v; texture_s, texture_t) and colours (red, green, blue: integers are
+// sRGB-encoded fractions of their type's largest value, made linear; floats are linear), each
+// kept when all its properties are there; faces as lists of vertex indices ("vertex_indices" or
+// "vertex_index"), polygons split into fans. Other elements and properties (alpha, edges, ...)
+// are read past.
 #pragma once
 
 #include <string>

@@ -38,29 +38,40 @@ inline uint64_t meshBuildBytes(uint64_t triangles, uint64_t vertices) {
 }
 
 // Reading an OBJ file (parse/ObjLoader.cpp), its text included: the parsed positions (12 per
-// 'v') and normals (12 per 'vn'), each face corner's position index (4, and 4 more for its
-// normal index when the file has normals), a byte per face; then numbering the output vertices
-// (8 per position: its first number and source, 8 more with normals), the output positions and
-// normals (12 each per position) and the triangle indices (12 per triangle). A sum: the text and
-// the corner arrays are gone before some of the later arrays exist, so this is an upper bound.
-inline uint64_t objReadBytes(uint64_t textBytes, uint64_t positions, uint64_t normals,
-                             uint64_t corners, uint64_t faces, uint64_t triangles) {
+// 'v'), normals (12 per 'vn') and texture coordinates (8 per 'vt'), each face corner's position
+// index (4, and 4 more each for its normal and texture coordinate indices when the file has
+// them), a byte per face and, when the file has 'usemtl', 4 for its material; then numbering the
+// output vertices (8 per position: its first number and source, 8 more with normals and 8 more
+// with texture coordinates), the output positions, normals (12 each per position) and texture
+// coordinates (8), the triangle indices (12 per triangle) and materials (4, with 'usemtl'). A
+// sum: the text and the corner arrays are gone before some of the later arrays exist, so this is
+// an upper bound.
+inline uint64_t objReadBytes(uint64_t textBytes, uint64_t positions, uint64_t normals, uint64_t uvs,
+                             uint64_t corners, uint64_t faces, uint64_t triangles,
+                             bool faceMaterials) {
   const bool withNormals = normals > 0;
+  const bool withUvs = uvs > 0;
+  uint64_t perPosition = 12 + 8 + 12;
+  if (withNormals) perPosition += 8 + 12;
+  if (withUvs) perPosition += 8 + 8;
   uint64_t bytes = textBytes;
-  bytes = saturatingAdd(
-      bytes, saturatingMultiply(positions, withNormals ? 12 + 8 + 12 + 8 + 12 : 12 + 8 + 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(positions, perPosition));
   bytes = saturatingAdd(bytes, saturatingMultiply(normals, 12));
-  bytes = saturatingAdd(bytes, saturatingMultiply(corners, withNormals ? 8 : 4));
-  bytes = saturatingAdd(bytes, faces);
-  return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(uvs, 8));
+  bytes = saturatingAdd(bytes,
+                        saturatingMultiply(corners, 4 + (withNormals ? 4 : 0) + (withUvs ? 4 : 0)));
+  bytes = saturatingAdd(bytes, saturatingMultiply(faces, faceMaterials ? 5 : 1));
+  return saturatingAdd(bytes, saturatingMultiply(triangles, faceMaterials ? 16 : 12));
 }
 
 // Reading a PLY file (parse/PlyLoader.cpp), its bytes included: positions and normals (12 each
-// per vertex) and the triangle indices (12 per triangle), made directly from the body.
-inline uint64_t plyReadBytes(uint64_t fileBytes, uint64_t vertices, bool normals,
-                             uint64_t triangles) {
+// per vertex), texture coordinates (8) and colours (12), and the triangle indices (12 per
+// triangle), made directly from the body.
+inline uint64_t plyReadBytes(uint64_t fileBytes, uint64_t vertices, bool normals, bool uvs,
+                             bool colors, uint64_t triangles) {
+  const uint64_t perVertex = 12 + (normals ? 12 : 0) + (uvs ? 8 : 0) + (colors ? 12 : 0);
   uint64_t bytes = fileBytes;
-  bytes = saturatingAdd(bytes, saturatingMultiply(vertices, normals ? 24 : 12));
+  bytes = saturatingAdd(bytes, saturatingMultiply(vertices, perVertex));
   return saturatingAdd(bytes, saturatingMultiply(triangles, 12));
 }
 

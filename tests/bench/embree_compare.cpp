@@ -660,7 +660,9 @@ int run(int argc, char** argv) {
     meshes.push_back(subdividedSphere(options.quick ? 5 : 7));
     meshes.push_back(displacedGrid(options.quick ? 100 : 708));
   }
-  for (const std::string& path : options.objs) meshes.push_back(loadObjMesh(path, FileLoc{}));
+  for (const std::string& path : options.objs) {
+    for (MeshDesc& mesh : loadObjModel(path, FileLoc{}).meshes) meshes.push_back(std::move(mesh));
+  }
   for (const MeshDesc& mesh : meshes) benchmarkMesh(mesh, options);
   return 0;
 }

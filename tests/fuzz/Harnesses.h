@@ -27,8 +27,10 @@ class InvariantBroken : public std::logic_error {
 Outcome fuzzYamlScene(const uint8_t* data, size_t size);
 // NFF scene text.
 Outcome fuzzNff(const uint8_t* data, size_t size);
-// OBJ mesh text.
+// OBJ model text, with two material libraries and a texture beside it (ModelFiles.h).
 Outcome fuzzObj(const uint8_t* data, size_t size);
+// MTL library text, as the library of a small OBJ whose faces name common material names.
+Outcome fuzzMtl(const uint8_t* data, size_t size);
 // PLY mesh files (header and ASCII or binary body).
 Outcome fuzzPly(const uint8_t* data, size_t size);
 // Wire messages: the bytes as an envelope, and the bytes after the first as the payload of a
@@ -48,6 +50,7 @@ inline const std::vector<Harness>& harnesses() {
   static const std::vector<Harness> all = {{"yaml_scene", fuzzYamlScene},
                                            {"nff", fuzzNff},
                                            {"obj", fuzzObj},
+                                           {"mtl", fuzzMtl},
                                            {"ply", fuzzPly},
                                            {"wire", fuzzWire},
                                            {"view", fuzzView}};

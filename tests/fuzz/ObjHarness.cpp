@@ -1,4 +1,5 @@
 #include "fuzz/Harnesses.h"
+#include "fuzz/ModelFiles.h"
 #include "fuzz/SceneInvariants.h"
 #include "parse/ObjLoader.h"
 
@@ -6,8 +7,9 @@ namespace prism::fuzz {
 
 Outcome fuzzObj(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  return meshOutcome([&] {
-    return parseObjMesh(text, "fuzz-input.obj", FileLoc{"fuzz-input.yaml", 1, 1});
+  static const MemoryFiles files = harnessFiles();
+  return modelOutcome([&] {
+    return parseObjModel(text, "fuzz-input.obj", FileLoc{"fuzz-input.yaml", 1, 1}, {}, 0, files);
   });
 }
 

@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
+#include "image/ToneMap.h"
 #include "parse/ModelFile.h"
 
 namespace prism {
@@ -344,6 +346,141 @@ TEST(PlyLoader, AMeshPastTheMemoryLimitIsRefusedBeforeItsArraysExist) {
                                "built needs"),
               std::string::npos)
         << e.what();
+  }
+}
+
+// A triangle whose vertices carry texture coordinates and colours under the names given, as
+// ASCII or binary (little or big endian).
+struct AttributeTriangle {
+  const char* uvType;  // "float", "double"
+  const char* uName;
+  const char* vName;
+  const char* colourType;  // "uchar", "ushort", "float"
+
+  std::string header(const char* format) const {
+    return std::string("ply\nformat ") + format +
+           " 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+           "property " +
+           uvType + " " + uName + "\nproperty " + uvType + " " + vName + "\nproperty " +
+           colourType + " red\nproperty " + colourType + " green\nproperty " + colourType +
+           " blue\nproperty uchar alpha\nelement face 1\n"
+           "property list uchar int vertex_indices\nend_header\n";
+  }
+  // Vertex i's texture coordinate, and its colour as the file holds it (integer types: the
+  // type's share; floats: linear).
+  static Vec2 uv(int i) {
+    return Vec2(0.25f * static_cast<float>(i), 1.0f - 0.5f * static_cast<float>(i));
+  }
+  static uint32_t level(int i, int channel) { return static_cast<uint32_t>(40 * i + 70 * channel); }
+
+  std::string file(const char* format, bool bigEndian = false) const {
+    const std::string type = colourType;
+    if (std::string(format) == "ascii") {
+      std::string text = header(format);
+      for (int i = 0; i < 3; ++i) {
+        text += std::to_string(i % 2) + " " + std::to_string(i / 2) + " 0 " +
+                std::to_string(uv(i).x) + " " + std::to_string(uv(i).y);
+        for (int c = 0; c < 3; ++c) {
+          text += " ";
+          text += type == "float" ? std::to_string(static_cast<float>(level(i, c)) / 255.0f)
+                                  : std::to_string(level(i, c) * (type == "ushort" ? 257 : 1));
+        }
+        text += " 255\n";
+      }
+      return text + "3 0 1 2\n";
+    }
+    BinaryWriter body(bigEndian);
+    for (int i = 0; i < 3; ++i) {
+      body.put(static_cast<float>(i % 2)).put(static_cast<float>(i / 2)).put(0.0f);
+      if (std::string(uvType) == "double") {
+        body.put(double{uv(i).x}).put(double{uv(i).y});
+      } else {
+        body.put(uv(i).x).put(uv(i).y);
+      }
+      for (int c = 0; c < 3; ++c) {
+        if (type == "uchar") body.put(static_cast<uint8_t>(level(i, c)));
+        if (type == "ushort") body.put(static_cast<uint16_t>(level(i, c) * 257));
+        if (type == "float") body.put(static_cast<float>(level(i, c)) / 255.0f);
+      }
+      body.put(uint8_t{255});
+    }
+    body.put(uint8_t{3}).put(int32_t{0}).put(int32_t{1}).put(int32_t{2});
+    return header(format) + body.text();
+  }
+
+  void expectRead(const MeshDesc& mesh, const std::string& what) const {
+    SCOPED_TRACE(what);
+    ASSERT_EQ(mesh.uvs.size(), 3u);
+    ASSERT_EQ(mesh.colors.size(), 3u);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(mesh.uvs[i].x, uv(i).x, 1e-6f);
+      EXPECT_NEAR(mesh.uvs[i].y, uv(i).y, 1e-6f);
+      for (int c = 0; c < 3; ++c) {
+        const float share = static_cast<float>(level(i, c)) / 255.0f;
+        // Integers are sRGB-encoded; floats are linear as they stand.
+        const float linear = std::string(colourType) == "float" ? share : srgbToLinear(share);
+        EXPECT_NEAR(mesh.colors[i][c], linear, 1e-5f) << "vertex " << i << " channel " << c;
+      }
+    }
+  }
+};
+
+TEST(PlyLoader, TextureCoordinatesAndColoursAreReadFromEveryFormat) {
+  const AttributeTriangle kinds[] = {{"float", "u", "v", "uchar"},
+                                     {"float", "s", "t", "float"},
+                                     {"double", "texture_u", "texture_v", "ushort"},
+                                     {"float", "texture_s", "texture_t", "uchar"}};
+  for (const AttributeTriangle& kind : kinds) {
+    const std::string what = std::string(kind.uName) + " " + kind.colourType;
+    kind.expectRead(parsePlyMesh(kind.file("ascii"), "a.ply", {}), what + " ascii");
+    kind.expectRead(parsePlyMesh(kind.file("binary_little_endian"), "b.ply", {}),
+                    what + " little endian");
+    kind.expectRead(parsePlyMesh(kind.file("binary_big_endian", true), "b.ply", {}),
+                    what + " big endian");
+  }
+}
+
+TEST(PlyLoader, AColourByteIsDecodedThroughTheSrgbCurve) {
+  const AttributeTriangle kind{"float", "u", "v", "uchar"};
+  const MeshDesc mesh = parsePlyMesh(kind.file("binary_little_endian"), "b.ply", {});
+  // Vertex 2, green: byte 150 is 0.3049 linear (sRGB), not 150/255 = 0.588.
+  EXPECT_NEAR(mesh.colors[2].g, 0.30499f, 1e-4f);
+}
+
+TEST(PlyLoader, PartialTextureCoordinatesOrColoursAreNotKept) {
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float u\nproperty uchar red\nproperty uchar green\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0.5 1 2\n1 0 0 0.5 1 2\n0 1 0 0.5 1 2\n3 0 1 2\n";
+  const MeshDesc mesh = parsePlyMesh(text, "p.ply", {});
+  EXPECT_TRUE(mesh.uvs.empty());
+  EXPECT_TRUE(mesh.colors.empty());
+  EXPECT_EQ(mesh.triangleCount(), 1u);
+}
+
+TEST(PlyLoader, NegativeOrNonFiniteAttributesAreNamed) {
+  const AttributeTriangle kind{"float", "u", "v", "float"};
+  std::string binary = kind.file("binary_little_endian");
+  // Vertex 1's blue: after the header, vertex 0 (5 floats, 3 floats, a byte) and vertex 1's
+  // first seven floats.
+  const size_t at = kind.header("binary_little_endian").size() + 33 + 7 * 4;
+  const float negative = -0.5f;
+  std::memcpy(&binary[at], &negative, 4);
+  try {
+    parsePlyMesh(binary, "b.ply", {});
+    FAIL() << "a negative colour was read";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.message(),
+              "vertex 1 (byte " + std::to_string(at + 4) + "): negative colour 'blue'");
+  }
+  const float nan = std::nanf("");
+  std::memcpy(&binary[at - 12], &nan, 4);  // vertex 1's v
+  try {
+    parsePlyMesh(binary, "b.ply", {});
+    FAIL() << "a non-finite texture coordinate was read";
+  } catch (const SceneError& e) {
+    EXPECT_NE(e.message().find("non-finite 'v'"), std::string::npos) << e.what();
   }
 }
 
