@@ -29,7 +29,8 @@ struct Chunk {
 };
 
 Chunk readChunk(std::string_view bytes, size_t at, size_t end, const std::string& file) {
-  if (end - at < 8) failAt(file, at, "the chunk header is cut off (the file is truncated)");
+  if (at > end || end - at < 8)
+    failAt(file, at, "the chunk header is cut off (the file is truncated)");
   Chunk chunk{readU32(bytes, at + 4), at + 8, readU32(bytes, at)};
   if (chunk.length > end - chunk.offset) {
     failAt(file, at,
@@ -58,6 +59,11 @@ GlbChunks splitGlb(std::string_view bytes, const std::string& file) {
     failAt(file, 8,
            "the header says the file has " + std::to_string(length) + " bytes, but it has " +
                std::to_string(bytes.size()) + " (the file is truncated)");
+  }
+  if (length < 20) {
+    failAt(file, 8,
+           "the header says the file has " + std::to_string(length) +
+               " bytes, too few for a header and a chunk");
   }
   const size_t end = length;  // bytes past the stated length are ignored
   const Chunk json = readChunk(bytes, 12, end, file);

@@ -1,17 +1,37 @@
 #include "parse/GltfMesh.h"
 
+#include <atomic>
+
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
 #include "parse/UsableNormal.h"
 #include "scene/MeshBudget.h"
 #include "util/HugePages.h"
+#include "util/Parallel.h"
 
 namespace prism {
 
 namespace {
 
 constexpr int kTriangles = 4, kStrip = 5, kFan = 6;
+constexpr uint64_t kBlock = 1 << 16;  // items a thread handles at a time
+
+// The smallest i in [0, count) for which bad(i) holds, or count; checked on every core.
+template <class Bad>
+uint64_t firstWhere(uint64_t count, Bad bad) {
+  std::atomic<uint64_t> first{count};
+  forChunks(count, kBlock, 0, [&](uint64_t begin, uint64_t end) {
+    for (uint64_t i = begin; i < end && i < first.load(std::memory_order_relaxed); ++i) {
+      if (!bad(i)) continue;
+      uint64_t seen = first.load();
+      while (i < seen && !first.compare_exchange_weak(seen, i)) {
+      }
+      return;
+    }
+  });
+  return first.load();
+}
 constexpr uint32_t kU8 = 5121, kU16 = 5123, kU32 = 5125;
 
 GltfAccessor attribute(const GltfDocument& doc, const GltfJson& ref, const char* name,
@@ -106,13 +126,14 @@ void readTriangleIndices(const GltfPrimitivePlan& plan, MeshDesc& mesh) {
   } else {
     triangulate(plan.mode, raw, plan.triangles, mesh.indices);
   }
-  uint32_t largest = 0;
-  for (const uint32_t i : mesh.indices) largest = std::max(largest, i);
-  if (!mesh.indices.empty() && largest >= plan.vertices) {
+  const uint32_t* indices = mesh.indices.data();
+  const uint64_t bad =
+      firstWhere(mesh.indices.size(), [&](uint64_t i) { return indices[i] >= plan.vertices; });
+  if (bad < mesh.indices.size()) {
     const std::string& at = plan.indices ? plan.indices->path : plan.path;
     throw SceneError(FileLoc{plan.position.file, 0, 0},
-                     at + ": index " + std::to_string(largest) + " is out of range (" + plan.path +
-                         " has " + std::to_string(plan.vertices) + " vertices)");
+                     at + ": index " + std::to_string(indices[bad]) + " is out of range (" +
+                         plan.path + " has " + std::to_string(plan.vertices) + " vertices)");
   }
 }
 
@@ -121,14 +142,15 @@ void readPositions(const GltfPrimitivePlan& plan, const glm::mat4& world, MeshDe
   mesh.positions.resize(plan.vertices);
   readFloats(plan.position, 3, &mesh.positions[0].x);
   const bool identity = world == glm::mat4(1.0f);
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    Vec3& p = mesh.positions[i];
-    if (!identity) p = Vec3(world * glm::vec4(p, 1.0f));
-    if (!isFinite(p)) {
-      throw SceneError(FileLoc{plan.position.file, 0, 0},
-                       plan.position.path + ": position " + std::to_string(i) +
-                           " is not finite (as read, or once the node's transform is applied)");
-    }
+  Vec3* positions = mesh.positions.data();
+  const uint64_t bad = firstWhere(plan.vertices, [&](uint64_t i) {
+    if (!identity) positions[i] = Vec3(world * glm::vec4(positions[i], 1.0f));
+    return !isFinite(positions[i]);
+  });
+  if (bad < plan.vertices) {
+    throw SceneError(FileLoc{plan.position.file, 0, 0},
+                     plan.position.path + ": position " + std::to_string(bad) +
+                         " is not finite (as read, or once the node's transform is applied)");
   }
 }
 
@@ -137,14 +159,14 @@ void readNormals(const GltfPrimitivePlan& plan, const glm::mat4& world, MeshDesc
   mesh.normals.resize(plan.vertices);
   readFloats(*plan.normal, 3, &mesh.normals[0].x);
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
-  for (Vec3& n : mesh.normals) {
-    n = normalMatrix * n;
-    if (!isUsableNormal(n)) {
-      std::vector<Vec3>().swap(mesh.normals);  // flat shading, as for a PLY or OBJ mesh
-      return;
-    }
-    n = glm::normalize(n);
-  }
+  Vec3* normals = mesh.normals.data();
+  const uint64_t bad = firstWhere(plan.vertices, [&](uint64_t i) {
+    const Vec3 n = normalMatrix * normals[i];
+    if (!isUsableNormal(n)) return true;
+    normals[i] = glm::normalize(n);
+    return false;
+  });
+  if (bad < plan.vertices) std::vector<Vec3>().swap(mesh.normals);  // flat, as a PLY or OBJ mesh
 }
 
 }  // namespace

@@ -46,6 +46,10 @@ TEST(GltfGlb, BadContainersAreRefusedWithTheirByte) {
   cut.replace(8, 4, reinterpret_cast<const char*>(&length), 4);
   EXPECT_NE(errorOf(cut).find("only 4 follow (the file is truncated)"), std::string::npos)
       << errorOf(cut);
+  // A stated length shorter than the header (found by the fuzzer).
+  EXPECT_EQ(
+      errorOf(std::string("glTF\2\0\0\0\2\0\0\0O\0\0\0", 16)),
+      "m.glb: byte 8: the header says the file has 2 bytes, too few for a header and a chunk");
   std::string notJson = glb;
   notJson[16] = 'B';
   EXPECT_EQ(errorOf(notJson), "m.glb: byte 16: the first chunk is not the JSON chunk");
