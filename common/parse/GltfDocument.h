@@ -29,6 +29,7 @@ struct GltfDocument {
   std::vector<std::unique_ptr<std::vector<uint8_t>>> decoded;  // data: URI buffers, owned
   GltfFileReader readFile;
   MemoryLimit limit;
+  FileLoc referencedFrom;       // where a scene names the file: memory refusals are reported there
   uint64_t committedBytes = 0;  // what the limit is already charged with (JSON, decoded buffers)
   std::set<std::string> warnedKinds;
   std::vector<std::string> warnings;

@@ -100,6 +100,7 @@ void resolveBuffers(GltfDocument& doc, const GlbChunks* glb) {
           from = "'" + uriToRelativePath(uri) + "'";
           const std::optional<std::string_view> file = doc.readFile(uriToRelativePath(uri));
           if (!file) uriJson->fail("the buffer file " + from + " is missing");
+          doc.charge(file->size(), buffer.path() + "'s file " + from);  // its pages, once read
           bytes = {reinterpret_cast<const uint8_t*>(file->data()), file->size()};
         }
       } catch (const std::invalid_argument& e) {
@@ -186,9 +187,9 @@ ModelDesc readModel(GltfDocument& doc, const GlbChunks* glb, const FileLoc& refe
 void GltfDocument::charge(uint64_t bytes, const std::string& what) {
   const uint64_t needed = saturatingAdd(committedBytes, bytes);
   if (needed > limit.bytes) {
-    throw SceneError(
-        FileLoc{file, 0, 0},
-        memoryRefusal(what, needed, limit, "simplify the model or raise --memory-limit"));
+    throw SceneError(referencedFrom.file.empty() ? FileLoc{file, 0, 0} : referencedFrom,
+                     memoryRefusal("glTF model '" + file + "' with " + what, needed, limit,
+                                   "simplify the model or raise --memory-limit"));
   }
   committedBytes = needed;
 }
@@ -217,6 +218,7 @@ ModelDesc parseGltfModel(std::string_view bytes, const std::string& path,
   GltfDocument doc(path, parsed.root());
   doc.readFile = readFile;
   doc.limit = limit;
+  doc.referencedFrom = referencedFrom;
   doc.committedBytes = jsonBytes;
   return readModel(doc, binary ? &glb : nullptr, referencedFrom);
 }

@@ -144,6 +144,10 @@ TextureMap textureMapOf(const GltfJson& info, uint32_t texture, GltfDocument& do
   const std::optional<GltfJson> transform =
       ext ? ext->member("KHR_texture_transform") : std::nullopt;
   TextureMap map;
+  if (transform && transform->indexOr("texCoord", 0) != 0) {
+    doc.warn("texCoord",
+             transform->path() + ".texCoord: only TEXCOORD_0 is read: it is used instead");
+  }
   if (transform) {
     const std::vector<double> offset = transform->numbersOr("offset", 2, {0, 0});
     const std::vector<double> scale = transform->numbersOr("scale", 2, {1, 1});

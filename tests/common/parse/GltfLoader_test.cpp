@@ -131,6 +131,24 @@ TEST(GltfLoader, ACheckerBoxReadsAlikeFromADataUriAGlbAndExternalFiles) {
   fs::remove_all(dir);
 }
 
+TEST(GltfLoader, TheBaseColourTexturesTransformIsRead) {
+  GltfAssets a;
+  std::string body =
+      texturedBox(a, "{\"uri\":\"data:image/png;base64," + gltftest::base64(checkerPng()) + "\"}");
+  const std::string plain = "\"baseColorTexture\":{\"index\":0}";
+  body.replace(body.find(plain), plain.size(),
+               "\"baseColorTexture\":{\"index\":0,\"extensions\":{\"KHR_texture_transform\":"
+               "{\"offset\":[0.5,0.25],\"rotation\":1.5707963,\"scale\":[2,3]}}}");
+  const ModelDesc model = parse(a.gltf(body));
+  ASSERT_TRUE(model.materials[0].diffuseMap);
+  const TextureMap& map = *model.materials[0].diffuseMap;
+  // Rotation −θ, the same scale, offset (oᵤ − s_v·sin θ, 1 − o_v − s_v·cos θ).
+  EXPECT_NEAR(map.rotation, -1.5707963f, 1e-6f);
+  EXPECT_EQ(map.scale, Vec2(2.0f, 3.0f));
+  EXPECT_NEAR(map.offset.x, 0.5f - 3.0f, 1e-5f);
+  EXPECT_NEAR(map.offset.y, 0.75f, 1e-5f);
+}
+
 TEST(GltfLoader, TriangleStripsAndFansBecomeListsWithTheirWinding) {
   GltfAssets a;
   const int p = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0}, "VEC3", 3);
