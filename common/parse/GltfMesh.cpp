@@ -1,6 +1,7 @@
 #include "parse/GltfMesh.h"
 
 #include <atomic>
+#include <limits>
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -58,6 +59,9 @@ GltfPrimitivePlan planPrimitive(GltfDocument& doc, const GltfJson& primitive, ui
   const GltfJson attributes = primitive.required("attributes");
   plan.position = attribute(doc, attributes.required("POSITION"), "POSITION", {3}, 0);
   plan.vertices = plan.position.count;
+  if (plan.vertices > std::numeric_limits<uint32_t>::max()) {
+    attributes.required("POSITION").fail("more than 2^32 vertices in one primitive");
+  }
   for (const std::string_view name : attributes.keys()) {
     const GltfJson ref = attributes.required(name);
     if (name == "NORMAL") {
