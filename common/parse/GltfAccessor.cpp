@@ -1,6 +1,7 @@
 #include "parse/GltfAccessor.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -225,18 +226,25 @@ void readFloats(const GltfAccessor& a, int components, float* out) {
   }
 }
 
-void readIndices(const GltfAccessor& a, uint32_t* out) {
+uint32_t readIndices(const GltfAccessor& a, uint32_t* out) {
   const int bytes = componentBytes(a.componentType);
+  std::atomic<uint32_t> largest{0};
   forChunks(a.count, kBlock, 0, [&](uint64_t begin, uint64_t end) {
     if (bytes == 4 && a.data && a.stride == 4) {
       std::memcpy(out + begin, a.data + begin * 4, (end - begin) * 4);  // packed u32
-      return;
+    } else {
+      for (uint64_t i = begin; i < end; ++i) {
+        const uint8_t* p = a.data ? a.data + i * a.stride : nullptr;
+        out[i] = !p ? 0 : bytes == 1 ? *p : bytes == 2 ? load<uint16_t>(p) : load<uint32_t>(p);
+      }
     }
-    for (uint64_t i = begin; i < end; ++i) {
-      const uint8_t* p = a.data ? a.data + i * a.stride : nullptr;
-      out[i] = !p ? 0 : bytes == 1 ? *p : bytes == 2 ? load<uint16_t>(p) : load<uint32_t>(p);
+    // The block's largest while it is still in the cache, rather than another pass later.
+    const uint32_t blockLargest = *std::max_element(out + begin, out + end);
+    uint32_t seen = largest.load();
+    while (blockLargest > seen && !largest.compare_exchange_weak(seen, blockLargest)) {
     }
   });
+  uint32_t result = largest.load();
   const int ib = componentBytes(a.sparseIndexType);
   for (uint64_t k = 0; k < a.sparseCount; ++k) {
     const uint8_t* ip = a.sparseIndices + k * ib;
@@ -248,7 +256,9 @@ void readIndices(const GltfAccessor& a, uint32_t* out) {
     }
     const uint8_t* vp = a.sparseValues + k * bytes;
     out[i] = bytes == 1 ? *vp : bytes == 2 ? load<uint16_t>(vp) : load<uint32_t>(vp);
+    result = std::max(result, out[i]);  // an upper bound: a replaced value may have been largest
   }
+  return result;
 }
 
 }  // namespace prism

@@ -36,8 +36,9 @@ GltfAccessor viewAccessor(const GltfDocument& doc, uint64_t index, const GltfJso
 // [-1, 1] as the glTF specification says, others as they are (KHR_mesh_quantization).
 void readFloats(const GltfAccessor& accessor, int components, float* out);
 
-// Reads a SCALAR unsigned-integer accessor (u8, u16, u32) into out (count values).
-void readIndices(const GltfAccessor& accessor, uint32_t* out);
+// Reads a SCALAR unsigned-integer accessor (u8, u16, u32) into out (count values); returns the
+// largest value read, or more (sparse substitutions are counted without their replaced value).
+uint32_t readIndices(const GltfAccessor& accessor, uint32_t* out);
 
 // Bytes of one component of the type (0 for an unknown type).
 int componentBytes(uint32_t componentType);

@@ -97,8 +97,9 @@ void resolveBuffers(GltfDocument& doc, const GlbChunks* glb) {
           bytes = *doc.decoded.back();
           from = "its data URI";
         } else {
-          from = "'" + uriToRelativePath(uri) + "'";
-          const std::optional<std::string_view> file = doc.readFile(uriToRelativePath(uri));
+          const std::string relative = uriToRelativePath(uri);
+          from.append("'").append(relative).append("'");  // not "'" + ...: GCC 12 -Wrestrict
+          const std::optional<std::string_view> file = doc.readFile(relative);
           if (!file) uriJson->fail("the buffer file " + from + " is missing");
           doc.charge(file->size(), buffer.path() + "'s file " + from);  // its pages, once read
           bytes = {reinterpret_cast<const uint8_t*>(file->data()), file->size()};

@@ -1,12 +1,12 @@
 #include "parse/GltfMesh.h"
 
 #include <atomic>
+#include <cmath>
 #include <limits>
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include "parse/UsableNormal.h"
 #include "scene/MeshBudget.h"
 #include "util/HugePages.h"
 #include "util/Parallel.h"
@@ -120,8 +120,9 @@ void readTriangleIndices(const GltfPrimitivePlan& plan, MeshDesc& mesh) {
   std::vector<uint32_t>& target = plan.mode == kTriangles ? mesh.indices : raw;
   reserveOnHugePages(target, n);
   target.resize(n);
+  uint64_t largest = n - 1;
   if (plan.indices) {
-    readIndices(*plan.indices, target.data());
+    largest = readIndices(*plan.indices, target.data());
   } else {
     for (uint64_t i = 0; i < n; ++i) target[i] = static_cast<uint32_t>(i);
   }
@@ -130,6 +131,8 @@ void readTriangleIndices(const GltfPrimitivePlan& plan, MeshDesc& mesh) {
   } else {
     triangulate(plan.mode, raw, plan.triangles, mesh.indices);
   }
+  if (largest < plan.vertices) return;
+  // Some index may be out of range (or was replaced by a sparse value): find the first.
   const uint32_t* indices = mesh.indices.data();
   const uint64_t bad =
       firstWhere(mesh.indices.size(), [&](uint64_t i) { return indices[i] >= plan.vertices; });
@@ -163,11 +166,15 @@ void readNormals(const GltfPrimitivePlan& plan, const glm::mat4& world, MeshDesc
   mesh.normals.resize(plan.vertices);
   readFloats(*plan.normal, 3, &mesh.normals[0].x);
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+  const bool identity = normalMatrix == glm::mat3(1.0f);
   Vec3* normals = mesh.normals.data();
   const uint64_t bad = firstWhere(plan.vertices, [&](uint64_t i) {
-    const Vec3 n = normalMatrix * normals[i];
-    if (!isUsableNormal(n)) return true;
-    normals[i] = glm::normalize(n);
+    const Vec3 n = identity ? normals[i] : normalMatrix * normals[i];
+    // As isUsableNormal, with one square root: a squared length below the smallest normal float
+    // (or not finite) does not normalise to a unit vector.
+    const float length2 = glm::dot(n, n);
+    if (!(length2 >= std::numeric_limits<float>::min()) || !std::isfinite(length2)) return true;
+    normals[i] = n * (1.0f / std::sqrt(length2));
     return false;
   });
   if (bad < plan.vertices) std::vector<Vec3>().swap(mesh.normals);  // flat, as a PLY or OBJ mesh
