@@ -2,7 +2,7 @@
 # Runs the libFuzzer targets (docs/reliability.md) for a given time each, one after another.
 #
 #   scripts/fuzz.sh [options] TARGET|all SECONDS
-#     TARGET: yaml_scene, nff, obj, mtl, ply, wire or view
+#     TARGET: yaml_scene, nff, obj, mtl, ply, gltf, glb, wire or view
 #     --build-dir DIR  clang build with the fuzzers (default build-fuzz; configured and built with
 #                      `cmake --preset fuzz` unless --no-build)
 #     --work DIR       where the growing corpus, crash files and logs go (default DIR/fuzz-work)
@@ -36,7 +36,7 @@ if [[ $# -ne 2 ]]; then
   sed -n '4,12p' "$0" >&2
   exit 2
 fi
-all_targets=(yaml_scene nff obj mtl ply wire view)
+all_targets=(yaml_scene nff obj mtl ply gltf glb wire view)
 if [[ $1 == all ]]; then targets=("${all_targets[@]}"); else targets=("$1"); fi
 seconds=$2
 work=${work:-$build_dir/fuzz-work}

@@ -20,6 +20,7 @@ packages=(
   libglm-dev libyaml-cpp-dev                      # renderer core: math, scenes
   libpng-dev libopenexr-dev                       # PNG and EXR, written on every render
   libjpeg62-turbo-dev                             # JPEG textures (models bring them)
+  libsimdjson-dev                                 # glTF models: their JSON
   libopenimageio-dev                              # other image formats (loaded on first use)
   libcli11-dev                                    # command line
   libnanoflann-dev                                # k-nearest photons (caustics)
@@ -28,6 +29,7 @@ packages=(
   qtbase5-dev libqt5charts5-dev                   # the viewer (prism view)
   libgtest-dev                                    # tests
   libembree-dev                                   # ray-throughput yardstick (benchmark only)
+  assimp-testmodels                               # public glTF test models (GltfPublicModels)
   clang-14 libclang-rt-14-dev                     # fuzzers: libFuzzer, sanitizers (test.sh)
 )
 if ((with_slurm)) && [[ $(id -u) -eq 0 ]]; then

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <unordered_map>
 
+#include "parse/GltfLoader.h"
 #include "parse/ObjLoader.h"
 #include "parse/PlyLoader.h"
 
@@ -16,8 +17,7 @@ ModelDesc loadModelFile(const std::string& path, const FileLoc& referencedFrom,
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".gltf" || extension == ".glb") {
-    throw SceneError(referencedFrom.file.empty() ? FileLoc{path} : referencedFrom,
-                     "glTF files are not read yet");
+    return loadGltfModel(path, referencedFrom, limit);
   }
   if (extension != ".ply") return loadObjModel(path, referencedFrom, limit);
   ModelDesc model;
@@ -46,7 +46,8 @@ size_t placeModel(ModelDesc model, const ModelPlacement& placement, SceneDescrip
   const auto firstMaterial = static_cast<MaterialId>(scene.materials.size());
   if (ownMaterials) {
     for (MaterialDesc& material : model.materials) {
-      if (material.diffuseMap) material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
+      if (material.diffuseMap)
+        material.diffuseMap->texture = textureIndex[material.diffuseMap->texture];
       scene.materials.push_back(std::move(material));
     }
   }

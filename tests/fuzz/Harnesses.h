@@ -33,6 +33,9 @@ Outcome fuzzObj(const uint8_t* data, size_t size);
 Outcome fuzzMtl(const uint8_t* data, size_t size);
 // PLY mesh files (header and ASCII or binary body).
 Outcome fuzzPly(const uint8_t* data, size_t size);
+// glTF models: the bytes as a .gltf (JSON; external files are missing) and as a .glb.
+Outcome fuzzGltf(const uint8_t* data, size_t size);
+Outcome fuzzGlb(const uint8_t* data, size_t size);
 // Wire messages: the bytes as an envelope, and the bytes after the first as the payload of a
 // valid envelope whose type the first byte chooses (the checksum would otherwise stop nearly
 // every mutation before the payload decoders).
@@ -52,6 +55,8 @@ inline const std::vector<Harness>& harnesses() {
                                            {"obj", fuzzObj},
                                            {"mtl", fuzzMtl},
                                            {"ply", fuzzPly},
+                                           {"gltf", fuzzGltf},
+                                           {"glb", fuzzGlb},
                                            {"wire", fuzzWire},
                                            {"view", fuzzView}};
   return all;
