@@ -264,13 +264,13 @@ def make_still_life():
         for face in faces:
             corners = []
             for k in face:
-                corners.append("%d/%d/%d" % (v0 + k + 1, t0 + k + 1, n0 + k + 1) if normals
-                               else "%d/%d" % (v0 + k + 1, t0 + k + 1))
+                corners.append("%d/%d/%d" % (v0 + k + 1, t0 + k + 1, n0 + k + 1))
             out.append("f " + " ".join(corners))
 
     # The table top: 8 x 8 units at y = 0, its texture repeated by the MTL's -s 8 8.
+    # Every corner names a normal: an OBJ mesh is smooth shaded only where all of them do.
     emit("tiles", [(-4, 0, -4), (-4, 0, 4), (4, 0, 4), (4, 0, -4)],
-         [(0, 1), (0, 0), (1, 0), (1, 1)], [], [(0, 1, 2, 3)])
+         [(0, 1), (0, 0), (1, 0), (1, 1)], [(0, 1, 0)] * 4, [(0, 1, 2, 3)])
     # The crate: a 1.6-unit cube, each face the whole texture, turned 25 degrees.
     half, angle = 0.8, math.radians(25)
     def place(p):
@@ -281,14 +281,20 @@ def make_still_life():
     directions = [  # (rotation of the front face to each face)
         lambda x, y, z: (x, y, z), lambda x, y, z: (-x, y, -z), lambda x, y, z: (z, y, -x),
         lambda x, y, z: (-z, y, x), lambda x, y, z: (x, z, -y), lambda x, y, z: (x, -z, y)]
-    positions, uvs = [], []
+    def turn_only(p):
+        x, y, z = p
+        return (math.cos(angle) * x + math.sin(angle) * z, y,
+                -math.sin(angle) * x + math.cos(angle) * z)
+    positions, uvs, normals = [], [], []
     for turn in directions:
         for c in corners:
             positions.append(place(tuple(half * k for k in turn(*c))))
+            normals.append(turn_only(turn(0, 0, 1)))
         uvs.extend([(0, 0), (1, 0), (1, 1), (0, 1)])
-    emit("crate", positions, uvs, [], [(4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3) for k in range(6)])
+    emit("crate", positions, uvs, normals,
+         [(4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3) for k in range(6)])
     for material, centre, radius in (("glass", (1.3, 0.7, 0.6), 0.7),
-                                     ("metal", (0.6, 0.45, -1.6), 0.45)):
+                                     ("metal", (2.3, 0.45, -1.3), 0.45)):
         p, n, t, tris = uv_sphere(centre, radius)
         emit(material, p, t, n, tris)
     with open(os.path.join(folder, "still-life.obj"), "w") as f:
@@ -367,7 +373,7 @@ def make_globe():
         "asset": {"version": "2.0", "generator": "Prism scripts/make_scene_assets.py"},
         "extensionsUsed": ["KHR_lights_punctual"],
         "extensions": {"KHR_lights_punctual": {"lights": [
-            {"type": "point", "color": [1.0, 0.95, 0.9], "intensity": 2000.0}]}},
+            {"type": "point", "color": [1.0, 0.95, 0.9], "intensity": 30000.0}]}},
         "scene": 0,
         "scenes": [{"name": "globe", "nodes": [0, 3, 4]}],
         "nodes": [

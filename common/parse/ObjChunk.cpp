@@ -210,6 +210,38 @@ uint64_t countWords(const char* p, const char* end) {
   return words;
 }
 
+// A face corner's indices as written, the word [corner, end): v, v/vt, v//vn or v/vt/vn.
+struct Corner {
+  int64_t v = 0, vt = 0, vn = 0;
+  bool hasUv = false, hasNormal = false;
+};
+
+// Inlined into the face loop, which reads millions of corners.
+[[gnu::always_inline]] inline Corner readCorner(const char* corner, const char* end) {
+  Corner c;
+  const char* q = corner;
+  bool ok = readIndex(q, end, c.v);
+  if (ok && q < end && *q == '/') {
+    ++q;
+    if (q < end && *q != '/') {
+      ok = readIndex(q, end, c.vt);
+      c.hasUv = true;
+    }
+    if (ok && q < end && *q == '/') {
+      ++q;
+      c.hasNormal = q < end;
+      if (c.hasNormal) ok = readIndex(q, end, c.vn);
+    }
+  }
+  if (!ok || q != end) {
+    throw ParseFailure{
+        corner, "expected a face corner (v, v/vt, v//vn or v/vt/vn) but found '" +
+                    printableExcerpt(std::string_view(corner, static_cast<size_t>(end - corner))) +
+                    "'"};
+  }
+  return c;
+}
+
 }  // namespace
 
 uint32_t ObjMaterialNames::find(std::string_view name) const {
@@ -316,32 +348,7 @@ ObjChunkResult parseObjChunk(std::string_view text, const ObjChunkTarget& target
             int corners = 0;
             while (const char* corner = nextWord(p, end)) {
               p = wordEnd(corner, end);
-              // v, v/vt, v//vn or v/vt/vn.
-              const char* q = corner;
-              int64_t v = 0, vt = 0, vn = 0;
-              bool hasUv = false;
-              bool hasNormal = false;
-              bool ok = readIndex(q, p, v);
-              if (ok && q < p && *q == '/') {
-                ++q;
-                if (q < p && *q != '/') {
-                  ok = readIndex(q, p, vt);
-                  hasUv = true;
-                }
-                if (ok && q < p && *q == '/') {
-                  ++q;
-                  hasNormal = q < p;
-                  if (hasNormal) ok = readIndex(q, p, vn);
-                }
-              }
-              if (!ok || q != p) {
-                throw ParseFailure{corner,
-                                   "expected a face corner (v, v/vt, v//vn or v/vt/vn) "
-                                   "but found '" +
-                                       printableExcerpt(std::string_view(
-                                           corner, static_cast<size_t>(p - corner))) +
-                                       "'"};
-              }
+              const auto [v, vt, vn, hasUv, hasNormal] = readCorner(corner, p);
               *cornerVertex++ =
                   resolveIndex(v, positionsBefore, target.positionsInFile, corner, "vertex");
               if (hasUv) {

@@ -150,6 +150,23 @@ TEST_F(DistributedRender, TheGeometryBroadcastOrBuiltOnEveryRankGivesTheSamePixe
   }
 }
 
+// Models as users bring them: an OBJ with its MTL and PNG textures placed by a scene, and a glTF
+// binary rendered as a scene of its own. Textures and materials travel in the broadcast (a slave
+// reads no file), and three ranks give the pixels of one process.
+TEST_F(DistributedRender, TexturedModelsGiveTheSamePixelsOnThreeRanks) {
+  for (const std::string model : {"textured-still-life.yaml", "globe.glb"}) {
+    const std::string scene =
+        std::string(PRISM_SOURCE_DIR) + "/scenes/" + model + " -W 96 -H 54 --spp 2 --photons 20000";
+    const test::ProcessRun single =
+        test::runPrism("render " + scene + " -q -o " + path("one.exr") + " --overwrite");
+    ASSERT_EQ(single.exitCode, 0) << single.output;
+    const test::ProcessRun three =
+        test::runPrismMpi(3, "render " + scene + " -o " + path("three.exr") + " --overwrite");
+    ASSERT_EQ(three.exitCode, 0) << three.output;
+    EXPECT_TRUE(samePixels(readImage(path("three.exr")), readImage(path("one.exr")))) << model;
+  }
+}
+
 // A slave that dies breaks its TCP connections (the other ranks see a reset, not a silent
 // shared-memory segment): under --enable-recovery the master must still retire it and finish.
 TEST_F(DistributedRender, OverTcpACrashedSlaveUnderEnableRecoveryIsRetiredWithTheSamePixels) {

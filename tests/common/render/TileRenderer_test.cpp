@@ -46,6 +46,8 @@ TEST(TileRenderer, CameraRayPacketsGiveTheSameImageAsSingleRays) {
       "/scenes/caustic-mirror.yaml",
       "/scenes/caustic-ring.yaml",
       "/scenes/lambert-plane.yaml",
+      "/scenes/textured-still-life.yaml",
+      "/scenes/globe.glb",
       "/tests/data/nff/balls-s2.nff",
       "/tests/data/nff/gears-s2.nff",
       "/tests/data/nff/jacks-s1.nff",
