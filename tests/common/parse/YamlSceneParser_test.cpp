@@ -427,6 +427,38 @@ objects:
   }
 }
 
+// A glTF placed by a scene brings its materials and textures; its camera and lights only when
+// asked, moved by the mesh's transform. scenes/globe.glb holds one camera (at (0, 0.4, 4.2))
+// and one light.
+TEST(YamlSceneParser, AModelsCameraAndLightsComeWhenAskedAndMoveWithIt) {
+  const std::string globe = std::string(PRISM_SOURCE_DIR) + "/scenes/globe.glb";
+  const SceneDescription plain = parse("objects: [mesh: {file: " + globe + "}]");
+  EXPECT_TRUE(plain.lights.empty());
+  EXPECT_EQ(plain.camera.position, CameraDesc{}.position);
+  ASSERT_EQ(plain.meshes.size(), 2u);
+  EXPECT_EQ(plain.materials.size(), 2u);  // the globe's map and the brass
+  EXPECT_EQ(plain.textures.size(), 1u);
+  const SceneDescription asked = parse("objects: [mesh: {file: " + globe +
+                                       ", camera: true, lights: true, transform: {translate: "
+                                       "[10, 0, 0]}}]");
+  ASSERT_EQ(asked.lights.size(), 1u);
+  expectVec(asked.camera.position, {10.0f, 0.4f, 4.2f}, 1e-5f);
+  expectVec(asked.lights[0].position, {7.0f, 3.0f, 3.0f}, 1e-5f);
+  // A scene material replaces the model's for every face.
+  const SceneDescription grey = parse(R"(
+materials: [{name: grey, diffuse: 0.5}]
+objects: [mesh: {file: )" + globe + R"(, material: grey}]
+)");
+  EXPECT_EQ(grey.materials.size(), 1u);
+  EXPECT_TRUE(grey.textures.empty());
+  try {
+    parse("objects: [mesh: {file: ../meshes/quad.obj, camera: true}]");
+    ADD_FAILURE() << "a camera taken from a file without one";
+  } catch (const SceneError& e) {
+    EXPECT_NE(e.message().find("has no camera to take"), std::string::npos) << e.what();
+  }
+}
+
 // quad.ply holds quad.obj's square as one polygon, which the PLY reader splits into the same fan.
 TEST(YamlSceneParser, PlyMeshesLoadLikeObjMeshes) {
   const SceneDescription obj = parse("objects: [mesh: {file: ../meshes/quad.obj}]");
