@@ -123,18 +123,24 @@ void readDense(const GltfAccessor& a, int components, float* out, uint64_t begin
   }
 }
 
+// The element the k-th sparse value replaces (indices of ib bytes), checked against the count.
+uint64_t sparseIndex(const GltfAccessor& a, int ib, uint64_t k) {
+  const uint8_t* ip = a.sparseIndices + k * ib;
+  const uint64_t i = ib == 1 ? *ip : ib == 2 ? load<uint16_t>(ip) : load<uint32_t>(ip);
+  if (i >= a.count) {
+    throw SceneError(FileLoc{a.file, 0, 0}, a.path + ".sparse: index " + std::to_string(i) +
+                                                " is past the accessor's " +
+                                                std::to_string(a.count) + " elements");
+  }
+  return i;
+}
+
 template <class T>
 void readSparseValues(const GltfAccessor& a, int components, float* out) {
   const int ib = componentBytes(a.sparseIndexType);
   const uint64_t element = sizeof(T) * a.components;
   for (uint64_t k = 0; k < a.sparseCount; ++k) {
-    const uint8_t* ip = a.sparseIndices + k * ib;
-    const uint64_t i = ib == 1 ? *ip : ib == 2 ? load<uint16_t>(ip) : load<uint32_t>(ip);
-    if (i >= a.count) {
-      throw SceneError(FileLoc{a.file, 0, 0}, a.path + ".sparse: index " + std::to_string(i) +
-                                                  " is past the accessor's " +
-                                                  std::to_string(a.count) + " elements");
-    }
+    const uint64_t i = sparseIndex(a, ib, k);
     const uint8_t* vp = a.sparseValues + k * element;
     for (int c = 0; c < components; ++c)
       out[i * components + c] = toFloat<T>(vp + c * sizeof(T), a.normalized);
@@ -247,13 +253,7 @@ uint32_t readIndices(const GltfAccessor& a, uint32_t* out) {
   uint32_t result = largest.load();
   const int ib = componentBytes(a.sparseIndexType);
   for (uint64_t k = 0; k < a.sparseCount; ++k) {
-    const uint8_t* ip = a.sparseIndices + k * ib;
-    const uint64_t i = ib == 1 ? *ip : ib == 2 ? load<uint16_t>(ip) : load<uint32_t>(ip);
-    if (i >= a.count) {
-      throw SceneError(FileLoc{a.file, 0, 0}, a.path + ".sparse: index " + std::to_string(i) +
-                                                  " is past the accessor's " +
-                                                  std::to_string(a.count) + " elements");
-    }
+    const uint64_t i = sparseIndex(a, ib, k);
     const uint8_t* vp = a.sparseValues + k * bytes;
     out[i] = bytes == 1 ? *vp : bytes == 2 ? load<uint16_t>(vp) : load<uint32_t>(vp);
     result = std::max(result, out[i]);  // an upper bound: a replaced value may have been largest
