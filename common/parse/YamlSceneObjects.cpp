@@ -11,6 +11,7 @@
 
 #include "parse/ModelFile.h"
 #include "parse/YamlSceneReader.h"
+#include "scene/GeometryMemory.h"
 #include "scene/MeshBudget.h"
 
 namespace prism {
@@ -230,6 +231,8 @@ void YamlSceneReader::readMesh(const Entry& object) {
   size_t positions = 0;
   for (const MeshDesc& mesh : model.meshes) positions += mesh.positions.size();
   meshBudget_.spend(meshBuildBytes(model.triangleCount(), positions));
+  // Its textures too: the next model is read against what is left.
+  for (const TextureDesc& t : model.textures) meshBudget_.spend(textureMemoryBytes(t));
   if (model.triangleCount() == 0)
     fail(loc(fileEntry), "mesh file " + shown(file) + " has no triangles");
   for (MeshDesc& mesh : model.meshes) {

@@ -47,15 +47,17 @@ uint64_t meshAttributeBytes(const MeshDesc& m) {
 
 }  // namespace
 
+uint64_t textureMemoryBytes(const TextureDesc& t) {
+  return mippedImageBytes(t.width(), t.height(), t.keptAsBytes());
+}
+
 uint64_t geometryMemoryBytes(const SceneDescription& d) {
   uint64_t bytes = 0;
   for (const MeshDesc& m : d.meshes) {
     bytes = saturatingAdd(bytes, meshBuildBytes(m.triangleCount(), m.positions.size()));
     bytes = saturatingAdd(bytes, meshAttributeBytes(m));
   }
-  for (const TextureDesc& t : d.textures) {
-    bytes = saturatingAdd(bytes, mippedImageBytes(t.width(), t.height(), t.keptAsBytes()));
-  }
+  for (const TextureDesc& t : d.textures) bytes = saturatingAdd(bytes, textureMemoryBytes(t));
   // Each shape's parts in the BVH (a slanted cone enters in parts) cost what a sphere does.
   uint64_t primitives = d.planes.size();
   forEachShapeList(d, [&](const auto& descs) { primitives += bvhPartsOf(descs); });

@@ -12,8 +12,12 @@
 namespace prism {
 
 // Bytes a rank needs to hold and build this scene's geometry (meshes with their BVH, the other
-// primitives, cube-map faces), counting the description and its wire copy (MeshBudget.h).
+// primitives, cube-map faces, textures), counting the description and its wire copy (MeshBudget.h).
 uint64_t geometryMemoryBytes(const SceneDescription& description);
+
+// Bytes a rank needs to hold a texture: the description's copy, its wire copy and the scene's
+// mip pyramid.
+uint64_t textureMemoryBytes(const TextureDesc& texture);
 
 // Throws ResourceLimitError when the geometry cannot fit, naming the bytes and the limit.
 void checkGeometryFits(const SceneDescription& description, const MemoryLimit& limit);

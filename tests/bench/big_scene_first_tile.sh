@@ -30,7 +30,7 @@ first_tile() {
 declare -A samples
 for ((r = 1; r <= rounds; r++)); do
   for b in "${binaries[@]}"; do
-    name=$(basename "$(dirname "$b")")/$(basename "$b")
+    name=$b  # as given: two builds may both end in build/prism
     for case in ply obj ranks; do
       scene=$dir/5m/big-mesh-ply.yaml
       [[ $case == obj ]] && scene=$dir/5m/big-mesh.yaml
@@ -50,7 +50,7 @@ median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{ v[NR] = $1 } END { prin
 echo
 echo "medians (s) of $rounds rounds; load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
 for b in "${binaries[@]}"; do
-  name=$(basename "$(dirname "$b")")/$(basename "$b")
+  name=$b
   ply=$(echo "${samples[$name ply]}" | median)
   obj=$(echo "${samples[$name obj]}" | median)
   ranks=$(echo "${samples[$name ranks]}" | median)
@@ -61,7 +61,7 @@ done
 # The 20 M peak against the scene's held memory (the summary's bvh line: BVH and geometry).
 echo
 for b in "${binaries[@]}"; do
-  name=$(basename "$(dirname "$b")")/$(basename "$b")
+  name=$b
   /usr/bin/time -f "peak %M" "$b" render "$dir/20m/big-mesh-ply.yaml" -o "$out/r.exr" --overwrite \
     --threads 2 >"$out/log" 2>&1
   peak_kib=$(sed -n 's/^peak \([0-9]*\)$/\1/p' "$out/log")

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/ConeSegments.h"
+#include "image/MipPyramid.h"
 
 namespace prism {
 namespace {
@@ -65,6 +66,24 @@ TEST(GeometryMemory, RefusesOneByteShortWithTheBytesAndTheLimit) {
                  "the scene's geometry (1000 triangles) needs 245.4 KiB (251296 bytes); the "
                  "memory limit is 245.4 KiB (251295 bytes, --memory-limit): simplify the meshes");
   }
+}
+
+// A texture counts with its copies and pyramid: a 64² byte texture's description and wire copies
+// (3 bytes a texel each), its packed pyramid (4 bytes a texel over 4/3 of them) and the float
+// copy of its second level; a float texture's copies and pyramid as 12-byte texels.
+TEST(GeometryMemory, TexturesCountWithTheirPyramids) {
+  TextureDesc bytes;
+  bytes.srgb = SrgbImage{64, 64, std::vector<uint8_t>(64 * 64 * 3)};
+  const uint64_t texels = 64 * 64, pyramid = mipLevelsTexels(64, 64);
+  EXPECT_EQ(textureMemoryBytes(bytes), 2 * texels * 3 + pyramid * 4 + texels / 4 * 12);
+  TextureDesc floats;
+  floats.linear = ImageRgb(64, 64);
+  EXPECT_EQ(textureMemoryBytes(floats), (2 * texels + pyramid) * 12);
+  SceneDescription d;
+  const uint64_t without = geometryMemoryBytes(d);
+  d.textures = {bytes, floats};
+  EXPECT_EQ(geometryMemoryBytes(d),
+            without + textureMemoryBytes(bytes) + textureMemoryBytes(floats));
 }
 
 }  // namespace
