@@ -57,7 +57,8 @@ std::vector<SceneGeometry::MeshShading> meshShading(const std::vector<MeshInput>
   std::vector<SceneGeometry::MeshShading> out;
   uint32_t triangleNumber = 0;
   for (const MeshInput& mesh : meshes) {
-    SceneGeometry::MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber, {}, {}, {}};
+    SceneGeometry::MeshShading shading{{}, {}, mesh.material, mesh.caustic, triangleNumber, {},
+                                       {}, {}};
     reserveOnHugePages(shading.normals, mesh.normals.size());
     shading.normals.assign(mesh.normals.begin(), mesh.normals.end());
     reserveOnHugePages(shading.indices, mesh.indices.size());

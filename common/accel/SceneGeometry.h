@@ -38,10 +38,10 @@ struct RayPacket8;
 // the build. Normals and indices are copied for shading; positions go into the triangle packs.
 struct MeshInput {
   std::span<const Vec3> positions;
-  std::span<const uint32_t> indices;  // three per triangle
-  std::span<const Vec3> normals;      // one per position, or empty: flat shading
-  std::span<const Vec2> uvs;          // one per position, or empty
-  std::span<const Color> colors;      // one per position, or empty
+  std::span<const uint32_t> indices;          // three per triangle
+  std::span<const Vec3> normals;              // one per position, or empty: flat shading
+  std::span<const Vec2> uvs;                  // one per position, or empty
+  std::span<const Color> colors;              // one per position, or empty
   std::span<const MaterialId> faceMaterials;  // one per triangle, or empty: material for all
   MaterialId material = 0;
   uint8_t caustic = 0;  // kCastsCaustics | kReceivesCaustics
@@ -173,10 +173,10 @@ class SceneGeometry {
     std::vector<uint32_t> indices;
     MaterialId material;
     uint8_t caustic;
-    uint32_t firstTriangle;  // number of its first triangle, counting over all meshes in order
-    std::vector<Vec2> uvs;                   // empty: no texture coordinates
-    std::vector<Color> colors;               // empty: no vertex colours
-    std::vector<MaterialId> faceMaterials;   // empty: material for every face
+    uint32_t firstTriangle;     // number of its first triangle, counting over all meshes in order
+    std::vector<Vec2> uvs;      // empty: no texture coordinates
+    std::vector<Color> colors;  // empty: no vertex colours
+    std::vector<MaterialId> faceMaterials;  // empty: material for every face
   };
 
   // Triangles of one BVH leaf, four at a time; a leaf's packs are consecutive and the wide BVH

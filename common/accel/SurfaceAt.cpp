@@ -63,8 +63,8 @@ namespace {
 
 // A textured or coloured mesh's texture coordinates and vertex colour at the hit, interpolated
 // barycentrically. Apart from finishSurface: plain meshes do not pay for it.
-[[gnu::noinline]] void vertexAttributes(const SceneGeometry::MeshShading& mesh,
-                                        const Triangle& tri, const HitRecord& hit, SurfaceHit& s) {
+[[gnu::noinline]] void vertexAttributes(const SceneGeometry::MeshShading& mesh, const Triangle& tri,
+                                        const HitRecord& hit, SurfaceHit& s) {
   const uint32_t* corner = &mesh.indices[3 * size_t{tri.face}];
   const float w = 1.0f - hit.u - hit.v;
   if (!mesh.uvs.empty()) {

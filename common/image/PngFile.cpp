@@ -230,8 +230,8 @@ PngPixels decodePng(std::span<const uint8_t> bytes, uint64_t maxPixels) {
     uint16_t v;
     std::memcpy(&v, data.data() + 2 * i, 2);
     const float encoded = static_cast<float>(v) * (1.0f / 65535.0f);
-    const float linear = encoded <= 0.04045f ? encoded / 12.92f
-                                             : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+    const float linear =
+        encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
     result.linear.pixels[i / 3][static_cast<int>(i % 3)] = linear;
   }
   return result;

@@ -22,7 +22,7 @@ struct ModelPlacement {
   // the model's own; nothing: the model's materials (or the scene's default where it has none).
   std::optional<MaterialId> material;
   CausticRole caustic = CausticRole::Auto;
-  FileLoc loc;  // where the scene places it
+  FileLoc loc;              // where the scene places it
   bool takeCamera = false;  // the model's camera becomes the scene's, where it has one
   bool takeLights = false;  // the model's lights are added to the scene's
 };

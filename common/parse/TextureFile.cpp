@@ -91,7 +91,8 @@ TextureDesc loadTextureFile(const std::string& path, const FileLoc& referencedFr
   // Any other format (EXR, HDR, TIFF, ...) through OpenImageIO, as linear radiance.
   const std::string extension = lowercaseExtension(path);
   if (extension == ".png" || extension == ".jpg" || extension == ".jpeg") {
-    refuse(referencedFrom, path, "not a " + extension.substr(1) + " image (its first bytes say so)");
+    refuse(referencedFrom, path,
+           "not a " + extension.substr(1) + " image (its first bytes say so)");
   }
   TextureDesc texture;
   texture.path = path;

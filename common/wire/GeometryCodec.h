@@ -106,8 +106,7 @@ struct Fields<SceneGeometry::LeafPack> {
 
 template <>
 struct Fields<SceneGeometry::MeshShading> {
-  PRISM_WIRE_FIELDS(normals, indices, material, caustic, firstTriangle, uvs, colors,
-                    faceMaterials)
+  PRISM_WIRE_FIELDS(normals, indices, material, caustic, firstTriangle, uvs, colors, faceMaterials)
 };
 
 template <>
