@@ -14,7 +14,10 @@ tests/bench/scenes/glass-ball-oblique.yaml or glass-ball-top.yaml), the script
      (--map-resolution R); each run --repeats times, wall time of the whole process, median,
   4. scores each image's caustic (render − direct) with prism_sphere_caustic_reference --score:
      relative RMSE over the caustic region (reference above 1 % of the plane's direct radiance
-     scale), over its regular part (without the focus, folds and edges), and the flux ratio,
+     scale), over its regular part (without the focus, folds and edges), the flux ratio, and
+     the flux ratios of radial rings 3 pixels wide about the focus axis: the innermost (the
+     focus), the one inside the caustic's outer fold, and the worst ring holding 0.5 % of the
+     light (its signed deviation),
   5. prints a table and the least-squares log-log slope of error against time per method.
 
 Python 3 standard library only.  Example (docs/accuracy.md):
@@ -129,15 +132,17 @@ def main():
             times[i].append(t)
             if rnd == 0:
                 scores[i] = score(args.reference_tool, ref, image, direct, args.scene)
-    print("| method | budget | wall s (median) | min..max | full-region rel. RMSE | regular part | flux ratio |")
-    print("|---|---|---:|---|---:|---:|---:|")
+    print("| method | budget | wall s (median) | min..max | full-region rel. RMSE | regular part | "
+          "flux ratio | focus ring | fold ring | worst ring |")
+    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|")
     curves = {}
     for i, (method, budget, _) in enumerate(budgets):
         s = scores[i]
         med = statistics.median(times[i])
-        print("| %s | %s | %.2f | %.2f..%.2f | %.4f | %.4f | %.4f |" % (
+        print("| %s | %s | %.2f | %.2f..%.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %+.4f |" % (
             method, budget, med, min(times[i]), max(times[i]), s["rel_rmse"], s["rel_rmse_regular"],
-            s["flux_ratio"]))
+            s["flux_ratio"], s.get("ring0_ratio", float("nan")), s.get("fold_ratio", float("nan")),
+            s.get("worst_ring_dev", float("nan"))))
         curves.setdefault(method, []).append((med, s["rel_rmse"], s["rel_rmse_regular"]))
     for method, pts in curves.items():
         if len(pts) > 1:

@@ -32,11 +32,16 @@
 // reference differs from a 4-neighbour's by more than 25 %: the focus, folds and edges), and the
 // flux ratio Σx/Σr over the region; and the RMSE and flux ratio over the part of the region the
 // camera sees directly, not through the ball (there pixel sums are proportional to flux).
+// Then the same flux ratio over radial rings about the focus axis, each about --ring-pixels
+// (default 3) pixels wide (scoreRings): the innermost ring (the focus), the outer fold's ring,
+// the worst ring holding 0.5 % of the region's light, each with its standard error from 8
+// sectors; --rings FILE writes every ring as CSV.
 //
 // usage: prism_sphere_caustic_reference SCENE --out REF.exr [--rays N] [--samples S]
 //                                        [--bins-per-pixel B] [--threads T]
 //        prism_sphere_caustic_reference --reference REF.exr --score IMAGE.exr --direct D.exr
 //                                        [--scene SCENE] [--region F] [--png PREFIX]
+//                                        [--rings RINGS.csv] [--ring-pixels P]
 // --png writes PREFIX.png: the reference (left) and the render's caustic (right), exposure 0.3.
 //        prism_sphere_caustic_reference --reference REF.exr --direct D.exr --compose FULL.exr
 // writes D + REF: a whole reference image for `prism sweep --reference FULL.exr`.
@@ -595,9 +600,132 @@ prism::ImageRgb buildReference(const prism::SceneDescription& s, long rays, int 
   return image;
 }
 
+// Radial rings about the focus axis: the foot of the light–centre line on the plane. A box of
+// pixels about the focus averages its sharpest parts away (a disc too bright inside a ring too
+// dark keeps the box's flux); a ring of about 3 pixels at every radius sees where light moved
+// towards or away from the focus and across the caustic's outer fold. Each pixel is placed at
+// the plane point its centre ray's strongest branch lands on (directly, or through the ball),
+// and a ring is `ringPixels` of the radial distance neighbouring pixels span there, so rings are
+// about as wide in the image everywhere (a view through the ball magnifies the centre).
+struct Ring {
+  double lo = 0, hi = 0;  // plane radius
+  double sx = 0, sr = 0;  // sums of the render's and the reference's caustic
+  long pixels = 0;
+  std::array<double, 8> sectorX{}, sectorR{};  // the same in 8 sectors: the ring's noise
+  double ratio() const { return sr > 0 ? sx / sr : 0.0; }
+  // Standard error of the ratio from the spread of the sectors' ratios (the caustic is round
+  // about the axis, so the sectors differ by noise; pixels within a kernel are not independent,
+  // sectors far apart are).
+  double standardError() const {
+    double m = 0, m2 = 0;
+    int n = 0;
+    for (size_t k = 0; k < sectorX.size(); ++k) {
+      if (!(sectorR[k] > 0)) continue;
+      const double q = sectorX[k] / sectorR[k];
+      m += q, m2 += q * q, ++n;
+    }
+    if (n < 2) return 0.0;
+    m /= n;
+    return std::sqrt(std::max(0.0, (m2 / n - m * m) * n / (n - 1)) / n);
+  }
+};
+
+struct RingScores {
+  std::vector<Ring> rings;
+  size_t fold = 0;  // the ring inside the outer fold (see scoreRings)
+};
+
+RingScores scoreRings(const World& w, const Eye& eye, int W, int H, const std::vector<double>& r,
+                      const std::vector<double>& x, double threshold, int ringPixels) {
+  const D3 axis = normalize(w.centre - w.light);
+  const double along = dot(w.planePoint - w.light, w.planeNormal) / dot(axis, w.planeNormal);
+  const D3 foot = w.light + along * axis;
+  const D3 u = normalize(std::abs(w.planeNormal[0]) < 0.9 ? cross(w.planeNormal, D3{1, 0, 0})
+                                                          : cross(w.planeNormal, D3{0, 1, 0}));
+  const D3 v = cross(w.planeNormal, u);
+  // Each pixel's plane radius and angle: where its centre ray's strongest branch lands.
+  std::vector<double> rho(r.size(), -1.0), angle(r.size(), 0.0);
+  for (int y = 0; y < H; ++y)
+    for (int xx = 0; xx < W; ++xx) {
+      D3 o, d;
+      eye.ray(w, xx + 0.5, y + 0.5, o, d);
+      double best = 0.0;
+      D3 at{};
+      traceEye(w, o, d, 1.0, 0, [&](D3 p, double weight) {
+        if (weight > best) best = weight, at = p;
+      });
+      if (!(best > 0.0)) continue;
+      const size_t i = static_cast<size_t>(y) * W + xx;
+      const D3 rel = at - foot;
+      rho[i] = std::sqrt(dot(rel, rel));
+      angle[i] = std::atan2(dot(rel, v), dot(rel, u));
+    }
+  // How far in radius one pixel reaches, as a function of radius: the median, over the region's
+  // pixels in 256 radius bins, of the larger radial step to the right or lower neighbour.
+  double rhoMax = 0.0;
+  for (size_t i = 0; i < r.size(); ++i)
+    if (r[i] > threshold && rho[i] >= 0) rhoMax = std::max(rhoMax, rho[i]);
+  RingScores out;
+  if (!(rhoMax > 0.0)) return out;
+  constexpr int kCoarse = 256;
+  std::vector<std::vector<double>> steps(kCoarse);
+  for (int y = 0; y + 1 < H; ++y)
+    for (int xx = 0; xx + 1 < W; ++xx) {
+      const size_t i = static_cast<size_t>(y) * W + xx;
+      if (!(r[i] > threshold) || rho[i] < 0 || rho[i + 1] < 0 || rho[i + W] < 0) continue;
+      const int c = std::min(kCoarse - 1, static_cast<int>(rho[i] / rhoMax * kCoarse));
+      steps[c].push_back(std::max(std::abs(rho[i + 1] - rho[i]), std::abs(rho[i + W] - rho[i])));
+    }
+  std::vector<double> step(kCoarse, 0.0);
+  for (int c = 0; c < kCoarse; ++c) {
+    auto& s = steps[c];
+    if (s.empty()) continue;
+    std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+    step[c] = s[s.size() / 2];
+  }
+  for (int c = 1; c < kCoarse; ++c)  // bins without pixels take the nearer one inside
+    if (step[c] == 0.0) step[c] = step[c - 1];
+  for (int c = kCoarse - 2; c >= 0; --c)
+    if (step[c] == 0.0) step[c] = step[c + 1];
+  if (!(step[0] > 0.0)) return out;
+  for (double edge = 0.0; edge <= rhoMax;) {
+    const int c = std::min(kCoarse - 1, static_cast<int>(edge / rhoMax * kCoarse));
+    Ring ring;
+    ring.lo = edge;
+    ring.hi = edge + ringPixels * step[c];
+    out.rings.push_back(ring);
+    edge = ring.hi;
+  }
+  for (size_t i = 0; i < r.size(); ++i) {
+    if (rho[i] < 0 || !(r[i] > threshold)) continue;
+    const auto it = std::upper_bound(out.rings.begin(), out.rings.end(), rho[i],
+                                     [](double q, const Ring& ring) { return q < ring.hi; });
+    if (it == out.rings.end()) continue;
+    const int sector = std::min(7, static_cast<int>((angle[i] + M_PI) / (2 * M_PI) * 8));
+    it->sx += x[i], it->sr += r[i], ++it->pixels;
+    it->sectorX[sector] += x[i], it->sectorR[sector] += r[i];
+  }
+  // The outer fold: where the profile falls most steeply for its radius (the largest
+  // −Δlog E/Δlog ρ over two rings), among rings of at least 16 pixels holding 0.1 % of the
+  // region's light. A focus falls as a power of the radius (ρ^−4/3 for spherical aberration:
+  // slope 4/3); a fold's edge, from an inverse square root inside to nothing outside, far faster.
+  double total = 0.0, steepest = 0.0;
+  for (const Ring& ring : out.rings) total += ring.sr;
+  const auto mean = [&](size_t k) { return out.rings[k].sr / out.rings[k].pixels; };
+  const auto centre = [&](size_t k) { return 0.5 * (out.rings[k].lo + out.rings[k].hi); };
+  for (size_t k = 2; k + 2 < out.rings.size(); ++k) {
+    const Ring &here = out.rings[k], &beyond = out.rings[k + 2];
+    if (here.pixels < 16 || beyond.pixels < 16 || here.sr < 0.001 * total) continue;
+    if (!(mean(k + 2) > 0.0)) continue;
+    const double slope = std::log(mean(k) / mean(k + 2)) / std::log(centre(k + 2) / centre(k));
+    if (slope > steepest) steepest = slope, out.fold = k;
+  }
+  return out;
+}
+
 int score(const std::string& refPath, const std::string& imagePath, const std::string& directPath,
           const std::string& scenePath, double regionFraction, const std::string& pngPrefix,
-          float exposure = 0.3f) {
+          const std::string& ringsCsv, int ringPixels, float exposure = 0.3f) {
   const prism::ImageRgb ref = prism::readImage(refPath), img = prism::readImage(imagePath),
                         direct = prism::readImage(directPath);
   if (img.width != ref.width || img.height != ref.height || direct.width != ref.width ||
@@ -700,15 +828,49 @@ int score(const std::string& refPath, const std::string& imagePath, const std::s
       "focus9_ratio %.4f regular_share_of_error2 %.3f regular_share_of_ref2 %.3f\n",
       region, regular, std::sqrt(e2 / r2), std::sqrt(re2 / rr2), sx / sr, std::sqrt(de2 / dr2),
       dsx / dsr, r[peak], x[peak] / r[peak], fx / fr, re2 / e2, rr2 / r2);
+  const RingScores rs = scoreRings(w, eye, W, H, r, x, threshold, ringPixels);
+  if (!rs.rings.empty()) {
+    // The rings that hold at least 0.5 % of the region's reference: the worst of them, in
+    // relative error and in standard errors.
+    double worst = 0, worstZ = 0;
+    size_t worstAt = 0;
+    for (size_t k = 0; k < rs.rings.size(); ++k) {
+      const Ring& ring = rs.rings[k];
+      if (ring.sr < 0.005 * sr) continue;
+      const double dev = ring.ratio() - 1.0, se = ring.standardError();
+      if (std::abs(dev) > std::abs(worst)) worst = dev, worstAt = k;
+      if (se > 0 && std::abs(dev / se) > std::abs(worstZ)) worstZ = dev / se;
+    }
+    const Ring &inner = rs.rings[0], &fold = rs.rings[rs.fold];
+    std::printf(
+        "rings %zu ring_px %d ring0_ratio %.4f ring0_se %.4f ring1_ratio %.4f ring2_ratio %.4f "
+        "fold_ring %zu fold_rho %.4g fold_ratio %.4f fold_se %.4f worst_ring %zu "
+        "worst_ring_dev %.4f worst_ring_z %.2f\n",
+        rs.rings.size(), ringPixels, inner.ratio(), inner.standardError(),
+        rs.rings.size() > 1 ? rs.rings[1].ratio() : 0.0,
+        rs.rings.size() > 2 ? rs.rings[2].ratio() : 0.0, rs.fold, 0.5 * (fold.lo + fold.hi),
+        fold.ratio(), fold.standardError(), worstAt, worst, worstZ);
+    if (!ringsCsv.empty()) {
+      FILE* f = std::fopen(ringsCsv.c_str(), "w");
+      if (!f) throw std::runtime_error("cannot write " + ringsCsv);
+      std::fprintf(f, "ring,rho_lo,rho_hi,pixels,reference,render,ratio,standard_error\n");
+      for (size_t k = 0; k < rs.rings.size(); ++k) {
+        const Ring& ring = rs.rings[k];
+        std::fprintf(f, "%zu,%.6g,%.6g,%ld,%.8g,%.8g,%.6f,%.6f\n", k, ring.lo, ring.hi, ring.pixels,
+                     ring.sr, ring.sx, ring.ratio(), ring.standardError());
+      }
+      std::fclose(f);
+    }
+  }
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene, out, reference, image, direct, png, compose;
+  std::string scene, out, reference, image, direct, png, compose, ringsCsv;
   long rays = 200000000;
-  int samples = 8, binsPerPixel = 2;
+  int samples = 8, binsPerPixel = 2, ringPixels = 3;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   double region = 0.01;
   for (int i = 1; i < argc; ++i) {
@@ -741,6 +903,10 @@ int main(int argc, char** argv) {
       png = next();
     else if (a == "--compose")
       compose = next();
+    else if (a == "--rings")
+      ringsCsv = next();
+    else if (a == "--ring-pixels")
+      ringPixels = std::stoi(next());
     else if (scene.empty() && a[0] != '-')
       scene = a;
     else {
@@ -759,7 +925,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (!image.empty())
-      return score(reference, image, direct, scene, region, png,
+      return score(reference, image, direct, scene, region, png, ringsCsv, ringPixels,
                    static_cast<float>(
                        std::getenv("PNG_EXPOSURE") ? std::atof(std::getenv("PNG_EXPOSURE")) : 0.3));
     if (scene.empty() || out.empty()) {
