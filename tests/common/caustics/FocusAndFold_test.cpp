@@ -135,7 +135,7 @@ class FocusAndFoldClassic : public testing::TestWithParam<int> {};
 // One pass of 256² photons (k = 100): the innermost ring (the focus) within 1 % at 1, 4 and 16
 // spp and every other ring holding 2 % of the light within 1 %, except the two either side of
 // the fold, between which the kernels may move light: together within 1 %. (Dense photons:
-// about 40 a pixel at the fold. The glass ball's fold gets a tenth of a photon a pixel, and its
+// about 45 a pixel at the fold. The glass ball's fold gets a tenth of a photon a pixel, and its
 // kernels of k = 100 are wider than the fold's rings: docs/accuracy.md.)
 TEST_P(FocusAndFoldClassic, TheFocusRingAndTheLightAcrossTheFoldAreExact) {
   const int spp = GetParam();
